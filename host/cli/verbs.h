@@ -1,0 +1,21 @@
+// The command-line verbs of `repose`, grouped by the part of the program that owns them.
+// Each group lives in its own file of host/cli/ and returns its verbs; main.cpp lists the groups.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace repose::cli {
+
+struct Verb {
+  std::string name;                          // e.g. "run", "design"
+  std::string summary;                       // one line for `repose --help`
+  std::function<int(int argc, char** argv)>  // argv[0] is "repose <name>"
+      run;
+};
+
+std::vector<Verb> engine_verbs();    // verbs_engine.cpp: devices, run, bench
+std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, optimize, curve
+std::vector<Verb> geometry_verbs();  // verbs_geometry.cpp: clump, stl, heap-angle
+
+}  // namespace repose::cli
