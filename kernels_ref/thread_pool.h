@@ -1,0 +1,37 @@
+// A fixed pool of worker threads for the CPU twin: parallel_for splits [0, n) into one
+// contiguous range per thread. Results never depend on the split (kernels only race on integer
+// counters), so any thread count gives the same bytes.
+#pragma once
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace repose {
+
+class ThreadPool {
+ public:
+  explicit ThreadPool(unsigned threads);
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  unsigned size() const { return static_cast<unsigned>(workers_.size()) + 1; }
+  // Calls body(begin, end) on disjoint ranges covering [0, n), the caller taking the first.
+  void parallel_for(uint64_t n, const std::function<void(uint64_t, uint64_t)>& body);
+
+ private:
+  void worker_loop(unsigned index);
+  std::vector<std::thread> workers_;
+  std::mutex mutex_;
+  std::condition_variable wake_, done_;
+  const std::function<void(uint64_t, uint64_t)>* job_ = nullptr;
+  uint64_t job_size_ = 0;
+  uint64_t generation_ = 0;
+  unsigned pending_ = 0;
+  bool stopping_ = false;
+};
+
+}  // namespace repose

@@ -1,0 +1,43 @@
+// Lets the kernel bodies in shaders/kernels/*.h compile as C++ for the CPU twin (kernels_ref/).
+// GLM gives GLSL's vector types; the macros below map GLSL's qualifiers and buffer access.
+// Bit-exactness with lavapipe rests on: no FMA contraction (-ffp-contract=off), float literals
+// written with an f suffix in shared code (a double literal would promote the expression), and
+// scalar math from <cmath> (sqrt, floor are correctly rounded / exact).
+#pragma once
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <glm/glm.hpp>
+
+namespace repose::gpu {
+using uint = std::uint32_t;
+using glm::ivec3;
+using glm::uvec4;
+using glm::vec3;
+using glm::vec4;
+using std::abs;
+using std::floor;
+using std::max;
+using std::min;
+using std::sqrt;
+
+inline uint atomicAdd(uint& target, uint value) {
+  return std::atomic_ref<uint>(target).fetch_add(value, std::memory_order_relaxed);
+}
+inline uint atomicOr(uint& target, uint value) {
+  return std::atomic_ref<uint>(target).fetch_or(value, std::memory_order_relaxed);
+}
+inline uint atomicMax(uint& target, uint value) {
+  std::atomic_ref<uint> ref(target);
+  uint seen = ref.load(std::memory_order_relaxed);
+  while (seen < value && !ref.compare_exchange_weak(seen, value, std::memory_order_relaxed)) {
+  }
+  return seen;
+}
+}  // namespace repose::gpu
+
+// GLSL's `precise` has no C++ meaning: C++ already evaluates as written without -ffast-math.
+#define precise
+#define INOUT(T) T&
+#define OUT(T) T&
+#define FN inline

@@ -1,0 +1,113 @@
+// EDEM's Hertz-Mindlin (no-slip) contact law, stateless (LAMMPS style): the same function runs
+// on the GPU and in the CPU twin. ENGINEERING.md section 1 has the formulas. Conventions:
+//   n        unit normal from j to i (the force on i along +n is repulsive)
+//   overlap  > 0 in contact
+//   v_rel    velocity of i's surface relative to j's at the contact point
+//   ri, rj   distances from the body centres to the contact point (rj = 0 for a wall)
+#ifndef REPOSE_KERNELS_CONTACT_LAW_H
+#define REPOSE_KERNELS_CONTACT_LAW_H
+
+struct ContactOut {
+  vec3 force_i;   // on i; j receives -force_i
+  vec3 torque_i;
+  vec3 torque_j;
+  float normal_force;  // signed scalar normal force (negative = attractive)
+};
+
+FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
+                            float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
+                            PairParams pp, float dt, uint flags, INOUT(vec3) shear) {
+  ContactOut o;
+  float e_star = pp.a.x;
+  float g_star = pp.a.y;
+  float damping = pp.a.z;  // -2 sqrt(5/6) beta, >= 0
+  float mu_s = pp.a.w;
+  float mu_r = pp.b.x;
+
+  precise float sqrt_rd = sqrt(radius_star * overlap);
+  precise float sn = 2.0f * e_star * sqrt_rd;
+  precise float st = 8.0f * g_star * sqrt_rd;
+  // Fn = 4/3 E* sqrt(R*) dn^(3/2), written as dn * sqrt(R* dn)
+  precise float fn_elastic = (4.0f * e_star * sqrt_rd * overlap) / 3.0f;
+  precise float gamma_n = damping * sqrt(sn * mass_star);
+  precise float gamma_t = damping * sqrt(st * mass_star);
+
+  precise float vn = dot3(v_rel, n);
+  precise vec3 v_t = v_rel - scale3(n, vn);
+
+  precise float fn = fn_elastic - gamma_n * vn;
+  if ((flags & kFlagClipAttraction) != 0u) fn = max(fn, 0.0f);
+
+  // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.
+  precise float s_old_sq = dot3(shear, shear);
+  precise vec3 s_proj = shear - scale3(n, dot3(shear, n));
+  precise float s_new_sq = dot3(s_proj, s_proj);
+  if (s_new_sq > 0.0f) {
+    precise float keep = sqrt(s_old_sq / s_new_sq);
+    s_proj = scale3(s_proj, keep);
+  }
+  precise vec3 spring = s_proj + scale3(v_t, dt);
+
+  precise vec3 f_spring = scale3(spring, -st);
+  precise vec3 f_damp = scale3(v_t, -gamma_t);
+  precise float ft_max = mu_s * abs(fn);
+  precise vec3 ft;
+  if ((flags & kFlagCoulombSpringOnly) != 0u) {
+    // LIGGGHTS: the cap acts on the spring alone; damping is dropped while sliding.
+    precise float fs = length3(f_spring);
+    if (fs > ft_max) {
+      precise float ratio = ft_max / fs;
+      spring = scale3(spring, ratio);
+      ft = scale3(spring, -st);
+    } else {
+      ft = f_spring + f_damp;
+    }
+  } else {
+    // EDEM / DEM-Engine: the cap acts on spring + damper; the spring keeps the capped force.
+    ft = f_spring + f_damp;
+    precise float f = length3(ft);
+    if (f > ft_max) {
+      precise float ratio = ft_max / f;
+      ft = scale3(ft, ratio);
+      precise float inv_st = -1.0f / st;
+      spring = scale3(ft, inv_st);
+    }
+  }
+  shear = spring;
+
+  precise vec3 n_x_ft = cross3(n, ft);
+  o.force_i = scale3(n, fn) + ft;
+  o.torque_i = scale3(n_x_ft, -ri);
+  o.torque_j = scale3(n_x_ft, -rj);
+  o.normal_force = fn;
+
+  if ((flags & kFlagRollingConstTorque) != 0u && mu_r > 0.0f) {
+    precise float arm = mu_r * abs(fn);
+    if ((flags & kFlagRollingRelativeOmega) != 0u) {
+      // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
+      precise vec3 w = w_i - w_j;
+      precise float lw = length3(w);
+      if (lw > 0.0f) {
+        precise float k = -(arm * radius_star) / lw;
+        precise vec3 tr = scale3(w, k);
+        o.torque_i = o.torque_i + tr;
+        if (!j_is_wall) o.torque_j = o.torque_j - tr;
+      }
+    } else {
+      // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
+      precise float lwi = length3(w_i);
+      if (lwi > 0.0f) {
+        precise float ki = -(arm * ri) / lwi;
+        o.torque_i = o.torque_i + scale3(w_i, ki);
+      }
+      precise float lwj = length3(w_j);
+      if (!j_is_wall && lwj > 0.0f) {
+        precise float kj = -(arm * rj) / lwj;
+        o.torque_j = o.torque_j + scale3(w_j, kj);
+      }
+    }
+  }
+  return o;
+}
+
+#endif

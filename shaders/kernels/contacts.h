@@ -1,0 +1,93 @@
+// Contact forces: one invocation per contact (or per owner row, the `rows` variant), both
+// calling process_contact, which writes the contact's force and torques and updates its history.
+#ifndef REPOSE_KERNELS_CONTACTS_H
+#define REPOSE_KERNELS_CONTACTS_H
+
+KFN(void, process_contact) uint i, uint c) {
+  uint p = B_partner[c];
+  vec4 pi = B_pos[i];
+  vec4 vi = B_vel[i];
+  vec3 xi = xyz(pi);
+  float rad_i = pi.w;
+  vec3 wi = xyz(B_omega[i]);
+  vec4 hist = B_history[c];
+  vec3 shear = xyz(hist);
+  uint mi = B_material[i];
+  bool is_wall = p >= PC.n_particles;
+
+  vec3 n = vec3(0.0f);
+  float overlap = -1.0f;
+  float radius_star = 0.0f;
+  float mass_star = 0.0f;
+  float ri = 0.0f;
+  float rj = 0.0f;
+  vec3 v_rel = vec3(0.0f);
+  vec3 wj = vec3(0.0f);
+  uint mj = 0u;
+  bool touching = false;
+
+  if (!is_wall) {
+    vec4 pj = B_pos[p];
+    vec4 vj = B_vel[p];
+    float rad_j = pj.w;
+    wj = xyz(B_omega[p]);
+    mj = B_material[p];
+    precise vec3 d = xi - xyz(pj);
+    precise float dist = length3(d);
+    overlap = rad_i + rad_j - dist;
+    touching = overlap > 0.0f && dist > 0.0f;
+    if (touching) {
+      n = vec3(d.x / dist, d.y / dist, d.z / dist);
+      radius_star = (rad_i * rad_j) / (rad_i + rad_j);
+      mass_star = 1.0f / (vi.w + vj.w);
+      ri = rad_i - 0.5f * overlap;
+      rj = rad_j - 0.5f * overlap;
+      precise vec3 spin = scale3(wi, ri) + scale3(wj, rj);
+      v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
+    }
+  } else {
+    WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
+    mj = ws.info.y;
+    touching = wall_contact(ws, xi, rad_i, 0.0f, n, overlap) && overlap > 0.0f;
+    if (touching) {
+      radius_star = rad_i;
+      mass_star = 1.0f / vi.w;
+      ri = rad_i - 0.5f * overlap;
+      precise vec3 contact_point = xi - scale3(n, ri);
+      precise vec3 v_wall = wall_point_velocity(ws, contact_point);
+      v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
+    }
+  }
+
+  if (!touching) {
+    // Separated: the tangential history ends with the contact (LIGGGHTS, EDEM).
+    B_history[c] = vec4(0.0f);
+    B_contact_force[c] = vec4(0.0f);
+    B_torque_i[c] = vec4(0.0f);
+    B_torque_j[c] = vec4(0.0f);
+    return;
+  }
+  PairParams pp = B_pairs[mi * PC.n_materials + mj];
+  ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
+                               pp, PC.dt, PC.flags, shear);
+  B_history[c] = vec4(shear, hist.w + 1.0f);
+  B_contact_force[c] = vec4(o.force_i, o.normal_force);
+  B_torque_i[c] = vec4(o.torque_i, 0.0f);
+  B_torque_j[c] = vec4(o.torque_j, 0.0f);
+}
+
+// Variant "contact": one invocation per contact of the list.
+KERNEL(k_contact_forces) uint c) {
+  if (c >= B_control[kCtlContacts]) return;
+  process_contact(KB B_owner[c], c);
+}
+
+// Variant "rows": one invocation per owner walks its own row in order.
+KERNEL(k_contact_rows) uint i) {
+  if (i >= PC.n_particles) return;
+  uint limit = B_control[kCtlContacts];
+  uint end = min(B_row_start[i + 1u], limit);
+  for (uint c = min(B_row_start[i], limit); c < end; ++c) process_contact(KB i, c);
+}
+
+#endif

@@ -1,0 +1,134 @@
+// One header for the C++ host, the C++ kernel twin (kernels_ref/) and every GLSL kernel:
+// binding indices, the layouts of every structure that crosses the host/device boundary,
+// and the push constants. Mirrored by construction, checked by static_asserts on the host.
+#ifndef REPOSE_SHARED_H
+#define REPOSE_SHARED_H
+
+#ifdef __cplusplus
+#include "glsl_compat.h"
+namespace repose::gpu {
+#define REPOSE_CONST inline constexpr uint
+#else
+#define REPOSE_CONST const uint
+#endif
+
+// ---- Descriptor bindings: one storage-buffer set shared by every kernel (set 0). ----
+REPOSE_CONST kBindPos = 0;           // vec4 [N]   xyz position, w radius
+REPOSE_CONST kBindVel = 1;           // vec4 [N]   xyz velocity, w 1/mass
+REPOSE_CONST kBindOmega = 2;         // vec4 [N]   xyz angular velocity, w 1/moment of inertia
+REPOSE_CONST kBindForce = 3;         // vec4 [N]   xyz contact force sum (no gravity)
+REPOSE_CONST kBindTorque = 4;        // vec4 [N]   xyz contact torque sum
+REPOSE_CONST kBindPosAtBuild = 5;    // vec4 [N]   position when the contact list was built
+REPOSE_CONST kBindMaterial = 6;      // uint [N]
+REPOSE_CONST kBindPairs = 7;         // PairParams [M*M]
+REPOSE_CONST kBindWalls = 8;         // WallState [steps_per_batch * W]
+REPOSE_CONST kBindControl = 9;       // uint [kControlWords]
+REPOSE_CONST kBindCellOf = 10;       // uint [N]   hash bucket of each particle
+REPOSE_CONST kBindCellStart = 11;    // uint [T+1] counts, scanned in place to starts
+REPOSE_CONST kBindCellFill = 12;     // uint [T]   scatter cursor
+REPOSE_CONST kBindSorted = 13;       // uint [N]   particle ids by bucket, by id within a bucket
+REPOSE_CONST kBindRowStart = 14;     // uint [N+1] contacts per owner, scanned in place (CSR)
+REPOSE_CONST kBindPartner = 15;      // uint [C]   j > i for particles, N + w for walls
+REPOSE_CONST kBindOwner = 16;        // uint [C]   i
+REPOSE_CONST kBindHistory = 17;      // vec4 [C]   xyz tangential spring, w contact age (steps)
+REPOSE_CONST kBindOldRowStart = 18;  // uint [N+1] the list before a rebuild
+REPOSE_CONST kBindOldPartner = 19;   // uint [C]
+REPOSE_CONST kBindOldHistory = 20;   // vec4 [C]
+REPOSE_CONST kBindContactForce = 21; // vec4 [C]   force on the owner i (j gets minus it)
+REPOSE_CONST kBindTorqueI = 22;      // vec4 [C]   torque on i
+REPOSE_CONST kBindTorqueJ = 23;      // vec4 [C]   torque on j
+REPOSE_CONST kBindTransStart = 24;   // uint [N+1] contacts in which a particle is the partner (CSR)
+REPOSE_CONST kBindTransFill = 25;    // uint [N]
+REPOSE_CONST kBindTransList = 26;    // uint [C]   contact indices, ascending within a row
+REPOSE_CONST kBindWallForce = 27;    // vec4 [W]   force on each wall (output only)
+REPOSE_CONST kBindingCount = 28;
+
+// ---- Control words: flags and indirect-dispatch arguments written on the device. ----
+REPOSE_CONST kCtlNeedRebuild = 0;    // set by the skin check, read by rebuild_args
+REPOSE_CONST kCtlRebuilding = 1;     // 1 during a step that rebuilds the list
+REPOSE_CONST kCtlOverflow = 2;       // contact list exceeded its capacity (batch is redone)
+REPOSE_CONST kCtlContacts = 3;       // contacts in the current list
+REPOSE_CONST kCtlStepsSinceBuild = 4;
+REPOSE_CONST kCtlRebuildCount = 5;
+REPOSE_CONST kCtlMaxContacts = 6;    // the largest list needed so far
+REPOSE_CONST kCtlOldContacts = 7;    // contacts in the list being replaced
+REPOSE_CONST kCtlArgsParticles = 8;  // 3 words: x,y,z groups over N (0 when not rebuilding)
+REPOSE_CONST kCtlArgsBuckets = 11;   // 3 words: groups over T+1 buckets
+REPOSE_CONST kCtlArgsOne = 14;       // 3 words: one group (scans)
+REPOSE_CONST kCtlArgsOldContacts = 17;  // 3 words: groups over the old list
+REPOSE_CONST kCtlArgsContacts = 20;  // 3 words: groups over the current list (every step)
+REPOSE_CONST kCtlArgsNewContacts = 23;  // 3 words: the same, only in a step that rebuilds
+REPOSE_CONST kControlWords = 32;
+
+// ---- Option bits (SimPush::flags). Defaults (all zero) are EDEM's. ----
+REPOSE_CONST kFlagCoulombSpringOnly = 1u;     // LIGGGHTS: cap the spring, drop damping while sliding
+REPOSE_CONST kFlagClipAttraction = 2u;        // clip the attractive end-of-contact normal force
+REPOSE_CONST kFlagRollingConstTorque = 4u;    // EDEM standard rolling friction (CDT)
+REPOSE_CONST kFlagRollingRelativeOmega = 8u;  // LIGGGHTS cdt: relative instead of own omega
+REPOSE_CONST kFlagDrift = 16u;                // kick kernels: also move positions and check the skin
+
+// ---- Scan selector (ScanPush::target). ----
+REPOSE_CONST kScanCells = 0;
+REPOSE_CONST kScanRows = 1;
+REPOSE_CONST kScanTransposed = 2;
+
+REPOSE_CONST kWallPlane = 0;
+REPOSE_CONST kWallCylinder = 1;
+
+REPOSE_CONST kDefaultWorkgroup = 64;
+REPOSE_CONST kScanWorkgroup = 256;      // threads of the single-group scan
+REPOSE_CONST kWallReduceWorkgroup = 256;
+
+// Contact parameters of a material pair, precomputed on the host (no transcendentals in kernels).
+struct PairParams {
+  vec4 a;  // x E*, y G*, z damping factor -2 sqrt(5/6) beta (>= 0), w static friction
+  vec4 b;  // x rolling friction, y restitution, zw unused
+};
+
+// One wall at one step of a batch; the host evaluates prescribed motion.
+struct WallState {
+  vec4 p0;     // plane: point;  cylinder: base centre
+  vec4 p1;     // plane: unit normal into the domain; cylinder: unit axis, w radius
+  vec4 vel;    // xyz translational velocity, w cylinder height
+  vec4 omega;  // xyz angular velocity about `centre`
+  vec4 centre; // xyz a point on the rotation axis
+  uvec4 info;  // x type, y material, zw unused
+};
+
+// Push constants of the simulation kernels (<= 128 bytes, lavapipe's limit).
+struct SimPush {
+  uint n_particles;
+  uint n_walls;
+  uint capacity;       // contact list capacity
+  uint table_size;     // hash buckets T (power of two)
+  uint n_materials;
+  uint flags;
+  uint wall_slot;      // which WallState row of the batch
+  uint max_interval;   // rebuild at least every this many steps (0: only on the skin check)
+  uint workgroup;      // the kernels' workgroup size, for indirect argument computation
+  float dt;
+  float kick;          // fraction of dt for velocity kicks (0.5 velocity Verlet, 1 symplectic Euler)
+  float gx;
+  float gy;
+  float gz;
+  float inv_cell;      // 1 / hash cell edge
+  float skin;
+  float half_skin_sq;  // (skin/2)^2: a particle moved this far (squared) forces a rebuild
+};
+
+struct ScanPush {
+  uint target;  // kScanCells, kScanRows, kScanTransposed
+  uint count;   // entries to scan (the total lands at [count])
+  uint capacity;
+  uint workgroup;
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(PairParams) == 32);
+static_assert(sizeof(WallState) == 96);
+static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");
+static_assert(sizeof(ScanPush) <= 128);
+}  // namespace repose::gpu
+#endif
+
+#endif

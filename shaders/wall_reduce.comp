@@ -1,0 +1,35 @@
+#version 450
+// Force on each wall: one workgroup per wall sums -F over the contacts with that wall, strided
+// per thread in contact order, then a fixed tree. The CPU twin repeats the same order exactly.
+#include "kernels/glsl_prelude.glsl"
+#include "kernels/common.h"
+
+shared float sum_x[kWallReduceWorkgroup];
+shared float sum_y[kWallReduceWorkgroup];
+shared float sum_z[kWallReduceWorkgroup];
+
+void main() {
+  uint w = gl_WorkGroupID.x;
+  uint t = gl_LocalInvocationID.x;
+  uint partner = PC.n_particles + w;
+  uint total = B_control[kCtlContacts];
+  precise vec3 acc = vec3(0.0f);
+  for (uint c = t; c < total; c += kWallReduceWorkgroup)
+    if (B_partner[c] == partner) acc = acc - xyz(B_contact_force[c]);
+  sum_x[t] = acc.x;
+  sum_y[t] = acc.y;
+  sum_z[t] = acc.z;
+  barrier();
+  for (uint s = kWallReduceWorkgroup / 2u; s > 0u; s >>= 1u) {
+    if (t < s) {
+      precise float x = sum_x[t] + sum_x[t + s];
+      precise float y = sum_y[t] + sum_y[t + s];
+      precise float z = sum_z[t] + sum_z[t + s];
+      sum_x[t] = x;
+      sum_y[t] = y;
+      sum_z[t] = z;
+    }
+    barrier();
+  }
+  if (t == 0u) B_wall_force[w] = vec4(sum_x[0], sum_y[0], sum_z[0], 0.0f);
+}
