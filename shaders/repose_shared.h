@@ -66,6 +66,7 @@ REPOSE_CONST kFlagClipAttraction = 2u;        // clip the attractive end-of-cont
 REPOSE_CONST kFlagRollingConstTorque = 4u;    // EDEM standard rolling friction (CDT)
 REPOSE_CONST kFlagRollingRelativeOmega = 8u;  // LIGGGHTS cdt: relative instead of own omega
 REPOSE_CONST kFlagDrift = 16u;                // kick kernels: also move positions and check the skin
+REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs (setup, as LIGGGHTS)
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;

@@ -1,7 +1,251 @@
+// `repose devices`, `repose run`, `repose bench`: the engine's verbs.
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "case/case_error.h"
+#include "case/case_loader.h"
 #include "cli/verbs.h"
+#include "engine/backend_factory.h"
+#include "engine/bench_bed.h"
+#include "engine/model.h"
+#include "engine/simulation.h"
+#include "io/run_summary.h"
+#include "io/state_file.h"
+#include "io/vtk_writer.h"
+#include "util/progress.h"
+#include "vk/context.h"
 
 namespace repose::cli {
 
-std::vector<Verb> engine_verbs() { return {}; }
+namespace {
+
+namespace fs = std::filesystem;
+
+// "--variant rows,wg=128,rebuild=20" -> KernelVariant; throws on anything else.
+KernelVariant parse_variant(const std::string& text) {
+  KernelVariant v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    if (item == "contact") v.contact = ContactKernel::PerContact;
+    else if (item == "rows") v.contact = ContactKernel::PerRow;
+    else if (item.rfind("wg=", 0) == 0) v.workgroup = std::stoul(item.substr(3));
+    else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = std::stoul(item.substr(8));
+    else throw std::invalid_argument("unknown variant item '" + item +
+                                     "' (contact, rows, wg=N, rebuild=N)");
+  }
+  if (v.workgroup == 0 || v.workgroup > 1024 || (v.workgroup & (v.workgroup - 1)))
+    throw std::invalid_argument("wg must be a power of two up to 1024");
+  return v;
+}
+
+int run_devices(int argc, char** argv) {
+  CLI::App app{"List the Vulkan devices and which one `repose run` uses."};
+  CLI11_PARSE(app, argc, argv);
+  auto devices = vk::Context::list_devices();
+  if (devices.empty()) {
+    std::fprintf(stderr, "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)\n");
+    return 1;
+  }
+  int chosen = vk::Context::default_device_index(devices);
+  for (const auto& d : devices)
+    std::printf("%s [%u] %s (%s; %s; %.1f GiB device-local)\n", int(d.index) == chosen ? "*" : " ",
+                d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
+                d.device_local_bytes / 1073741824.0);
+  std::printf("* = used by default (--device N chooses another)\n");
+  return 0;
+}
+
+int run_case(int argc, char** argv) {
+  CLI::App app{"Run a case file: progress on stderr, VTK frames and summary.json in --out."};
+  std::string case_path, backend = "vulkan", out_dir, state_out, variant_text;
+  int device = -1;
+  unsigned threads = 0;
+  int64_t steps = -1;
+  double sim_time = -1;
+  bool quiet = false;
+  std::vector<std::string> sets;
+  app.add_option("case", case_path, "case file (TOML)")->required();
+  app.add_option("--backend", backend, "vulkan (default) or cpu")->check(CLI::IsMember({"vulkan", "cpu"}));
+  app.add_option("--device", device, "Vulkan device index (see `repose devices`)");
+  app.add_option("--threads", threads, "cpu backend threads (default: all cores)");
+  auto* steps_opt = app.add_option("--steps", steps, "run this many steps instead of the case's end time");
+  app.add_option("--time", sim_time, "run this much simulated time (s)")->excludes(steps_opt);
+  app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
+  app.add_option("--state-out", state_out, "write the final state here (docs/state-format.md)");
+  app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
+  app.add_option("--variant", variant_text, "kernel variant: contact|rows, wg=N, rebuild=N");
+  app.add_flag("--quiet", quiet, "no progress output");
+  CLI11_PARSE(app, argc, argv);
+
+  // Everything that can fail on bad input happens before anything is written.
+  std::vector<CaseOverride> overrides;
+  for (const auto& s : sets) overrides.push_back(parse_override(s));
+  CaseSpec spec;
+  try {
+    spec = load_case(case_path, overrides);
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  KernelVariant variant = parse_variant(variant_text);
+  Model model = build_model(spec);
+  uint64_t total_steps = steps >= 0 ? uint64_t(steps)
+                       : uint64_t(std::llround((sim_time >= 0 ? sim_time : model.end_time) / model.dt));
+  if (out_dir.empty()) out_dir = "out/" + spec.name;
+  auto engine = make_backend(backend, device, threads, variant.workgroup);
+  std::string backend_name = engine->describe();
+
+  // Frames at the output interval: batches end exactly on frame steps.
+  uint64_t frame_every = model.output_interval > 0
+                             ? std::max<uint64_t>(1, std::llround(model.output_interval / model.dt))
+                             : 0;
+  uint32_t batch = frame_every ? uint32_t(std::min<uint64_t>(frame_every, 200)) : 200;
+  while (frame_every && frame_every % batch) --batch;
+  Simulation sim(std::move(model), std::move(engine), variant, batch);
+  const Model& m = sim.model();
+
+  fs::create_directories(out_dir);
+  bool frames = m.vtk && frame_every > 0;
+  if (frames) fs::create_directories(out_dir + "/frames");
+  unsigned frame_count = 0;
+  std::ofstream walls_csv;
+  if (!m.walls.empty()) {
+    walls_csv.open(out_dir + "/wall_forces.csv");
+    walls_csv << "time";
+    for (const auto& w : m.walls) walls_csv << "," << w.name << ".fx," << w.name << ".fy," << w.name << ".fz";
+    walls_csv << "\n";
+  }
+  auto write_frame = [&](Simulation& s) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/frames/%s_%05u.vtk", spec.name.c_str(), frame_count++);
+    write_vtk_frame(out_dir + name, s.state(), s.time());
+    if (walls_csv.is_open()) {
+      walls_csv << s.time();
+      for (const auto& w : s.wall_forces()) walls_csv << "," << w.fx << "," << w.fy << "," << w.fz;
+      walls_csv << "\n";
+    }
+  };
+  if (!quiet)
+    std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), %llu steps on %s\n",
+                 spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time,
+                 m.rayleigh_time, (unsigned long long)total_steps, backend_name.c_str());
+  if (frames) write_frame(sim);
+  Progress progress(spec.name, total_steps, m.dt, !quiet);
+  auto t0 = std::chrono::steady_clock::now();
+  sim.advance(total_steps, [&](const Simulation& s) {
+    if (frames && s.step() % frame_every == 0) write_frame(const_cast<Simulation&>(s));
+    progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
+  });
+  progress.finish();
+  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  RunInfo info{backend_name, variant.name(), wall, frame_count};
+  write_run_summary(out_dir + "/summary.json", sim, info);
+  if (!state_out.empty()) write_state_file(state_out, sim.state(), sim.step(), sim.time());
+  auto e = sim.kinetic_energy();
+  std::printf("%s: %llu steps, t = %.4g s, %u contacts, kinetic energy %.6g J, %.3g particle-steps/s (%s)\n",
+              spec.name.c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
+              wall > 0 ? double(m.n_particles) * sim.step() / wall : 0.0, format_duration(wall).c_str());
+  for (const auto& w : sim.wall_forces())
+    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
+      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
+  std::printf("wrote %s/summary.json%s%s\n", out_dir.c_str(),
+              frames ? (", " + std::to_string(frame_count) + " VTK frames in " + out_dir + "/frames").c_str() : "",
+              state_out.empty() ? "" : (", state " + state_out).c_str());
+  return 0;
+}
+
+int run_bench(int argc, char** argv) {
+  CLI::App app{"Benchmark a settled bed of 10 mm spheres on each backend and kernel variant."};
+  uint32_t n = 50000;
+  std::vector<std::string> backends{"cpu", "vulkan"};
+  std::vector<std::string> variants{"contact"};
+  unsigned threads = 0;
+  int device = -1;
+  uint32_t steps = 200;
+  double settle = 0.25;
+  std::string cache_dir = "out/bench";
+  app.add_option("--n", n, "spheres in the bed (default 50000)");
+  app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
+  app.add_option("--threads", threads, "cpu backend threads (default all cores)");
+  app.add_option("--device", device, "Vulkan device index");
+  app.add_option("--variant", variants, "kernel variants to compare, e.g. contact rows,wg=128");
+  app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
+  app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.25)");
+  app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
+  CLI11_PARSE(app, argc, argv);
+
+  CaseSpec bed = bench_bed_case(n);
+  Model model = build_model(bed);
+  fs::create_directories(cache_dir);
+  std::string cache = cache_dir + "/bed_" + std::to_string(n) + ".state";
+  if (fs::exists(cache)) {
+    HostState s = read_state_file(cache);
+    model.pos = s.pos;
+    model.vel = s.vel;
+    model.omega = s.omega;
+    std::fprintf(stderr, "bench: settled bed of %u spheres from %s\n", n, cache.c_str());
+  } else {
+    std::fprintf(stderr, "bench: settling %u spheres for %.2f s (once; cached in %s)\n", n, settle, cache.c_str());
+    Simulation s(model, make_backend("cpu", -1, threads, gpu::kDefaultWorkgroup));
+    uint64_t settle_steps = uint64_t(std::llround(settle / model.dt));
+    Progress p("settle", settle_steps, model.dt);
+    s.advance(settle_steps, [&](const Simulation& x) { p.update(x.step()); });
+    p.finish();
+    write_state_file(cache, s.state(), s.step(), s.time());
+    model.pos = s.state().pos;
+    model.vel = s.state().vel;
+    model.omega = s.state().omega;
+  }
+
+  std::printf("settled bed: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), %u timed steps\n",
+              n, model.dt, steps);
+  std::printf("%-8s %-20s %14s %14s %10s %10s %10s\n", "backend", "variant", "particle-st/s",
+              "contacts/s", "contacts", "B/particle", "B/contact");
+  for (const auto& b : backends) {
+    for (const auto& vt : variants) {
+      KernelVariant v = parse_variant(vt);
+      Simulation sim(model, make_backend(b, device, threads, v.workgroup), v, 50);
+      sim.advance(50);  // warm up: list built, caches hot
+      auto t0 = std::chrono::steady_clock::now();
+      sim.advance(steps);
+      double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      double contacts = sim.contacts();
+      // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
+      size_t per_contact_bytes = 4 * 4 + 5 * 16;  // partner, owner, old partner, transposed + 5 vec4
+      double bytes_per_particle =
+          double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
+      std::printf("%-8s %-20s %14.4g %14.4g %10.0f %10.0f %10zu\n", b.c_str(), v.name().c_str(),
+                  double(n) * steps / secs, contacts * steps / secs, contacts, bytes_per_particle,
+                  per_contact_bytes);
+      auto times = sim.time_kernels(10);
+      double total = 0;
+      for (const auto& [k, t] : times) total += t;
+      std::printf("         time per step by kernel (%s):", sim.backend().describe().c_str());
+      for (const auto& [k, t] : times)
+        if (t / total > 0.01) std::printf(" %s %.2f ms,", k.c_str(), 1e3 * t / 10);
+      std::printf("\n");
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Verb> engine_verbs() {
+  return {
+      {"devices", "list Vulkan devices (lavapipe shows as llvmpipe)", run_devices},
+      {"run", "run a case file (VTK frames, summary.json, --state-out)", run_case},
+      {"bench", "speed of a settled bed per backend and kernel variant", run_bench},
+  };
+}
 
 }  // namespace repose::cli

@@ -70,7 +70,7 @@ KFN(void, process_contact) uint i, uint c) {
   PairParams pp = B_pairs[mi * PC.n_materials + mj];
   ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
                                pp, PC.dt, PC.flags, shear);
-  B_history[c] = vec4(shear, hist.w + 1.0f);
+  if ((PC.flags & kFlagKeepHistory) == 0u) B_history[c] = vec4(shear, hist.w + 1.0f);
   B_contact_force[c] = vec4(o.force_i, o.normal_force);
   B_torque_i[c] = vec4(o.torque_i, 0.0f);
   B_torque_j[c] = vec4(o.torque_j, 0.0f);

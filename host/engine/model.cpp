@@ -1,0 +1,189 @@
+#include "engine/model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "case/time_step.h"
+
+namespace repose {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Vec3d add(Vec3d a, Vec3d b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
+Vec3d sub(Vec3d a, Vec3d b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Vec3d mul(Vec3d a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
+double dot(Vec3d a, Vec3d b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3d cross(Vec3d a, Vec3d b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+Vec3d unit(Vec3d a) { return mul(a, 1.0 / std::sqrt(dot(a, a))); }
+
+// Rodrigues rotation of v about the unit axis k by angle a.
+Vec3d rotate(Vec3d v, Vec3d k, double a) {
+  double c = std::cos(a), s = std::sin(a);
+  return add(add(mul(v, c), mul(cross(k, v), s)), mul(k, dot(k, v) * (1 - c)));
+}
+
+gpu::vec4 v4(Vec3d a, double w) {
+  return gpu::vec4(float(a[0]), float(a[1]), float(a[2]), float(w));
+}
+
+uint32_t next_pow2(uint32_t v) {
+  uint32_t p = 1;
+  while (p < v) p <<= 1;
+  return p;
+}
+
+}  // namespace
+
+gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in) {
+  auto youngs = [](const Material& m) {
+    return m.youngs_modulus > 0 ? m.youngs_modulus : 2 * m.shear_modulus * (1 + m.poisson);
+  };
+  double ea = youngs(a), eb = youngs(b), na = a.poisson, nb = b.poisson;
+  double e_star = 1.0 / ((1 - na * na) / ea + (1 - nb * nb) / eb);
+  double g_star = 1.0 / (2 * (2 - na) * (1 + na) / ea + 2 * (2 - nb) * (1 + nb) / eb);
+  double ln_e = std::log(in.restitution);
+  double beta = ln_e / std::sqrt(ln_e * ln_e + kPi * kPi);
+  double damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
+  gpu::PairParams p;
+  p.a = gpu::vec4(float(e_star), float(g_star), float(damping), float(in.static_friction));
+  p.b = gpu::vec4(float(in.rolling_friction), float(in.restitution), 0.0f, 0.0f);
+  return p;
+}
+
+gpu::WallState Model::wall_state(size_t w, double t) const {
+  const ModelWall& mw = walls[w];
+  const WallMotion& m = mw.motion;
+  double active = std::clamp(t - m.start_time, 0.0, std::max(0.0, m.stop_time - m.start_time));
+  bool moving = t >= m.start_time && t < m.stop_time;
+  Vec3d shift = mul(m.velocity, active);
+  Vec3d axis = dot(m.rotation_axis, m.rotation_axis) > 0 ? unit(m.rotation_axis) : Vec3d{0, 0, 1};
+  double angle = m.angular_rate * active;
+  Vec3d centre = add(m.rotation_axis_point, shift);
+  Vec3d p0 = add(centre, rotate(sub(mw.p0, m.rotation_axis_point), axis, angle));
+  Vec3d p1 = rotate(mw.p1, axis, angle);
+  gpu::WallState s;
+  s.p0 = v4(p0, 0);
+  s.p1 = v4(p1, mw.kind == gpu::kWallCylinder ? mw.radius : 0.0);
+  s.vel = v4(moving ? m.velocity : Vec3d{0, 0, 0}, mw.height);
+  s.omega = v4(moving ? mul(axis, m.angular_rate) : Vec3d{0, 0, 0}, 0);
+  s.centre = v4(centre, 0);
+  s.info = gpu::uvec4(mw.kind, mw.material, 0u, 0u);
+  return s;
+}
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.case_path = spec.path;
+  m.n_particles = static_cast<uint32_t>(spec.spheres.size());
+  m.n_materials = static_cast<uint32_t>(spec.materials.size());
+  if (m.n_particles == 0) throw std::runtime_error(spec.path + ": the case has no particles");
+
+  double r_min = 1e300, r_max = 0;
+  for (const auto& s : spec.spheres) {
+    const Material& mat = spec.materials.at(s.material);
+    double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
+    double inertia = 0.4 * mass * s.radius * s.radius;
+    m.total_mass += mass;
+    m.pos.push_back(v4(s.position, s.radius));
+    m.vel.push_back(v4(s.velocity, 1.0 / mass));
+    m.omega.push_back(v4(s.angular_velocity, 1.0 / inertia));
+    m.material.push_back(static_cast<uint32_t>(s.material));
+    r_min = std::min(r_min, s.radius);
+    r_max = std::max(r_max, s.radius);
+  }
+
+  // Pair table: the interaction entries, symmetric. Unused pairs keep zeros (never looked up:
+  // the loader refuses cases whose materials meet without an interaction).
+  m.pairs.assign(size_t(m.n_materials) * m.n_materials, gpu::PairParams{});
+  for (const auto& in : spec.interactions) {
+    auto p = pair_params(spec.materials[in.material_a], spec.materials[in.material_b], in);
+    m.pairs[size_t(in.material_a) * m.n_materials + in.material_b] = p;
+    m.pairs[size_t(in.material_b) * m.n_materials + in.material_a] = p;
+  }
+
+  for (size_t wi = 0; wi < spec.walls.size(); ++wi) {
+    const WallSpec& w = spec.walls[wi];
+    std::string base = w.name.empty() ? "wall" + std::to_string(wi) : w.name;
+    auto plane = [&](Vec3d point, Vec3d normal, const std::string& name) {
+      ModelWall mw;
+      mw.kind = gpu::kWallPlane;
+      mw.material = static_cast<uint32_t>(w.material);
+      mw.p0 = point;
+      mw.p1 = unit(normal);
+      mw.motion = w.motion;
+      mw.name = name;
+      mw.spec_index = static_cast<int>(wi);
+      m.walls.push_back(mw);
+    };
+    switch (w.type) {
+      case WallSpec::Type::Plane: plane(w.point, w.normal, base); break;
+      case WallSpec::Type::Box: {
+        // Six inward-facing planes; particles live inside.
+        plane(w.box_min, {1, 0, 0}, base + ".xmin");
+        plane(w.box_max, {-1, 0, 0}, base + ".xmax");
+        plane(w.box_min, {0, 1, 0}, base + ".ymin");
+        plane(w.box_max, {0, -1, 0}, base + ".ymax");
+        plane(w.box_min, {0, 0, 1}, base + ".zmin");
+        plane(w.box_max, {0, 0, -1}, base + ".zmax");
+        break;
+      }
+      case WallSpec::Type::Cylinder: {
+        ModelWall mw;
+        mw.kind = gpu::kWallCylinder;
+        mw.material = static_cast<uint32_t>(w.material);
+        mw.p0 = w.base;
+        mw.p1 = unit(w.axis);
+        mw.radius = w.radius;
+        mw.height = w.height;
+        mw.motion = w.motion;
+        mw.name = base;
+        mw.spec_index = static_cast<int>(wi);
+        m.walls.push_back(mw);
+        break;
+      }
+    }
+  }
+
+  m.rayleigh_time = rayleigh_time(spec);
+  m.dt = resolve_dt(spec);
+  m.end_time = spec.time.end_time;
+  m.output_interval = spec.output.interval;
+  m.vtk = spec.output.vtk;
+  m.gravity = spec.gravity;
+  m.integrator = spec.integrator;
+  if (spec.contact.coulomb_cap == CoulombCap::SpringOnly) m.flags |= gpu::kFlagCoulombSpringOnly;
+  if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
+  if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
+  if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+
+  // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
+  // moved a quarter of its radius.
+  m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : 0.5 * r_min;
+  m.cell = 2 * r_max + m.skin;
+  m.table_size = next_pow2(std::max<uint32_t>(1024, 2 * m.n_particles));
+  m.max_interval = spec.neighbour.rebuild_interval > 0 ? spec.neighbour.rebuild_interval : 0;
+
+  // Moving walls: rebuild before any wall point can travel half the skin.
+  double extent = 0;
+  for (const auto& p : m.pos)
+    extent = std::max(extent, std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z));
+  double wall_speed = 0;
+  for (const auto& w : m.walls) {
+    double lever = extent + std::sqrt(dot(w.motion.rotation_axis_point, w.motion.rotation_axis_point)) +
+                   w.radius + w.height;
+    wall_speed = std::max(wall_speed, std::sqrt(dot(w.motion.velocity, w.motion.velocity)) +
+                                          std::abs(w.motion.angular_rate) * lever);
+  }
+  if (wall_speed > 0) {
+    auto steps = static_cast<uint32_t>(std::max(1.0, std::floor(0.5 * m.skin / (wall_speed * m.dt))));
+    m.max_interval = m.max_interval ? std::min(m.max_interval, steps) : steps;
+  }
+  return m;
+}
+
+}  // namespace repose

@@ -1,0 +1,56 @@
+// A case turned into what the kernels consume: float particle arrays, the material-pair table
+// with EDEM's derived constants, walls expanded to planes and cylinders with their motion, and
+// the resolved numerical settings (dt, skin, grid).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "case/case_spec.h"
+#include "repose_shared.h"
+
+namespace repose {
+
+struct ModelWall {
+  uint32_t kind = gpu::kWallPlane;
+  uint32_t material = 0;
+  Vec3d p0{}, p1{};        // plane: point, normal; cylinder: base, axis
+  double radius = 0, height = 0;
+  WallMotion motion;
+  std::string name;        // the case's wall name, with a face suffix for boxes
+  int spec_index = 0;      // which [[wall]] it came from
+};
+
+struct Model {
+  std::string case_path;
+  uint32_t n_particles = 0;
+  uint32_t n_materials = 0;
+  std::vector<gpu::vec4> pos, vel, omega;  // w: radius, 1/mass, 1/inertia
+  std::vector<uint32_t> material;
+  std::vector<gpu::PairParams> pairs;      // [M*M]
+  std::vector<ModelWall> walls;
+  double dt = 0;
+  double rayleigh_time = 0;
+  double end_time = 0;
+  double output_interval = 0;
+  bool vtk = true;
+  Vec3d gravity{};
+  Integrator integrator = Integrator::VelocityVerlet;
+  uint32_t flags = 0;            // contact options (gpu::kFlag...)
+  double skin = 0;
+  double cell = 0;               // hash cell edge
+  uint32_t table_size = 0;       // hash buckets
+  uint32_t max_interval = 0;     // forced rebuild interval (walls that move), 0: none
+  double total_mass = 0;
+
+  // A wall's state at time t (prescribed motion evaluated on the host, in double).
+  gpu::WallState wall_state(size_t w, double t) const;
+};
+
+// Throws CaseError-style messages naming the case file when the case cannot be simulated.
+Model build_model(const CaseSpec& spec);
+
+// EDEM's derived pair constants (ENGINEERING.md section 1), in double, then rounded once.
+gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in);
+
+}  // namespace repose

@@ -1,0 +1,135 @@
+#include "engine/simulation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace repose {
+
+Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
+                       uint32_t max_batch_steps)
+    : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
+  layout_.n_particles = model_.n_particles;
+  layout_.n_walls = static_cast<uint32_t>(model_.walls.size());
+  layout_.n_materials = model_.n_materials;
+  layout_.table_size = model_.table_size;
+  layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
+
+  // Initial host state: particles as given, empty contact list (the first step builds it).
+  state_.pos = model_.pos;
+  state_.vel = model_.vel;
+  state_.omega = model_.omega;
+  state_.force.assign(model_.n_particles, gpu::vec4(0.0f));
+  state_.torque.assign(model_.n_particles, gpu::vec4(0.0f));
+  state_.pos_at_build = model_.pos;
+  state_.control.assign(gpu::kControlWords, 0u);
+  state_.row_start.assign(model_.n_particles + 1, 0u);
+  state_.trans_start.assign(model_.n_particles + 1, 0u);
+  // Room for ~6 contacts per particle plus walls; grown on overflow.
+  allocate(6 * model_.n_particles + 4 * layout_.n_walls + 64);
+
+  // Velocity Verlet needs F(0) before its first half kick.
+  if (model_.integrator == Integrator::VelocityVerlet) {
+    std::vector<gpu::WallState> w0;
+    for (size_t w = 0; w < model_.walls.size(); ++w) w0.push_back(model_.wall_state(w, 0.0));
+    backend_->upload_walls(w0);
+    for (int attempt = 0;; ++attempt) {
+      backend_->execute(initial_forces_program(model_, layout_, variant_, 0));
+      auto ctl = backend_->read_control();
+      if (!ctl[gpu::kCtlOverflow]) break;
+      if (attempt > 8) throw std::runtime_error("contact list keeps overflowing");
+      state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
+      allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+    }
+    backend_->download_state(state_);
+  }
+}
+
+void Simulation::allocate(uint32_t capacity) {
+  layout_.capacity = capacity;
+  backend_->allocate(layout_, model_.material, model_.pairs);
+  backend_->upload_state(state_);
+}
+
+// Walls of the coming steps: velocity Verlet evaluates forces at the end of a step, symplectic
+// Euler at its start.
+void Simulation::upload_walls(uint32_t steps) {
+  if (model_.walls.empty()) return;
+  double offset = model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0;
+  std::vector<gpu::WallState> w;
+  w.reserve(size_t(steps) * model_.walls.size());
+  for (uint32_t s = 0; s < steps; ++s) {
+    double t = (double(step_ + s) + offset) * model_.dt;
+    for (size_t k = 0; k < model_.walls.size(); ++k) w.push_back(model_.wall_state(k, t));
+  }
+  backend_->upload_walls(w);
+}
+
+std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
+  std::vector<Dispatch> program;
+  for (uint32_t s = 0; s < steps; ++s) {
+    auto one = step_program(model_, layout_, variant_, s);
+    program.insert(program.end(), one.begin(), one.end());
+  }
+  return program;
+}
+
+void Simulation::advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch) {
+  uint64_t target = step_ + steps;
+  while (step_ < target) {
+    uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
+    upload_walls(k);
+    backend_->execute(batch_program(k));
+    auto ctl = backend_->read_control();
+    if (ctl[gpu::kCtlOverflow]) {
+      // Redo the batch from its start with a larger list: nothing of it is kept.
+      ++retries_;
+      state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
+      allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+      continue;
+    }
+    backend_->download_state(state_);
+    step_ += k;
+    if (on_batch) on_batch(*this);
+  }
+}
+
+KernelTimes Simulation::time_kernels(uint64_t steps) {
+  KernelTimes times;
+  for (uint64_t s = 0; s < steps; ++s) {
+    upload_walls(1);
+    backend_->execute(step_program(model_, layout_, variant_, 0), &times);
+    auto ctl = backend_->read_control();
+    if (ctl[gpu::kCtlOverflow]) throw std::runtime_error("contact list overflow while timing");
+    ++step_;
+  }
+  backend_->download_state(state_);
+  return times;
+}
+
+void Simulation::set_state(const HostState& s) {
+  state_ = s;
+  backend_->upload_state(state_);
+}
+
+EnergySummary Simulation::kinetic_energy() const {
+  EnergySummary e;
+  for (size_t i = 0; i < state_.vel.size(); ++i) {
+    const auto& v = state_.vel[i];
+    const auto& w = state_.omega[i];
+    e.translational += 0.5 / v.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+    e.rotational += 0.5 / w.w * (double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);
+  }
+  return e;
+}
+
+std::vector<WallForce> Simulation::wall_forces() {
+  gpu::SimPush push = base_push(model_, layout_, variant_);
+  auto f = backend_->wall_forces(push);
+  std::vector<WallForce> out;
+  for (size_t w = 0; w < f.size(); ++w)
+    out.push_back({model_.walls[w].name, f[w].x, f[w].y, f[w].z});
+  return out;
+}
+
+}  // namespace repose

@@ -1,0 +1,67 @@
+// Drives a backend through a case: batches of steps in one submit, device-decided list
+// rebuilds, a retry with a larger contact list when one overflows (nothing of the batch is
+// kept), and the host copy of the state after each batch for output.
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "engine/backend.h"
+#include "engine/model.h"
+#include "engine/step_program.h"
+
+namespace repose {
+
+struct WallForce {
+  std::string name;
+  double fx = 0, fy = 0, fz = 0;
+};
+
+struct EnergySummary {
+  double translational = 0;
+  double rotational = 0;
+  double total() const { return translational + rotational; }
+};
+
+class Simulation {
+ public:
+  Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant = {},
+             uint32_t max_batch_steps = 200);
+
+  // Runs `steps` more steps; `on_batch` (optional) is called after every batch.
+  void advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch = {});
+
+  const Model& model() const { return model_; }
+  Model& mutable_model() { return model_; }  // for tests that steer particles between batches
+  const HostState& state() const { return state_; }
+  uint64_t step() const { return step_; }
+  double time() const { return double(step_) * model_.dt; }
+  uint32_t contacts() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlContacts]; }
+  uint32_t rebuilds() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlRebuildCount]; }
+  uint32_t capacity() const { return layout_.capacity; }
+  uint32_t retries() const { return retries_; }
+  Backend& backend() { return *backend_; }
+  const Backend& backend() const { return *backend_; }
+  EnergySummary kinetic_energy() const;
+  // Force of the particles on each wall, from the last step's contacts.
+  std::vector<WallForce> wall_forces();
+  // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
+  void set_state(const HostState& s);
+  // Times each kernel of the next `steps` steps (for `repose bench`); state advances too.
+  KernelTimes time_kernels(uint64_t steps);
+
+ private:
+  void allocate(uint32_t capacity);
+  void upload_walls(uint32_t steps);
+  std::vector<Dispatch> batch_program(uint32_t steps) const;
+  Model model_;
+  std::unique_ptr<Backend> backend_;
+  KernelVariant variant_;
+  Layout layout_;
+  HostState state_;
+  uint64_t step_ = 0;
+  uint32_t retries_ = 0;
+};
+
+}  // namespace repose

@@ -1,0 +1,29 @@
+// The dispatch programs of a simulation: the first force evaluation and one time step.
+// Written once for both backends.
+#pragma once
+#include <vector>
+
+#include "engine/backend.h"
+#include "engine/model.h"
+
+namespace repose {
+
+enum class ContactKernel { PerContact, PerRow };
+
+struct KernelVariant {
+  uint32_t workgroup = gpu::kDefaultWorkgroup;
+  ContactKernel contact = ContactKernel::PerContact;
+  uint32_t rebuild_interval = 0;  // forced rebuild every N steps (0: skin check only)
+  std::string name() const;
+};
+
+gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);
+
+// Neighbour list, forces and F(0) without moving anything (kick 0).
+std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
+                                             const KernelVariant& v, uint32_t wall_slot);
+// One step of the model's integrator; walls at row `wall_slot` of the uploaded batch.
+std::vector<Dispatch> step_program(const Model& m, const Layout& l, const KernelVariant& v,
+                                   uint32_t wall_slot);
+
+}  // namespace repose

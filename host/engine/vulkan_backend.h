@@ -1,0 +1,43 @@
+// The Vulkan backend: one device buffer per binding of shaders/repose_shared.h, the kernels of
+// KernelSet, and a whole dispatch program recorded into one command buffer per call (a submit
+// costs ~150 us on lavapipe, so a batch of steps goes in one submit).
+#pragma once
+#include <array>
+#include <memory>
+
+#include "engine/backend.h"
+#include "vk/buffer.h"
+#include "vk/context.h"
+#include "vk/kernel_set.h"
+
+namespace repose {
+
+class VulkanBackend : public Backend {
+ public:
+  VulkanBackend(int device_index, uint32_t workgroup);
+  ~VulkanBackend() override;
+  std::string describe() const override;
+  void allocate(const Layout& layout, const std::vector<uint32_t>& material,
+                const std::vector<gpu::PairParams>& pairs) override;
+  void upload_state(const HostState& s) override;
+  void download_state(HostState& s) override;
+  void upload_walls(const std::vector<gpu::WallState>& walls) override;
+  void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
+  std::vector<uint32_t> read_control() override;
+  std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;
+  size_t memory_bytes() const override;
+
+  vk::Context& context() { return ctx_; }
+  uint64_t validation_messages() const { return ctx_.validation_messages(); }
+
+ private:
+  vk::Buffer& b(uint32_t binding) { return buffers_[binding]; }
+  vk::Context ctx_;
+  vk::KernelSet kernels_;
+  Layout layout_;
+  std::array<vk::Buffer, gpu::kBindingCount> buffers_;
+  VkQueryPool queries_ = VK_NULL_HANDLE;
+  uint32_t query_capacity_ = 0;
+};
+
+}  // namespace repose

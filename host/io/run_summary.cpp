@@ -1,0 +1,39 @@
+#include "io/run_summary.h"
+
+#include <nlohmann/json.hpp>
+
+#include "util/atomic_file.h"
+
+namespace repose {
+
+void write_run_summary(const std::string& path, Simulation& sim, const RunInfo& info) {
+  const Model& m = sim.model();
+  auto energy = sim.kinetic_energy();
+  nlohmann::ordered_json j;
+  j["case"] = m.case_path;
+  j["backend"] = info.backend;
+  j["variant"] = info.variant;
+  j["particles"] = m.n_particles;
+  j["steps"] = sim.step();
+  j["time"] = sim.time();
+  j["dt"] = m.dt;
+  j["rayleigh_time"] = m.rayleigh_time;
+  j["dt_fraction_of_rayleigh"] = m.dt / m.rayleigh_time;
+  j["contacts"] = sim.contacts();
+  j["list_rebuilds"] = sim.rebuilds();
+  j["kinetic_energy"] = {{"translational", energy.translational},
+                         {"rotational", energy.rotational},
+                         {"total", energy.total()}};
+  j["total_mass"] = m.total_mass;
+  auto walls = nlohmann::ordered_json::array();
+  for (const auto& w : sim.wall_forces())
+    walls.push_back({{"name", w.name}, {"force", {w.fx, w.fy, w.fz}}});
+  j["wall_forces"] = walls;
+  j["frames"] = info.frames;
+  j["wall_seconds"] = info.wall_seconds;
+  j["particle_steps_per_second"] =
+      info.wall_seconds > 0 ? double(m.n_particles) * sim.step() / info.wall_seconds : 0.0;
+  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+}
+
+}  // namespace repose

@@ -1,0 +1,17 @@
+// The full state after a run, as bytes in a stable, documented order (docs/state-format.md),
+// so that two runs, two thread counts or two backends can be compared with `cmp`.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "engine/backend.h"
+
+namespace repose {
+
+constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '1'};
+
+void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time);
+// Reads a file written by write_state_file; throws naming the file when it is not one.
+HostState read_state_file(const std::string& path, uint64_t* step = nullptr, double* time = nullptr);
+
+}  // namespace repose

@@ -1,0 +1,97 @@
+#include "vk/buffer.h"
+
+#include <cstring>
+#include <utility>
+
+#include "vk/context.h"
+#include "vk/vk_check.h"
+
+namespace repose::vk {
+
+Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, bool host_visible)
+    : ctx_(&ctx), bytes_(bytes) {
+  VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+  bi.size = bytes == 0 ? 16 : bytes;  // Vulkan forbids empty buffers
+  bi.usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+             VK_BUFFER_USAGE_TRANSFER_DST_BIT | extra_usage;
+  bi.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+  VK_CHECK(vkCreateBuffer(ctx.device(), &bi, nullptr, &buffer_));
+  VkMemoryRequirements req;
+  vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
+  VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  ai.allocationSize = req.size;
+  ai.memoryTypeIndex =
+      host_visible ? ctx.memory_type(req.memoryTypeBits,
+                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                         VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                     0)
+                   : ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+  VkResult r = vkAllocateMemory(ctx.device(), &ai, nullptr, &memory_);
+  if (r != VK_SUCCESS) {
+    vkDestroyBuffer(ctx.device(), buffer_, nullptr);
+    buffer_ = VK_NULL_HANDLE;
+    throw_vk_error("vkAllocateMemory", r, __FILE__, __LINE__);
+  }
+  VK_CHECK(vkBindBufferMemory(ctx.device(), buffer_, memory_, 0));
+  // lavapipe's only memory type is device-local and host-visible: map it and skip staging.
+  if (ctx.memory_flags(ai.memoryTypeIndex) & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) host_visible = true;
+  if (host_visible) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+}
+
+Buffer::~Buffer() { release(); }
+
+Buffer::Buffer(Buffer&& o) noexcept { *this = std::move(o); }
+
+Buffer& Buffer::operator=(Buffer&& o) noexcept {
+  if (this != &o) {
+    release();
+    std::swap(ctx_, o.ctx_);
+    std::swap(buffer_, o.buffer_);
+    std::swap(memory_, o.memory_);
+    std::swap(mapped_, o.mapped_);
+    std::swap(bytes_, o.bytes_);
+  }
+  return *this;
+}
+
+void Buffer::release() {
+  if (!ctx_) return;
+  if (mapped_) vkUnmapMemory(ctx_->device(), memory_);
+  if (buffer_) vkDestroyBuffer(ctx_->device(), buffer_, nullptr);
+  if (memory_) vkFreeMemory(ctx_->device(), memory_, nullptr);
+  buffer_ = VK_NULL_HANDLE;
+  memory_ = VK_NULL_HANDLE;
+  mapped_ = nullptr;
+  ctx_ = nullptr;
+  bytes_ = 0;
+}
+
+void Buffer::upload(const void* data, size_t bytes, size_t offset) {
+  if (bytes == 0) return;
+  if (mapped_) {
+    std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
+    return;
+  }
+  Buffer staging(*ctx_, bytes, 0, true);
+  std::memcpy(staging.mapped(), data, bytes);
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
+    VkBufferCopy region{0, offset, bytes};
+    vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
+  });
+}
+
+void Buffer::download(void* data, size_t bytes, size_t offset) const {
+  if (bytes == 0) return;
+  if (mapped_) {
+    std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
+    return;
+  }
+  Buffer staging(*ctx_, bytes, 0, true);
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
+    VkBufferCopy region{offset, 0, bytes};
+    vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
+  });
+  std::memcpy(data, staging.mapped(), bytes);
+}
+
+}  // namespace repose::vk

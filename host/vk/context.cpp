@@ -1,0 +1,234 @@
+#include "vk/context.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+
+#include "vk/vk_check.h"
+
+namespace repose::vk {
+
+namespace {
+
+bool validation_requested() {
+  const char* v = std::getenv("REPOSE_VALIDATION");
+  return v && std::strcmp(v, "0") != 0 && *v;
+}
+
+VkInstance create_instance(bool validation) {
+  VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+  app.pApplicationName = "repose";
+  app.apiVersion = VK_API_VERSION_1_2;
+  VkInstanceCreateInfo ci{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+  ci.pApplicationInfo = &app;
+  const char* layer = "VK_LAYER_KHRONOS_validation";
+  const char* ext = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+  if (validation) {
+    ci.enabledLayerCount = 1;
+    ci.ppEnabledLayerNames = &layer;
+    ci.enabledExtensionCount = 1;
+    ci.ppEnabledExtensionNames = &ext;
+  }
+  VkInstance instance = VK_NULL_HANDLE;
+  VkResult r = vkCreateInstance(&ci, nullptr, &instance);
+  if (r == VK_ERROR_INCOMPATIBLE_DRIVER)
+    throw VulkanError("no Vulkan driver found (install mesa-vulkan-drivers for lavapipe)");
+  if (r == VK_ERROR_LAYER_NOT_PRESENT)
+    throw VulkanError("REPOSE_VALIDATION is set but VK_LAYER_KHRONOS_validation is not installed "
+                      "(package vulkan-validationlayers)");
+  VK_CHECK(r);
+  return instance;
+}
+
+const char* type_name(VkPhysicalDeviceType t) {
+  switch (t) {
+    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
+    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete-gpu";
+    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated-gpu";
+    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual-gpu";
+    default: return "other";
+  }
+}
+
+std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
+  uint32_t n = 0;
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, nullptr));
+  std::vector<VkPhysicalDevice> devices(n);
+  VK_CHECK(vkEnumeratePhysicalDevices(instance, &n, devices.data()));
+  return devices;
+}
+
+DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
+  VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  props.pNext = &driver;
+  vkGetPhysicalDeviceProperties2(pd, &props);
+  VkPhysicalDeviceMemoryProperties mem;
+  vkGetPhysicalDeviceMemoryProperties(pd, &mem);
+  DeviceInfo info;
+  info.index = index;
+  info.name = props.properties.deviceName;
+  info.type = type_name(props.properties.deviceType);
+  info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+  info.api_version = props.properties.apiVersion;
+  for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
+    if (mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      info.device_local_bytes += mem.memoryHeaps[h].size;
+  info.max_storage_buffers = props.properties.limits.maxPerStageDescriptorStorageBuffers;
+  info.max_storage_range = props.properties.limits.maxStorageBufferRange;
+  return info;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> Context::list_devices() {
+  VkInstance instance = create_instance(false);
+  std::vector<DeviceInfo> out;
+  try {
+    auto devices = physical_devices(instance);
+    for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
+  } catch (...) {
+    vkDestroyInstance(instance, nullptr);
+    throw;
+  }
+  vkDestroyInstance(instance, nullptr);
+  return out;
+}
+
+int Context::default_device_index(const std::vector<DeviceInfo>& devices) {
+  for (const auto& d : devices)
+    if (d.type == "discrete-gpu") return static_cast<int>(d.index);
+  return devices.empty() ? -1 : 0;
+}
+
+VkBool32 Context::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                             VkDebugUtilsMessageTypeFlagsEXT, 
+                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    static_cast<Context*>(self)->validation_messages_++;
+    std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+Context::Context(int device_index) {
+  bool validation = validation_requested();
+  instance_ = create_instance(validation);
+  try {
+    if (validation) {
+      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
+      VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+      mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+      mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+      mi.pfnUserCallback = &Context::on_message;
+      mi.pUserData = this;
+      if (!create) throw VulkanError("validation requested but VK_EXT_debug_utils is unavailable");
+      VK_CHECK(create(instance_, &mi, nullptr, &messenger_));
+    }
+    auto devices = physical_devices(instance_);
+    if (devices.empty())
+      throw VulkanError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+    std::vector<DeviceInfo> infos;
+    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+    if (device_index < 0) device_index = default_device_index(infos);
+    if (device_index >= static_cast<int>(devices.size()))
+      throw VulkanError("--device " + std::to_string(device_index) + ": only " +
+                        std::to_string(devices.size()) + " Vulkan device(s); see `repose devices`");
+    physical_ = devices[device_index];
+    info_ = infos[device_index];
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
+
+    uint32_t nq = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nq, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nq);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &nq, families.data());
+    bool found = false;
+    for (uint32_t q = 0; q < nq && !found; ++q)
+      if (families[q].queueFlags & VK_QUEUE_COMPUTE_BIT) { queue_family_ = q; found = true; }
+    if (!found) throw VulkanError("device '" + info_.name + "' has no compute queue");
+
+    float priority = 1.0f;
+    VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    qi.queueFamilyIndex = queue_family_;
+    qi.queueCount = 1;
+    qi.pQueuePriorities = &priority;
+    VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    di.queueCreateInfoCount = 1;
+    di.pQueueCreateInfos = &qi;
+    VK_CHECK(vkCreateDevice(physical_, &di, nullptr, &device_));
+    vkGetDeviceQueue(device_, queue_family_, 0, &queue_);
+
+    VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    pi.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pi.queueFamilyIndex = queue_family_;
+    VK_CHECK(vkCreateCommandPool(device_, &pi, nullptr, &pool_));
+    VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(device_, &fi, nullptr, &fence_));
+  } catch (...) {
+    release();
+    throw;
+  }
+}
+
+Context::~Context() { release(); }
+
+void Context::release() {
+  if (device_) {
+    vkDeviceWaitIdle(device_);
+    if (fence_) vkDestroyFence(device_, fence_, nullptr);
+    if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
+    vkDestroyDevice(device_, nullptr);
+    device_ = VK_NULL_HANDLE;
+  }
+  if (messenger_) {
+    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance_, messenger_, nullptr);
+    messenger_ = VK_NULL_HANDLE;
+  }
+  if (instance_) {
+    vkDestroyInstance(instance_, nullptr);
+    instance_ = VK_NULL_HANDLE;
+  }
+}
+
+uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
+                              VkMemoryPropertyFlags preferred) const {
+  for (int pass = 0; pass < 2; ++pass) {
+    VkMemoryPropertyFlags want = pass == 0 ? (required | preferred) : required;
+    for (uint32_t t = 0; t < memory_.memoryTypeCount; ++t)
+      if ((type_bits & (1u << t)) && (memory_.memoryTypes[t].propertyFlags & want) == want) return t;
+  }
+  throw VulkanError("no Vulkan memory type with the required properties");
+}
+
+VkCommandBuffer Context::begin_commands() {
+  VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+  ai.commandPool = pool_;
+  ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+  ai.commandBufferCount = 1;
+  VkCommandBuffer cb;
+  VK_CHECK(vkAllocateCommandBuffers(device_, &ai, &cb));
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VK_CHECK(vkBeginCommandBuffer(cb, &bi));
+  return cb;
+}
+
+void Context::end_and_submit(VkCommandBuffer cb) {
+  VK_CHECK(vkEndCommandBuffer(cb));
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cb;
+  VK_CHECK(vkResetFences(device_, 1, &fence_));
+  VK_CHECK(vkQueueSubmit(queue_, 1, &si, fence_));
+  VK_CHECK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
+  vkFreeCommandBuffers(device_, pool_, 1, &cb);
+}
+
+}  // namespace repose::vk

@@ -1,0 +1,77 @@
+// A Vulkan instance, one chosen physical device, its compute queue and a command pool.
+// Owns the handles (RAII, non-copyable). With REPOSE_VALIDATION=1 in the environment the Khronos
+// validation layer is enabled and every message it sends is counted and printed.
+#pragma once
+#include <atomic>
+#include <string>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+namespace repose::vk {
+
+struct DeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;    // "cpu" (lavapipe), "discrete-gpu", ...
+  std::string driver;  // driver name and info
+  uint32_t api_version = 0;
+  uint64_t device_local_bytes = 0;
+  uint32_t max_storage_buffers = 0;
+  uint64_t max_storage_range = 0;
+};
+
+class Context {
+ public:
+  // device_index < 0: the first discrete GPU, else the first device (lavapipe on CPU machines).
+  explicit Context(int device_index = -1);
+  ~Context();
+  Context(const Context&) = delete;
+  Context& operator=(const Context&) = delete;
+
+  // Every device the loader sees; does not create a logical device.
+  static std::vector<DeviceInfo> list_devices();
+  static int default_device_index(const std::vector<DeviceInfo>& devices);
+
+  VkDevice device() const { return device_; }
+  VkPhysicalDevice physical() const { return physical_; }
+  VkQueue queue() const { return queue_; }
+  VkCommandPool command_pool() const { return pool_; }
+  const DeviceInfo& info() const { return info_; }
+  // Memory type with all `required` flags, preferring `preferred`; throws if none.
+  uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
+                       VkMemoryPropertyFlags preferred) const;
+  VkMemoryPropertyFlags memory_flags(uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
+  // Messages from the validation layer so far (0 when it is off).
+  uint64_t validation_messages() const { return validation_messages_.load(); }
+  bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+
+  // Records with `record`, submits, and waits.
+  template <class F>
+  void submit_and_wait(F&& record) {
+    VkCommandBuffer cb = begin_commands();
+    record(cb);
+    end_and_submit(cb);
+  }
+  VkCommandBuffer begin_commands();
+  void end_and_submit(VkCommandBuffer cb);
+
+ private:
+  void release();
+  static VkBool32 VKAPI_PTR on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                       VkDebugUtilsMessageTypeFlagsEXT types,
+                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                       void* self);
+  VkInstance instance_ = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+  VkDevice device_ = VK_NULL_HANDLE;
+  VkQueue queue_ = VK_NULL_HANDLE;
+  VkCommandPool pool_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  uint32_t queue_family_ = 0;
+  DeviceInfo info_;
+  VkPhysicalDeviceMemoryProperties memory_{};
+  std::atomic<uint64_t> validation_messages_{0};
+};
+
+}  // namespace repose::vk

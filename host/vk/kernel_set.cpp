@@ -1,0 +1,129 @@
+#include "vk/kernel_set.h"
+
+#include <stdexcept>
+
+#include "vk/buffer.h"
+#include "vk/context.h"
+#include "vk/embedded_shaders.h"
+#include "vk/vk_check.h"
+
+namespace repose::vk {
+
+static constexpr uint32_t kPushBytes = 128;
+
+KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(workgroup) {
+  VkDevice dev = ctx.device();
+  if (ctx.info().max_storage_buffers < gpu::kBindingCount)
+    throw VulkanError("device '" + ctx.info().name + "' allows " +
+                      std::to_string(ctx.info().max_storage_buffers) +
+                      " storage buffers per stage; Repose needs " +
+                      std::to_string(gpu::kBindingCount));
+  std::vector<VkDescriptorSetLayoutBinding> bindings(gpu::kBindingCount);
+  for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
+    bindings[b].binding = b;
+    bindings[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[b].descriptorCount = 1;
+    bindings[b].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+  }
+  VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  li.bindingCount = gpu::kBindingCount;
+  li.pBindings = bindings.data();
+  VK_CHECK(vkCreateDescriptorSetLayout(dev, &li, nullptr, &set_layout_));
+
+  VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, kPushBytes};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &set_layout_;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &range;
+  VK_CHECK(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_));
+
+  VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, gpu::kBindingCount};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &ps;
+  VK_CHECK(vkCreateDescriptorPool(dev, &pi, nullptr, &pool_));
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &set_layout_;
+  VK_CHECK(vkAllocateDescriptorSets(dev, &ai, &set_));
+
+  for (uint32_t k = 0; k < static_cast<uint32_t>(KernelId::Count); ++k) {
+    KernelId id = static_cast<KernelId>(k);
+    const EmbeddedShader& spv = embedded_shader(kernel_shader_name(id));
+    VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    mi.codeSize = spv.bytes;
+    mi.pCode = spv.words;
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(dev, &mi, nullptr, &module));
+    modules_.push_back(module);
+    // The scan and the wall reduction are written for their own fixed workgroup size.
+    uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
+                  : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
+                                               : workgroup;
+    VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
+    VkSpecializationInfo spec{1, &entry, sizeof(uint32_t), &wg};
+    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    ci.stage.module = module;
+    ci.stage.pName = "main";
+    ci.stage.pSpecializationInfo = &spec;
+    ci.layout = layout_;
+    VkPipeline pipeline;
+    VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+    pipelines_.push_back(pipeline);
+  }
+}
+
+KernelSet::~KernelSet() {
+  VkDevice dev = ctx_.device();
+  for (auto p : pipelines_) vkDestroyPipeline(dev, p, nullptr);
+  for (auto m : modules_) vkDestroyShaderModule(dev, m, nullptr);
+  if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+}
+
+void KernelSet::bind(const std::array<const Buffer*, gpu::kBindingCount>& buffers) {
+  std::vector<VkDescriptorBufferInfo> infos(gpu::kBindingCount);
+  std::vector<VkWriteDescriptorSet> writes(gpu::kBindingCount);
+  for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
+    if (!buffers[b]) throw std::logic_error("KernelSet::bind: binding " + std::to_string(b) + " unset");
+    infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
+    writes[b] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    writes[b].dstSet = set_;
+    writes[b].dstBinding = b;
+    writes[b].descriptorCount = 1;
+    writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[b].pBufferInfo = &infos[b];
+  }
+  vkUpdateDescriptorSets(ctx_.device(), gpu::kBindingCount, writes.data(), 0, nullptr);
+}
+
+void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
+                       uint32_t groups, VkBuffer indirect, VkDeviceSize indirect_offset) {
+  if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<uint32_t>(k)]);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
+  if (indirect != VK_NULL_HANDLE)
+    vkCmdDispatchIndirect(cb, indirect, indirect_offset);
+  else if (groups > 0)
+    vkCmdDispatch(cb, groups, 1, 1);
+}
+
+void KernelSet::barrier(VkCommandBuffer cb) {
+  VkMemoryBarrier mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  mb.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+  mb.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT |
+                     VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT |
+                           VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       0, 1, &mb, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace repose::vk

@@ -1,0 +1,46 @@
+// The compute pipelines of one simulation and their shared descriptor set: every kernel sees
+// the same storage-buffer bindings (shaders/repose_shared.h) and one push-constant block.
+// Workgroup size is a specialisation constant, so a variant changes it without a new shader.
+#pragma once
+#include <array>
+#include <vector>
+#include <vulkan/vulkan.h>
+
+#include "kernel_ids.h"
+#include "repose_shared.h"
+
+namespace repose::vk {
+
+class Context;
+class Buffer;
+
+class KernelSet {
+ public:
+  KernelSet(Context& ctx, uint32_t workgroup);
+  ~KernelSet();
+  KernelSet(const KernelSet&) = delete;
+  KernelSet& operator=(const KernelSet&) = delete;
+
+  // Points binding b at buffers[b] (all kBindingCount of them).
+  void bind(const std::array<const Buffer*, gpu::kBindingCount>& buffers);
+
+  // Records a dispatch: `groups` workgroups, or the three words at `indirect_offset` bytes of
+  // `indirect` when it is non-null. push is copied into the push-constant block.
+  void record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
+              uint32_t groups, VkBuffer indirect = VK_NULL_HANDLE, VkDeviceSize indirect_offset = 0);
+  // A full memory barrier between dependent dispatches (shader writes -> reads, indirect args).
+  static void barrier(VkCommandBuffer cb);
+  uint32_t workgroup() const { return workgroup_; }
+
+ private:
+  Context& ctx_;
+  uint32_t workgroup_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  std::vector<VkShaderModule> modules_;
+  std::vector<VkPipeline> pipelines_;
+};
+
+}  // namespace repose::vk
