@@ -1,0 +1,730 @@
+#include "case/case_loader.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "case/case_override.h"
+#include "case/material_presets.h"
+#include "case/particle_factory.h"
+#include "case/spelling.h"
+#include "case/time_step.h"
+
+namespace repose {
+namespace {
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+std::string quoted_list(const std::vector<std::string>& words) {
+  std::string text;
+  for (const auto& word : words) text += (text.empty() ? "'" : ", '") + word + "'";
+  return text;
+}
+
+const char* type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::table: return "a table";
+    default: return "a date or time";
+  }
+}
+
+int line_of(const toml::node& node) { return int(node.source().begin.line); }
+
+// Names usable in override keys ("material.cabbage.density"): no dots, no slashes, and not all
+// digits (those are indices).
+bool usable_name(const std::string& name) {
+  if (name.empty() || !(std::isalpha((unsigned char)name[0]) || name[0] == '_')) return false;
+  return std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '-';
+  });
+}
+
+// One TOML table being read: knows its key path for messages ("fill[2].box") and reports
+// problems at the line of the offending value, or of the table when the value is missing.
+class Section {
+ public:
+  Section(const toml::table& table, std::string prefix, const std::string& file)
+      : table_(table), prefix_(std::move(prefix)), file_(file) {}
+
+  std::string key(std::string_view k) const {
+    return prefix_.empty() ? std::string(k) : prefix_ + "." + std::string(k);
+  }
+  SourceRef where() const { return {file_, prefix_, line_of(table_)}; }
+  SourceRef where(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    return {file_, key(k), line_of(node ? *node : table_)};
+  }
+  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
+    throw CaseError(where(k), problem);
+  }
+  [[noreturn]] void fail(const std::string& problem) const { throw CaseError(where(), problem); }
+
+  // Unknown keys are reported first, the earliest in the file, with the nearest allowed key.
+  void allow_only(const std::vector<std::string>& allowed, const std::string& context) const {
+    const toml::key* unknown = nullptr;
+    for (auto&& [k, node] : table_) {
+      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
+      if (!unknown || k.source().begin.line < unknown->source().begin.line) unknown = &k;
+    }
+    if (!unknown) return;
+    throw CaseError({file_, key(unknown->str()), int(unknown->source().begin.line)},
+                    "unknown key in " + context + did_you_mean(unknown->str(), allowed) +
+                        " (allowed: " + quoted_list(allowed) + ")");
+  }
+
+  bool has(std::string_view k) const { return table_.contains(k); }
+  const toml::table& table() const { return table_; }
+  const std::string& file() const { return file_; }
+
+  [[noreturn]] void missing(std::string_view k, const std::string& hint = "") const {
+    fail(k, "missing required value" + hint);
+  }
+  [[noreturn]] void wrong_type(std::string_view k, const std::string& expected) const {
+    fail(k, "expected " + expected + ", got " + type_name(*table_.get(k)));
+  }
+
+  std::optional<double> number(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    if (!node->is_number()) wrong_type(k, "a number");
+    double value = node->is_integer() ? double(node->as_integer()->get()) : node->as_floating_point()->get();
+    if (!std::isfinite(value)) fail(k, "must be a finite number");
+    return value;
+  }
+  double required_number(std::string_view k, const std::string& hint = "") const {
+    if (auto value = number(k)) return *value;
+    missing(k, hint);
+  }
+  std::optional<int64_t> integer(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    if (!node->is_integer()) wrong_type(k, "an integer");
+    return node->as_integer()->get();
+  }
+  std::optional<std::string> text(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    if (!node->is_string()) wrong_type(k, "a string");
+    return node->as_string()->get();
+  }
+  std::string required_text(std::string_view k, const std::string& hint = "") const {
+    if (auto value = text(k)) return *value;
+    missing(k, hint);
+  }
+  std::optional<bool> boolean(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    if (!node->is_boolean()) wrong_type(k, "true or false");
+    return node->as_boolean()->get();
+  }
+  std::optional<Vec3d> vector3(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 3 || !all_numbers(*array))
+      fail(k, std::string("expected an array of 3 numbers [x, y, z], got ") +
+                  (array ? std::to_string(array->size()) + "-element array" : type_name(*node)));
+    Vec3d value;
+    for (size_t i = 0; i < 3; ++i) {
+      const toml::node& element = *array->get(i);
+      value[i] = element.is_integer() ? double(element.as_integer()->get())
+                                      : element.as_floating_point()->get();
+      if (!std::isfinite(value[i])) fail(k, "must hold finite numbers");
+    }
+    return value;
+  }
+  Vec3d required_vector3(std::string_view k) const {
+    if (auto value = vector3(k)) return *value;
+    missing(k, " (an array of 3 numbers [x, y, z])");
+  }
+  std::optional<Section> sub(std::string_view k) const {
+    const toml::node* node = table_.get(k);
+    if (!node) return std::nullopt;
+    if (!node->is_table()) wrong_type(k, "a table such as { key = value, ... }");
+    return Section(*node->as_table(), key(k), file_);
+  }
+
+  // One of a fixed set of words, mapped to an enum.
+  template <class Enum>
+  Enum choice(std::string_view k, const std::vector<std::pair<std::string, Enum>>& options,
+              Enum fallback) const {
+    auto value = text(k);
+    if (!value) return fallback;
+    std::vector<std::string> words;
+    for (const auto& [word, option] : options) {
+      if (word == *value) return option;
+      words.push_back(word);
+    }
+    fail(k, "'" + *value + "' is not one of " + quoted_list(words) + did_you_mean(*value, words));
+  }
+
+ private:
+  static bool all_numbers(const toml::array& array) {
+    return std::all_of(array.begin(), array.end(), [](const toml::node& n) { return n.is_number(); });
+  }
+
+  const toml::table& table_;
+  std::string prefix_;
+  const std::string& file_;
+};
+
+// A checked value, failing with a message that states the rule it broke.
+double positive(const Section& s, std::string_view k, double value) {
+  if (!(value > 0)) s.fail(k, format_number(value) + " must be greater than 0");
+  return value;
+}
+double non_negative(const Section& s, std::string_view k, double value) {
+  if (value < 0) s.fail(k, format_number(value) + " must not be negative");
+  return value;
+}
+
+Vec3d unit(const Section& s, std::string_view k, const Vec3d& v) {
+  double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(length > 0)) s.fail(k, "must not be the zero vector");
+  return {v[0] / length, v[1] / length, v[2] / length};
+}
+
+class CaseReader {
+ public:
+  CaseReader(const toml::table& root, const std::string& path) : root_(root), file_(path) {}
+
+  CaseSpec read() {
+    Section top(root_, "", file_);
+    top.allow_only({"simulation", "contact", "neighbour", "output", "material", "interaction",
+                    "sphere", "fill", "lattice", "wall"},
+                   "the case file");
+    spec_.path = file_;
+    read_simulation();
+    read_contact();
+    read_neighbour();
+    read_output();
+    for (const Section& s : entries("material")) read_material(s);
+    if (spec_.materials.empty())
+      throw CaseError({file_, "material", 0}, "the case has no [[material]]");
+    for (const Section& s : entries("interaction")) read_interaction(s);
+    for (const Section& s : entries("sphere")) read_sphere(s);
+    int fill_index = 0;
+    for (const Section& s : entries("fill")) read_fill(s, fill_index++);
+    for (const Section& s : entries("lattice")) read_lattice(s);
+    int wall_index = 0;
+    for (const Section& s : entries("wall")) read_wall(s, wall_index++);
+    if (spec_.spheres.empty() && spec_.fills.empty() && spec_.lattices.empty())
+      throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[fill]] or [[lattice]]");
+    check_interactions_cover_use();
+    expand_particles(spec_);
+    check_time_step();
+    return std::move(spec_);
+  }
+
+ private:
+  // The elements of an array of tables ([[material]] ...), each as a Section "material[i]".
+  std::vector<Section> entries(const std::string& name) {
+    std::vector<Section> sections;
+    const toml::node* node = root_.get(name);
+    if (!node) return sections;
+    Section top(root_, "", file_);
+    if (node->is_table())
+      top.fail(name, "write [[" + name + "]] (one entry of a list), not [" + name + "]");
+    if (!node->is_array()) top.wrong_type(name, "[[" + name + "]] entries");
+    const toml::array& array = *node->as_array();
+    for (size_t i = 0; i < array.size(); ++i) {
+      std::string prefix = name + "[" + std::to_string(i) + "]";
+      if (!array.get(i)->is_table())
+        throw CaseError({file_, prefix, line_of(*array.get(i))},
+                        std::string("expected a table, got ") + type_name(*array.get(i)));
+      sections.emplace_back(*array.get(i)->as_table(), prefix, file_);
+    }
+    return sections;
+  }
+
+  std::optional<Section> table(const std::string& name) {
+    return Section(root_, "", file_).sub(name);
+  }
+
+  void read_simulation() {
+    auto s = table("simulation");
+    if (!s)
+      throw CaseError({file_, "simulation", 0},
+                      "missing [simulation] table (end_time and dt or rayleigh_fraction are required)");
+    s->allow_only({"name", "seed", "end_time", "dt", "rayleigh_fraction", "gravity", "integrator"},
+                  "[simulation]");
+    spec_.name = s->text("name").value_or(std::filesystem::path(file_).stem().string());
+    if (auto seed = s->integer("seed")) {
+      if (*seed < 0) s->fail("seed", "must not be negative");
+      spec_.seed = uint64_t(*seed);
+    }
+    spec_.gravity = s->vector3("gravity").value_or(spec_.gravity);
+    spec_.integrator = s->choice<Integrator>(
+        "integrator",
+        {{"velocity_verlet", Integrator::VelocityVerlet}, {"symplectic_euler", Integrator::SymplecticEuler}},
+        Integrator::VelocityVerlet);
+
+    TimeSpec& time = spec_.time;
+    time.end_time = s->required_number("end_time", " (simulated time in s)");
+    if (!(time.end_time > 0)) s->fail("end_time", format_number(time.end_time) + " must be greater than 0");
+    bool has_dt = s->has("dt"), has_fraction = s->has("rayleigh_fraction");
+    if (has_dt && has_fraction) {
+      const char* later = line_of(*s->table().get("dt")) > line_of(*s->table().get("rayleigh_fraction"))
+                              ? "dt" : "rayleigh_fraction";
+      s->fail(later, "give dt or rayleigh_fraction, not both");
+    }
+    if (!has_dt && !has_fraction)
+      s->missing("dt", ": give dt (time step in s) or rayleigh_fraction (of the Rayleigh time)");
+    if (has_dt) {
+      time.dt = positive(*s, "dt", *s->number("dt"));
+      time.where = s->where("dt");
+    } else {
+      double fraction = positive(*s, "rayleigh_fraction", *s->number("rayleigh_fraction"));
+      if (fraction > 1)
+        s->fail("rayleigh_fraction", format_number(fraction) +
+                                         " is above 1: a step longer than the Rayleigh time is unstable "
+                                         "(0.1 to 0.4 is usual)");
+      time.rayleigh_fraction = fraction;
+      time.where = s->where("rayleigh_fraction");
+    }
+  }
+
+  void read_contact() {
+    auto s = table("contact");
+    if (!s) return;
+    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega"}, "[contact]");
+    ContactOptions& c = spec_.contact;
+    c.coulomb_cap = s->choice<CoulombCap>(
+        "coulomb_cap", {{"spring_and_damper", CoulombCap::SpringAndDamper}, {"spring", CoulombCap::SpringOnly}},
+        c.coulomb_cap);
+    c.normal_attraction = s->choice<NormalAttraction>(
+        "normal_attraction", {{"allow", NormalAttraction::Allow}, {"clip", NormalAttraction::Clip}},
+        c.normal_attraction);
+    c.rolling = s->choice<RollingModel>(
+        "rolling", {{"constant_torque", RollingModel::ConstantTorque}, {"none", RollingModel::None}}, c.rolling);
+    c.rolling_omega = s->choice<RollingOmega>(
+        "rolling_omega", {{"own", RollingOmega::Own}, {"relative", RollingOmega::Relative}}, c.rolling_omega);
+  }
+
+  void read_neighbour() {
+    auto s = table("neighbour");
+    if (!s) return;
+    s->allow_only({"skin", "rebuild_interval"}, "[neighbour]");
+    if (auto skin = s->number("skin")) spec_.neighbour.skin = non_negative(*s, "skin", *skin);
+    if (auto interval = s->integer("rebuild_interval")) {
+      if (*interval < 0 || *interval > 1000000) s->fail("rebuild_interval", "must be 0 (automatic) or a number of steps");
+      spec_.neighbour.rebuild_interval = int(*interval);
+    }
+  }
+
+  void read_output() {
+    auto s = table("output");
+    if (!s) return;
+    s->allow_only({"interval", "vtk"}, "[output]");
+    if (auto interval = s->number("interval")) spec_.output.interval = non_negative(*s, "interval", *interval);
+    spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
+  }
+
+  void read_material(const Section& s) {
+    s.allow_only({"name", "preset", "density", "shear_modulus", "youngs_modulus", "poisson"}, "a [[material]]");
+    Material m;
+    m.where = s.where();
+    const MaterialPreset* preset = nullptr;
+    if (auto preset_name = s.text("preset")) {
+      preset = find_material_preset(*preset_name);
+      if (!preset)
+        s.fail("preset", "unknown preset '" + *preset_name + "'" +
+                             did_you_mean(*preset_name, material_preset_names()) +
+                             " (presets: " + quoted_list(material_preset_names()) + ")");
+    }
+    if (auto name = s.text("name")) m.name = *name;
+    else if (preset) m.name = std::string(preset->name);
+    else s.missing("name", " (or give a preset)");
+    if (!usable_name(m.name))
+      s.fail(s.has("name") ? "name" : "preset",
+             "'" + m.name + "' is not a usable name: letters, digits, '_' and '-', starting with a letter or '_'");
+    for (const Material& other : spec_.materials)
+      if (other.name == m.name)
+        s.fail(s.has("name") ? "name" : "preset",
+               "material '" + m.name + "' is already defined at line " + std::to_string(other.where.line));
+
+    m.density = s.number("density").value_or(preset ? preset->density : 0);
+    if (!s.has("density") && !preset) s.missing("density", " (kg/m^3)");
+    positive(s, "density", m.density);
+
+    m.poisson = s.number("poisson").value_or(preset ? preset->poisson : 0);
+    if (!s.has("poisson") && !preset) s.missing("poisson", " (Poisson's ratio)");
+    if (!(m.poisson > -1 && m.poisson < 0.5))
+      s.fail("poisson", format_number(m.poisson) + " is outside (-1, 0.5)");
+
+    if (s.has("shear_modulus") && s.has("youngs_modulus"))
+      s.fail(line_of(*s.table().get("shear_modulus")) > line_of(*s.table().get("youngs_modulus"))
+                 ? "shear_modulus" : "youngs_modulus",
+             "give shear_modulus or youngs_modulus, not both");
+    if (auto g = s.number("shear_modulus")) {
+      m.shear_modulus = positive(s, "shear_modulus", *g);
+      m.youngs_modulus = 2 * m.shear_modulus * (1 + m.poisson);
+    } else if (auto e = s.number("youngs_modulus")) {
+      m.youngs_modulus = positive(s, "youngs_modulus", *e);
+      m.shear_modulus = m.youngs_modulus / (2 * (1 + m.poisson));
+    } else if (preset) {
+      m.shear_modulus = preset->shear_modulus;
+      m.youngs_modulus = 2 * m.shear_modulus * (1 + m.poisson);
+    } else {
+      s.missing("shear_modulus", ": give shear_modulus or youngs_modulus (Pa)");
+    }
+    spec_.materials.push_back(m);
+  }
+
+  std::vector<std::string> material_names() const {
+    std::vector<std::string> names;
+    for (const Material& m : spec_.materials) names.push_back(m.name);
+    return names;
+  }
+
+  int material_index(const Section& s, std::string_view k, const std::string& name) const {
+    for (size_t i = 0; i < spec_.materials.size(); ++i)
+      if (spec_.materials[i].name == name) return int(i);
+    s.fail(k, "unknown material '" + name + "'" + did_you_mean(name, material_names()) +
+                  " (materials: " + quoted_list(material_names()) + ")");
+  }
+
+  int material_of(const Section& s) const {
+    return material_index(s, "material", s.required_text("material", " (a [[material]] name)"));
+  }
+
+  // Exactly two strings: ["a", "b"].
+  std::pair<std::string, std::string> name_pair(const Section& s, std::string_view k) const {
+    const toml::node* node = s.table().get(k);
+    const toml::array* array = node ? node->as_array() : nullptr;
+    if (!array || array->size() != 2 || !array->get(0)->is_string() || !array->get(1)->is_string())
+      s.fail(k, "expected two names, as [\"a\", \"b\"]");
+    return {array->get(0)->as_string()->get(), array->get(1)->as_string()->get()};
+  }
+
+  void read_interaction(const Section& s) {
+    s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction"}, "an [[interaction]]");
+    Interaction in;
+    in.where = s.where();
+    if (!s.has("materials")) s.missing("materials", " (two material names, as [\"a\", \"b\"])");
+    auto [a, b] = name_pair(s, "materials");
+    in.material_a = material_index(s, "materials", a);
+    in.material_b = material_index(s, "materials", b);
+    for (const Interaction& other : spec_.interactions)
+      if ((other.material_a == in.material_a && other.material_b == in.material_b) ||
+          (other.material_a == in.material_b && other.material_b == in.material_a))
+        s.fail("materials", "duplicate interaction: '" + a + "' and '" + b + "' already have one at line " +
+                                std::to_string(other.where.line));
+
+    const InteractionPreset* preset = nullptr;
+    if (s.has("preset")) {
+      auto [pa, pb] = name_pair(s, "preset");
+      preset = find_interaction_preset(pa, pb);
+      if (!preset) {
+        std::vector<std::string> known;
+        for (const auto& p : interaction_presets())
+          known.push_back("[\"" + std::string(p.material_a) + "\", \"" + std::string(p.material_b) + "\"]");
+        std::string presets;
+        for (const auto& k : known) presets += (presets.empty() ? "" : ", ") + k;
+        s.fail("preset", "no interaction preset for '" + pa + "' and '" + pb + "' (presets: " + presets + ")");
+      }
+    }
+    auto parameter = [&](const char* k, double preset_value) {
+      if (auto value = s.number(k)) return *value;
+      if (!preset) s.missing(k);
+      return preset_value;
+    };
+    in.restitution = parameter("restitution", preset ? preset->restitution : 0);
+    if (!(in.restitution > 0 && in.restitution <= 1))
+      s.fail("restitution", format_number(in.restitution) + " is outside (0, 1]");
+    in.static_friction = parameter("static_friction", preset ? preset->static_friction : 0);
+    if (in.static_friction < 0) s.fail("static_friction", format_number(in.static_friction) + " must not be negative");
+    in.rolling_friction = parameter("rolling_friction", preset ? preset->rolling_friction : 0);
+    if (in.rolling_friction < 0)
+      s.fail("rolling_friction", format_number(in.rolling_friction) + " must not be negative");
+    spec_.interactions.push_back(in);
+  }
+
+  // Remembers the first entry that puts a material among the particles or on a wall, so that a
+  // missing [[interaction]] can be reported where the pair first meets.
+  void note_use(std::map<int, SourceRef>& users, int material, const Section& s) {
+    users.emplace(material, s.where("material"));
+  }
+
+  void read_sphere(const Section& s) {
+    s.allow_only({"material", "radius", "position", "velocity", "angular_velocity"}, "a [[sphere]]");
+    SphereSpec sphere;
+    sphere.where = s.where();
+    sphere.material = material_of(s);
+    sphere.radius = positive(s, "radius", s.required_number("radius", " (m)"));
+    sphere.position = s.required_vector3("position");
+    sphere.velocity = s.vector3("velocity").value_or(Vec3d{});
+    sphere.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
+    note_use(particle_users_, sphere.material, s);
+    spec_.spheres.push_back(sphere);
+  }
+
+  void read_fill(const Section& s, int index) {
+    s.allow_only({"material", "count", "radius", "box", "cylinder", "seed", "velocity"}, "a [[fill]]");
+    FillSpec fill;
+    fill.where = s.where();
+    fill.material = material_of(s);
+    auto count = s.integer("count");
+    if (!count) s.missing("count", " (number of spheres)");
+    if (*count <= 0 || *count > 100000000) s.fail("count", "must be between 1 and 1e8");
+    fill.count = int(*count);
+
+    const toml::node* radius = s.table().get("radius");
+    if (!radius) s.missing("radius", " (m, or [min, max] for sizes uniform between them)");
+    if (radius->is_array()) {
+      const toml::array& range = *radius->as_array();
+      if (range.size() != 2 || !range.get(0)->is_number() || !range.get(1)->is_number())
+        s.fail("radius", "expected a number or [min, max]");
+      fill.radius_min = range.get(0)->value<double>().value();
+      fill.radius_max = range.get(1)->value<double>().value();
+      if (!(fill.radius_min > 0)) s.fail("radius", "the smallest radius " + format_number(fill.radius_min) + " must be greater than 0");
+      if (fill.radius_max < fill.radius_min) s.fail("radius", "[min, max] has max < min");
+    } else {
+      fill.radius_min = fill.radius_max = positive(s, "radius", s.required_number("radius"));
+    }
+    double diameter = 2 * fill.radius_max;
+
+    auto box = s.sub("box");
+    auto cylinder = s.sub("cylinder");
+    if (box && cylinder) s.fail("cylinder", "give box or cylinder, not both");
+    if (!box && !cylinder) s.missing("box", ": give box = { min = [..], max = [..] } or cylinder = { base = [..], axis = [..], radius = .., height = .. }");
+    if (box) {
+      box->allow_only({"min", "max"}, "a fill box");
+      fill.shape = FillSpec::Shape::Box;
+      fill.box_min = box->required_vector3("min");
+      fill.box_max = box->required_vector3("max");
+      for (int axis = 0; axis < 3; ++axis)
+        if (!(fill.box_max[axis] - fill.box_min[axis] >= diameter))
+          box->fail("max", "the box is " + format_number(fill.box_max[axis] - fill.box_min[axis]) +
+                               " m along " + "xyz"[axis] + ", less than a sphere diameter " +
+                               format_number(diameter) + " m");
+    } else {
+      cylinder->allow_only({"base", "axis", "radius", "height"}, "a fill cylinder");
+      fill.shape = FillSpec::Shape::Cylinder;
+      fill.cyl_base = cylinder->required_vector3("base");
+      fill.cyl_axis = unit(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
+      fill.cyl_radius = cylinder->required_number("radius", " (m)");
+      fill.cyl_height = cylinder->required_number("height", " (m)");
+      if (!(fill.cyl_radius >= fill.radius_max))
+        cylinder->fail("radius", format_number(fill.cyl_radius) + " m is less than a sphere radius " +
+                                     format_number(fill.radius_max) + " m");
+      if (!(fill.cyl_height >= diameter))
+        cylinder->fail("height", format_number(fill.cyl_height) + " m is less than a sphere diameter " +
+                                     format_number(diameter) + " m");
+    }
+    if (auto seed = s.integer("seed")) {
+      if (*seed < 0) s.fail("seed", "must not be negative");
+      fill.seed = uint64_t(*seed);
+    } else {
+      fill.seed = spec_.seed + uint64_t(index);  // distinct fills draw distinct streams
+    }
+    fill.velocity = s.vector3("velocity").value_or(Vec3d{});
+    note_use(particle_users_, fill.material, s);
+    spec_.fills.push_back(fill);
+  }
+
+  void read_lattice(const Section& s) {
+    s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity"}, "a [[lattice]]");
+    LatticeSpec lattice;
+    lattice.where = s.where();
+    lattice.material = material_of(s);
+    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
+    lattice.kind = s.choice<LatticeSpec::Kind>(
+        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
+        LatticeSpec::Kind::SimpleCubic);
+    lattice.box_min = s.required_vector3("min");
+    lattice.box_max = s.required_vector3("max");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
+        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+    lattice.radius = positive(s, "radius", s.required_number("radius", " (m)"));
+    lattice.spacing = positive(s, "spacing", s.required_number("spacing", " (m, the cube edge)"));
+    // Nearest neighbours: the cube edge (sc) or half its diagonal (bcc) apart. The relative
+    // allowance lets a spacing typed as exactly touching pass despite rounding.
+    bool bcc = lattice.kind == LatticeSpec::Kind::BodyCentredCubic;
+    double nearest = bcc ? lattice.spacing * std::sqrt(3.0) / 2 : lattice.spacing;
+    if (nearest < 2 * lattice.radius * (1 - 1e-9))
+      s.fail("spacing", format_number(lattice.spacing) + " m puts neighbours " + format_number(nearest) +
+                            " m apart, closer than a diameter " + format_number(2 * lattice.radius) + " m");
+    if (auto count = s.integer("count")) {
+      if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
+      lattice.max_count = int(*count);
+    }
+    lattice.velocity = s.vector3("velocity").value_or(Vec3d{});
+    note_use(particle_users_, lattice.material, s);
+    spec_.lattices.push_back(lattice);
+  }
+
+  void read_wall(const Section& s, int index) {
+    if (!s.has("type")) s.missing("type", " ('plane', 'box' or 'cylinder')");
+    WallSpec wall;
+    wall.type = s.choice<WallSpec::Type>(
+        "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder}},
+        WallSpec::Type::Plane);
+    std::vector<std::string> allowed{"name", "type", "material", "motion"};
+    const char* kind = "";
+    switch (wall.type) {
+      case WallSpec::Type::Plane: allowed.insert(allowed.end(), {"point", "normal"}); kind = "a plane [[wall]]"; break;
+      case WallSpec::Type::Box: allowed.insert(allowed.end(), {"min", "max"}); kind = "a box [[wall]]"; break;
+      case WallSpec::Type::Cylinder:
+        allowed.insert(allowed.end(), {"base", "axis", "radius", "height"});
+        kind = "a cylinder [[wall]]";
+        break;
+    }
+    s.allow_only(allowed, kind);
+    wall.where = s.where();
+    wall.material = material_of(s);
+    if (auto name = s.text("name")) {
+      if (!usable_name(*name))
+        s.fail("name", "'" + *name + "' is not a usable name: letters, digits, '_' and '-', starting with a letter or '_'");
+      for (const WallSpec& other : spec_.walls)
+        if (other.name == *name)
+          s.fail("name", "wall '" + *name + "' is already defined at line " + std::to_string(other.where.line));
+      wall.name = *name;
+    } else {
+      wall.name = "wall[" + std::to_string(index) + "]";
+    }
+    switch (wall.type) {
+      case WallSpec::Type::Plane:
+        wall.point = s.required_vector3("point");
+        wall.normal = unit(s, "normal", s.required_vector3("normal"));
+        break;
+      case WallSpec::Type::Box:
+        wall.box_min = s.required_vector3("min");
+        wall.box_max = s.required_vector3("max");
+        for (int axis = 0; axis < 3; ++axis)
+          if (!(wall.box_max[axis] > wall.box_min[axis]))
+            s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+        break;
+      case WallSpec::Type::Cylinder:
+        wall.base = s.required_vector3("base");
+        wall.axis = unit(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
+        wall.radius = positive(s, "radius", s.required_number("radius", " (m)"));
+        wall.height = positive(s, "height", s.required_number("height", " (m)"));
+        break;
+    }
+    if (auto motion = s.sub("motion")) read_motion(*motion, wall.motion);
+    note_use(wall_users_, wall.material, s);
+    spec_.walls.push_back(wall);
+  }
+
+  void read_motion(const Section& s, WallMotion& motion) {
+    s.allow_only({"velocity", "start", "stop", "axis_point", "axis", "rate"}, "a wall motion");
+    motion.velocity = s.vector3("velocity").value_or(motion.velocity);
+    motion.start_time = non_negative(s, "start", s.number("start").value_or(motion.start_time));
+    motion.stop_time = s.number("stop").value_or(motion.stop_time);
+    if (!(motion.stop_time > motion.start_time))
+      s.fail("stop", format_number(motion.stop_time) + " must be later than start " + format_number(motion.start_time));
+    motion.rotation_axis_point = s.vector3("axis_point").value_or(motion.rotation_axis_point);
+    motion.rotation_axis = unit(s, "axis", s.vector3("axis").value_or(motion.rotation_axis));
+    motion.angular_rate = s.number("rate").value_or(0);
+  }
+
+  // Every pair of materials that can touch (particle-particle, particle-wall) needs its
+  // contact parameters: there is no sensible default for restitution or friction.
+  void check_interactions_cover_use() {
+    auto covered = [&](int a, int b) {
+      return std::any_of(spec_.interactions.begin(), spec_.interactions.end(), [&](const Interaction& in) {
+        return (in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a);
+      });
+    };
+    auto report = [&](const SourceRef& first, const SourceRef& second, int a, int b) {
+      const SourceRef& later = first.line >= second.line ? first : second;
+      const SourceRef& earlier = first.line >= second.line ? second : first;
+      std::string name_a = spec_.materials[size_t(a)].name, name_b = spec_.materials[size_t(b)].name;
+      std::string meeting = a == b ? "particles of '" + name_a + "' touch each other"
+                                   : "'" + name_a + "' meets '" + name_b + "' (" + earlier.key + ", line " +
+                                         std::to_string(earlier.line) + ")";
+      throw CaseError(later, meeting + " but no [[interaction]] gives materials = [\"" + name_a + "\", \"" +
+                                 name_b + "\"] its restitution and friction");
+    };
+    for (auto i = particle_users_.begin(); i != particle_users_.end(); ++i)
+      for (auto j = i; j != particle_users_.end(); ++j) {
+        bool can_meet = i != j || particles_of(i->first) > 1;  // one lone sphere meets no twin
+        if (can_meet && !covered(i->first, j->first)) report(i->second, j->second, i->first, j->first);
+      }
+    for (const auto& [particle, particle_ref] : particle_users_)
+      for (const auto& [wall, wall_ref] : wall_users_)
+        if (!covered(particle, wall)) report(particle_ref, wall_ref, particle, wall);
+  }
+
+  // How many particles of a material the case will have (before they are placed).
+  size_t particles_of(int material) const {
+    size_t count = 0;
+    for (const SphereSpec& sphere : spec_.spheres) count += sphere.material == material;
+    for (const FillSpec& fill : spec_.fills) count += fill.material == material ? size_t(fill.count) : 0;
+    for (const LatticeSpec& lattice : spec_.lattices)
+      if (lattice.material == material)
+        count += lattice.max_count > 0 ? size_t(lattice.max_count) : lattice_sites(lattice).size();
+    return count;
+  }
+
+  void check_time_step() {
+    RayleighLimit limit = rayleigh_limit(spec_);
+    if (!spec_.time.dt || *spec_.time.dt <= limit.time) return;
+    const SphereSpec& sphere = spec_.spheres[size_t(limit.sphere)];
+    throw CaseError(spec_.time.where,
+                    format_number(*spec_.time.dt) + " s is above the Rayleigh time " + format_number(limit.time) +
+                        " s of the spheres of " + sphere.where.key + " (line " + std::to_string(sphere.where.line) +
+                        ", radius " + format_number(sphere.radius) + " m, material '" +
+                        spec_.materials[size_t(sphere.material)].name +
+                        "'), where the contact law is unstable; lower dt or give rayleigh_fraction "
+                        "(0.1 to 0.4 is usual)");
+  }
+
+  const toml::table& root_;
+  const std::string& file_;
+  CaseSpec spec_;
+  std::map<int, SourceRef> particle_users_, wall_users_;
+};
+
+}  // namespace
+
+CaseOverride parse_override(const std::string& text) {
+  size_t equals = text.find('=');
+  if (equals == std::string::npos || equals == 0)
+    throw CaseError({"", "override " + text, 0}, "expected KEY=VALUE, as simulation.end_time=0.5");
+  return {text.substr(0, equals), text.substr(equals + 1)};
+}
+
+CaseSpec load_case_from_string(const std::string& toml_text, const std::string& virtual_path,
+                               const std::vector<CaseOverride>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(toml_text), std::string_view(virtual_path));
+  } catch (const toml::parse_error& error) {
+    throw CaseError({virtual_path, "", int(error.source().begin.line)},
+                    "TOML syntax: " + std::string(error.description()), int(error.source().begin.column));
+  }
+  for (const CaseOverride& o : overrides) apply_override(root, o.key, o.value, virtual_path);
+  return CaseReader(root, virtual_path).read();
+}
+
+CaseSpec load_case(const std::string& path, const std::vector<CaseOverride>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError({path, "", 0}, std::string("cannot read the case file: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return load_case_from_string(text.str(), path, overrides);
+}
+
+}  // namespace repose

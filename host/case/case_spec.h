@@ -1,0 +1,150 @@
+// What a case file says, in SI units, after parsing and validation: the engine's input.
+// Every element remembers the line of the case file it came from, so that errors found later
+// (overlaps, an unstable time step) can still name the file, key and line.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace repose {
+
+using Vec3d = std::array<double, 3>;
+
+// Where in a case file a value came from: "cases/box.toml", key "fill[0].count", line 12.
+struct SourceRef {
+  std::string file;
+  std::string key;
+  int line = 0;
+};
+
+struct Material {
+  std::string name;
+  double density = 0;        // kg/m^3
+  double youngs_modulus = 0; // Pa; the file gives Young's or shear modulus, the other is derived
+  double shear_modulus = 0;  // Pa; E = 2 G (1 + nu)
+  double poisson = 0;
+  SourceRef where;
+};
+
+// Contact parameters for one pair of materials (symmetric), EDEM's "interaction" table.
+struct Interaction {
+  int material_a = 0, material_b = 0;  // indices into CaseSpec::materials
+  double restitution = 0;              // (0, 1]
+  double static_friction = 0;          // >= 0
+  double rolling_friction = 0;         // >= 0
+  SourceRef where;
+};
+
+struct SphereSpec {
+  Vec3d position{};
+  Vec3d velocity{};
+  Vec3d angular_velocity{};
+  double radius = 0;
+  int material = 0;
+  SourceRef where;  // the [[sphere]], [[fill]] or [[lattice]] entry that made it
+};
+
+// A region filled at random without overlap (random sequential addition from a seed).
+struct FillSpec {
+  enum class Shape { Box, Cylinder } shape = Shape::Box;
+  Vec3d box_min{}, box_max{};                 // Box
+  Vec3d cyl_base{}; Vec3d cyl_axis{0, 0, 1};  // Cylinder: base centre, unit axis,
+  double cyl_radius = 0, cyl_height = 0;      //           radius and height
+  int count = 0;
+  double radius_min = 0, radius_max = 0;  // equal for one size; uniform in [min, max] otherwise
+  int material = 0;
+  uint64_t seed = 0;
+  Vec3d velocity{};
+  SourceRef where;
+};
+
+// Spheres on a lattice filling a box: simple cubic or body-centred cubic.
+struct LatticeSpec {
+  enum class Kind { SimpleCubic, BodyCentredCubic } kind = Kind::SimpleCubic;
+  Vec3d box_min{}, box_max{};
+  double spacing = 0;  // cube edge
+  double radius = 0;
+  int material = 0;
+  int max_count = 0;   // 0: as many as fit
+  Vec3d velocity{};
+  SourceRef where;
+};
+
+// Prescribed wall motion; the engine evaluates the pose at time t on the host.
+struct WallMotion {
+  Vec3d velocity{};         // m/s, translation
+  double start_time = 0;    // s, motion begins here
+  double stop_time = 1e30;  // s, motion ends here
+  Vec3d rotation_axis_point{};
+  Vec3d rotation_axis{0, 0, 1};
+  double angular_rate = 0;  // rad/s about rotation_axis through rotation_axis_point
+};
+
+struct WallSpec {
+  enum class Type { Plane, Box, Cylinder } type = Type::Plane;
+  int material = 0;
+  // Plane: contact on the side the normal points to.
+  Vec3d point{}, normal{0, 0, 1};
+  // Box: particles are inside; six inward-facing planes.
+  Vec3d box_min{}, box_max{};
+  // Cylinder: particles are inside the inner surface; finite along the axis.
+  Vec3d base{}, axis{0, 0, 1};
+  double radius = 0, height = 0;
+  WallMotion motion;
+  std::string name;  // optional, used in summaries ("floor", "gate")
+  SourceRef where;
+};
+
+enum class Integrator { VelocityVerlet, SymplecticEuler };
+// Engines disagree on these (ENGINEERING.md section 1); the defaults are EDEM's.
+enum class CoulombCap { SpringAndDamper, SpringOnly };
+enum class NormalAttraction { Allow, Clip };
+enum class RollingModel { None, ConstantTorque };
+enum class RollingOmega { Own, Relative };  // EDEM uses each body's own w, LIGGGHTS the relative w
+
+struct ContactOptions {
+  CoulombCap coulomb_cap = CoulombCap::SpringAndDamper;
+  NormalAttraction normal_attraction = NormalAttraction::Allow;
+  RollingModel rolling = RollingModel::ConstantTorque;
+  RollingOmega rolling_omega = RollingOmega::Own;
+};
+
+struct TimeSpec {
+  // Exactly one of the two is set by the parser; the engine resolves dt.
+  std::optional<double> dt;                 // s
+  std::optional<double> rayleigh_fraction;  // dt = fraction * Rayleigh time
+  double end_time = 0;                      // s
+  SourceRef where;
+};
+
+struct NeighbourSpec {
+  double skin = -1;          // m; < 0: 0.1 x the smallest diameter
+  int rebuild_interval = 0;  // steps between list rebuilds; 0: automatic
+};
+
+struct OutputSpec {
+  double interval = 0;  // s between VTK frames; 0: no frames
+  bool vtk = true;
+};
+
+struct CaseSpec {
+  std::string path;  // the case file
+  std::string name;  // [simulation] name, else the file's stem
+  uint64_t seed = 1;
+  Vec3d gravity{0, 0, -9.81};
+  Integrator integrator = Integrator::VelocityVerlet;
+  ContactOptions contact;
+  TimeSpec time;
+  NeighbourSpec neighbour;
+  OutputSpec output;
+  std::vector<Material> materials;
+  std::vector<Interaction> interactions;
+  std::vector<SphereSpec> spheres;  // explicit [[sphere]] entries first, then expanded fills/lattices
+  std::vector<FillSpec> fills;
+  std::vector<LatticeSpec> lattices;
+  std::vector<WallSpec> walls;
+};
+
+}  // namespace repose

@@ -1,0 +1,216 @@
+#include "case/particle_factory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "case/case_error.h"
+#include "case/sphere_grid.h"
+
+namespace repose {
+namespace {
+
+std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
+std::string format_point(const Vec3d& p) {
+  return "(" + format_number(p[0]) + ", " + format_number(p[1]) + ", " + format_number(p[2]) + ")";
+}
+
+std::string describe(const SphereSpec& sphere) {
+  return sphere.where.key + " (line " + std::to_string(sphere.where.line) + ")";
+}
+
+// Grid holding the spheres whose bounding boxes reach into [lo, hi]: only they can touch new
+// spheres placed there. ids maps grid ids back to indices in `spheres`.
+SphereGrid grid_near(const std::vector<SphereSpec>& spheres, const Vec3d& lo, const Vec3d& hi,
+                     double new_radius_max, std::vector<int>& ids) {
+  double largest = 0;
+  for (const SphereSpec& s : spheres) largest = std::max(largest, s.radius);
+  // Cells about one new sphere wide; a much larger existing sphere then spans at most ~17^3.
+  SphereGrid grid(std::max(2 * new_radius_max, largest / 8));
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    const SphereSpec& s = spheres[i];
+    bool near = true;
+    for (int axis = 0; axis < 3; ++axis)
+      near = near && s.position[axis] + s.radius > lo[axis] && s.position[axis] - s.radius < hi[axis];
+    if (!near) continue;
+    grid.insert(s.position, s.radius);
+    ids.push_back(int(i));
+  }
+  return grid;
+}
+
+// Sites per axis: corners at lo + r + i s, body centres half a cell further, all <= hi - r.
+// The 1e-9 keeps a site that lands on the margin up to rounding (e.g. 0.9 / 0.1 = 8.999...).
+int sites_along(double length, double radius, double spacing, double offset) {
+  double usable = length - 2 * radius - offset;
+  if (usable < 0) return 0;
+  return int(std::floor(usable / spacing + 1e-9)) + 1;
+}
+
+// Two unit vectors that complete axis to an orthonormal basis, built the same way everywhere.
+void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
+  Vec3d helper = std::fabs(axis[0]) < 0.9 ? Vec3d{1, 0, 0} : Vec3d{0, 1, 0};
+  Vec3d c{axis[1] * helper[2] - axis[2] * helper[1], axis[2] * helper[0] - axis[0] * helper[2],
+          axis[0] * helper[1] - axis[1] * helper[0]};
+  double length = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  e1 = {c[0] / length, c[1] / length, c[2] / length};
+  e2 = {axis[1] * e1[2] - axis[2] * e1[1], axis[2] * e1[0] - axis[0] * e1[2],
+        axis[0] * e1[1] - axis[1] * e1[0]};
+}
+
+}  // namespace
+
+void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
+  if (spheres.empty()) return;
+  double largest = 0;
+  for (const SphereSpec& s : spheres) largest = std::max(largest, s.radius);
+  SphereGrid grid(2 * largest);
+  for (const SphereSpec& sphere : spheres) {
+    int other = grid.find_overlap(sphere.position, sphere.radius);
+    if (other >= 0) {
+      const SphereSpec& earlier = spheres[size_t(other)];
+      double dx = sphere.position[0] - earlier.position[0];
+      double dy = sphere.position[1] - earlier.position[1];
+      double dz = sphere.position[2] - earlier.position[2];
+      throw CaseError(sphere.where,
+                      "overlaps " + describe(earlier) + ": centres " +
+                          format_number(std::sqrt(dx * dx + dy * dy + dz * dz)) +
+                          " m apart, radii add up to " +
+                          format_number(sphere.radius + earlier.radius) + " m");
+    }
+    grid.insert(sphere.position, sphere.radius);
+  }
+}
+
+std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice) {
+  const double s = lattice.spacing, r = lattice.radius;
+  bool bcc = lattice.kind == LatticeSpec::Kind::BodyCentredCubic;
+  int corners[3], centres[3];
+  for (int axis = 0; axis < 3; ++axis) {
+    double length = lattice.box_max[axis] - lattice.box_min[axis];
+    corners[axis] = sites_along(length, r, s, 0);
+    centres[axis] = bcc ? sites_along(length, r, s, s / 2) : 0;
+  }
+  std::vector<Vec3d> sites;
+  auto add_layer = [&](const int* counts, double offset, int k) {
+    double z = lattice.box_min[2] + r + offset + k * s;
+    for (int j = 0; j < counts[1]; ++j)
+      for (int i = 0; i < counts[0]; ++i)
+        sites.push_back({lattice.box_min[0] + r + offset + i * s,
+                         lattice.box_min[1] + r + offset + j * s, z});
+  };
+  for (int k = 0; k < std::max(corners[2], centres[2]); ++k) {
+    if (k < corners[2]) add_layer(corners, 0, k);
+    if (k < centres[2]) add_layer(centres, s / 2, k);
+  }
+  return sites;
+}
+
+void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres) {
+  std::vector<Vec3d> sites = lattice_sites(lattice);
+  if (sites.empty())
+    throw CaseError(lattice.where, "no site fits: the box is narrower than one sphere diameter");
+  if (lattice.max_count > 0) {
+    if (size_t(lattice.max_count) > sites.size())
+      throw CaseError(lattice.where, "count = " + std::to_string(lattice.max_count) + " but only " +
+                                         std::to_string(sites.size()) +
+                                         " sites fit in the box");
+    sites.resize(size_t(lattice.max_count));
+  }
+  std::vector<int> ids;
+  Vec3d lo = lattice.box_min, hi = lattice.box_max;
+  SphereGrid grid = grid_near(spheres, lo, hi, lattice.radius, ids);
+  for (const Vec3d& site : sites) {
+    int other = grid.find_overlap(site, lattice.radius);
+    if (other >= 0)
+      throw CaseError(lattice.where, "the site at " + format_point(site) + " overlaps " +
+                                         describe(spheres[size_t(ids[size_t(other)])]));
+  }
+  for (const Vec3d& site : sites) {
+    SphereSpec sphere;
+    sphere.position = site;
+    sphere.velocity = lattice.velocity;
+    sphere.radius = lattice.radius;
+    sphere.material = lattice.material;
+    sphere.where = lattice.where;
+    spheres.push_back(sphere);
+  }
+}
+
+void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
+  std::mt19937_64 engine(fill.seed);
+  auto uniform = [&engine] { return unit_interval(engine()); };
+
+  bool box = fill.shape == FillSpec::Shape::Box;
+  Vec3d e1{}, e2{};
+  if (!box) perpendicular_basis(fill.cyl_axis, e1, e2);
+
+  // Bounding box of the region, for choosing which existing spheres can interfere.
+  Vec3d lo = fill.box_min, hi = fill.box_max;
+  if (!box) {
+    for (int axis = 0; axis < 3; ++axis) {
+      double top = fill.cyl_base[axis] + fill.cyl_axis[axis] * fill.cyl_height;
+      lo[axis] = std::min(fill.cyl_base[axis], top) - fill.cyl_radius;
+      hi[axis] = std::max(fill.cyl_base[axis], top) + fill.cyl_radius;
+    }
+  }
+  std::vector<int> ids;
+  SphereGrid grid = grid_near(spheres, lo, hi, fill.radius_max, ids);
+
+  for (int placed = 0; placed < fill.count; ++placed) {
+    double radius = fill.radius_min;
+    if (fill.radius_max > fill.radius_min)
+      radius = fill.radius_min + (fill.radius_max - fill.radius_min) * uniform();
+    bool found = false;
+    Vec3d centre{};
+    for (int attempt = 0; attempt < kFillTriesPerSphere && !found; ++attempt) {
+      if (box) {
+        for (int axis = 0; axis < 3; ++axis) {
+          double span = fill.box_max[axis] - fill.box_min[axis] - 2 * radius;
+          centre[axis] = fill.box_min[axis] + radius + span * uniform();
+        }
+      } else {
+        double along = radius + (fill.cyl_height - 2 * radius) * uniform();
+        double a, b;  // uniform in the unit disc by rejection from the square
+        do {
+          a = 2 * uniform() - 1;
+          b = 2 * uniform() - 1;
+        } while (a * a + b * b > 1);
+        double reach = fill.cyl_radius - radius;
+        for (int axis = 0; axis < 3; ++axis)
+          centre[axis] = fill.cyl_base[axis] + fill.cyl_axis[axis] * along +
+                         e1[axis] * (reach * a) + e2[axis] * (reach * b);
+      }
+      found = grid.find_overlap(centre, radius) < 0;
+    }
+    if (!found)
+      throw CaseError(fill.where,
+                      "only " + std::to_string(placed) + " of the " + std::to_string(fill.count) +
+                          " spheres (count) fit without overlap: sphere " +
+                          std::to_string(placed + 1) + " found no free place in " +
+                          std::to_string(kFillTriesPerSphere) +
+                          " random tries; enlarge the region or lower count");
+    grid.insert(centre, radius);
+    SphereSpec sphere;
+    sphere.position = centre;
+    sphere.velocity = fill.velocity;
+    sphere.radius = radius;
+    sphere.material = fill.material;
+    sphere.where = fill.where;
+    spheres.push_back(sphere);
+  }
+}
+
+void expand_particles(CaseSpec& spec) {
+  check_no_overlaps(spec.spheres);
+  for (const LatticeSpec& lattice : spec.lattices) append_lattice(lattice, spec.spheres);
+  for (const FillSpec& fill : spec.fills) append_fill(fill, spec.spheres);
+}
+
+}  // namespace repose

@@ -1,0 +1,38 @@
+#include "case/time_step.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "case/case_error.h"
+
+namespace repose {
+
+double rayleigh_time(double radius, const Material& material) {
+  return std::numbers::pi * radius * std::sqrt(material.density / material.shear_modulus) /
+         (0.1631 * material.poisson + 0.8766);
+}
+
+RayleighLimit rayleigh_limit(const CaseSpec& spec) {
+  RayleighLimit limit{std::numeric_limits<double>::infinity(), -1};
+  for (size_t i = 0; i < spec.spheres.size(); ++i) {
+    const SphereSpec& sphere = spec.spheres[i];
+    double time = rayleigh_time(sphere.radius, spec.materials.at(size_t(sphere.material)));
+    if (time < limit.time) limit = RayleighLimit{time, int(i)};
+  }
+  return limit;
+}
+
+double rayleigh_time(const CaseSpec& spec) { return rayleigh_limit(spec).time; }
+
+double resolve_dt(const CaseSpec& spec) {
+  const TimeSpec& time = spec.time;
+  if (time.dt.has_value() == time.rayleigh_fraction.has_value())
+    throw CaseError(time.where, "give exactly one of dt and rayleigh_fraction");
+  if (time.dt) return *time.dt;
+  if (spec.spheres.empty())
+    throw CaseError(time.where, "rayleigh_fraction needs at least one sphere to measure");
+  return *time.rayleigh_fraction * rayleigh_time(spec);
+}
+
+}  // namespace repose
