@@ -684,7 +684,7 @@ class CaseReader {
     const SphereSpec& sphere = spec_.spheres[size_t(limit.sphere)];
     throw CaseError(spec_.time.where,
                     format_number(*spec_.time.dt) + " s is above the Rayleigh time " + format_number(limit.time) +
-                        " s of the spheres of " + sphere.where.key + " (line " + std::to_string(sphere.where.line) +
+                        " s set by " + sphere.where.key + " (line " + std::to_string(sphere.where.line) +
                         ", radius " + format_number(sphere.radius) + " m, material '" +
                         spec_.materials[size_t(sphere.material)].name +
                         "'), where the contact law is unstable; lower dt or give rayleigh_fraction "

@@ -80,7 +80,10 @@ void apply_override(toml::table& root, const std::string& dotted_key, const std:
   std::vector<std::string> segments = split_key(dotted_key);
   for (const std::string& segment : segments)
     if (segment.empty()) fail("the key has an empty part (two dots, or a dot at an end)");
-  toml::table holder = parse_value(value_text);
+  // An empty value removes the key (or the array element): the way to trade dt for
+  // rayleigh_fraction, or to drop a wall, from the command line.
+  bool remove = value_text.find_first_not_of(" \t") == std::string::npos;
+  toml::table holder = parse_value(remove ? "0" : value_text);
   toml::node& value = *holder.get("v");
 
   toml::node* current = &root;
@@ -90,6 +93,11 @@ void apply_override(toml::table& root, const std::string& dotted_key, const std:
     bool last = i + 1 == segments.size();
     if (toml::table* table = current->as_table()) {
       std::string here = path.empty() ? segment : path + "." + segment;
+      if (last && remove) {
+        if (!table->contains(segment)) fail("there is no " + here + " to remove");
+        table->erase(segment);
+        return;
+      }
       if (last) {
         // A copy, not a move: copies drop the source position, which belongs to the override's
         // one-line parse and would otherwise pass for a line of the case file.
@@ -117,6 +125,10 @@ void apply_override(toml::table& root, const std::string& dotted_key, const std:
         if (matches.empty()) fail("no " + path + " is named '" + segment + "'" + did_you_mean(segment, names_in(*array)));
         if (matches.size() > 1) fail("more than one " + path + " is named '" + segment + "': use its index");
         index = matches[0];
+      }
+      if (last && remove) {
+        array->erase(array->cbegin() + std::ptrdiff_t(index));
+        return;
       }
       if (last) {
         value.visit([&](const auto& node) { array->replace(array->cbegin() + std::ptrdiff_t(index), node); });

@@ -11,7 +11,9 @@
 //   fill.0.box.max               keys of inline tables continue the path
 // Tables on the way that do not exist yet are created ("neighbour.skin" without [neighbour]).
 // The value is TOML ("0.5", "[0, 0, -9.8]", "\"clip\"", "{ velocity = [0, 0, 1] }"); text that
-// is not a TOML value is taken as a bare string, so `clip` works as well as `"clip"`.
+// is not a TOML value is taken as a bare string, so `clip` works as well as `"clip"`. An empty
+// value removes the key or array element: "simulation.dt=" then "simulation.rayleigh_fraction=0.3"
+// trades one time step form for the other; "wall.gate=" drops a wall.
 #pragma once
 #include <string>
 

@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <set>
 #include <string>
 
@@ -228,9 +230,18 @@ TEST_CASE("overrides set values by index, by name and by material pair") {
   CHECK(spec.time.end_time == 0.75);
   CHECK_THROWS_AS(parse_override("no equals sign"), CaseError);
 
-  // Switching dt for rayleigh_fraction needs the old key removed: both set is an error.
+  // Switching dt for rayleigh_fraction needs the old key removed (an empty value): both is an error.
   CHECK_THROWS_WITH(load_case_from_string(kCase, "c.toml", {{"simulation.rayleigh_fraction", "0.2"}}),
                     Contains("not both"));
+  spec = load_case_from_string(kCase, "c.toml", {{"simulation.dt", ""}, {"simulation.rayleigh_fraction", "0.2"}});
+  CHECK(!spec.time.dt);
+  CHECK(spec.time.rayleigh_fraction == 0.2);
+  // An empty value on an array element drops it.
+  spec = load_case_from_string(kCase, "c.toml", {{"wall.floor", ""}});
+  REQUIRE(spec.walls.size() == 1);
+  CHECK(spec.walls[0].type == WallSpec::Type::Cylinder);
+  CHECK_THROWS_WITH(load_case_from_string(kCase, "c.toml", {{"output.interval", ""}}),
+                    Contains("there is no output.interval to remove"));
 }
 
 TEST_CASE("apply_override works on a parsed TOML table") {
@@ -290,4 +301,19 @@ TEST_CASE("the shipped cases say what the issue asks for") {
   CHECK(cylinder.walls.size() == 2);
   CHECK(cylinder.walls[0].type == WallSpec::Type::Cylinder);
   CHECK(cylinder.walls[1].type == WallSpec::Type::Plane);
+}
+
+TEST_CASE("the complete example in docs/case-format.md loads") {
+  std::ifstream in(std::string(REPOSE_SOURCE_DIR) + "/docs/case-format.md");
+  std::stringstream doc;
+  doc << in.rdbuf();
+  std::string text = doc.str();
+  size_t start = text.find("```toml\n");
+  REQUIRE(start != std::string::npos);
+  start += 8;
+  std::string example = text.substr(start, text.find("```", start) - start);
+  CaseSpec spec = load_case_from_string(example, "docs/case-format.md");
+  CHECK(spec.spheres.size() > 2001);
+  CHECK(spec.walls.size() == 3);
+  CHECK(spec.contact.coulomb_cap == CoulombCap::SpringAndDamper);
 }
