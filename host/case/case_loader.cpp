@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +12,6 @@
 #include <fstream>
 #include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 
 #include "case/case_override.h"
@@ -575,7 +575,13 @@ class CaseReader {
   }
 
   void read_wall(const Section& s, int index) {
-    if (!s.has("type")) s.missing("type", " ('plane', 'box' or 'cylinder')");
+    if (!s.has("type")) {
+      // Without a type, a misspelt "type" is likelier than a missing one: suggest among all keys.
+      s.allow_only({"name", "type", "material", "motion", "point", "normal", "min", "max", "base", "axis",
+                    "radius", "height"},
+                   "a [[wall]]");
+      s.missing("type", " ('plane', 'box' or 'cylinder')");
+    }
     WallSpec wall;
     wall.type = s.choice<WallSpec::Type>(
         "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder}},

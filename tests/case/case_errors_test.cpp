@@ -100,6 +100,9 @@ TEST_CASE("unknown keys are named with their line and the nearest allowed key") 
   text = kValid + "\n[[fill]]\nmaterial = \"grain\"\ncount = 10\nradius = 0.005\nbox = { min = [0, 0, 0], mx = [1, 1, 1] }\n";
   CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "mx ="), "fill[0].box.mx")) && Contains("'max'"));
 
+  text = edited(kValid, "type = \"plane\"", "typ = \"plane\"");
+  CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "typ ="), "wall[0].typ")) && Contains("did you mean 'type'?"));
+
   // A key of another wall type is unknown for this one.
   text = edited(kValid, "normal = [0, 0, 1]", "normal = [0, 0, 1]\nradius = 0.1");
   CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "radius = 0.1"), "wall[0].radius")) &&
