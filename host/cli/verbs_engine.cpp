@@ -85,10 +85,10 @@ int run_case(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   // Everything that can fail on bad input happens before anything is written.
-  std::vector<CaseOverride> overrides;
-  for (const auto& s : sets) overrides.push_back(parse_override(s));
   CaseSpec spec;
   try {
+    std::vector<CaseOverride> overrides;
+    for (const auto& s : sets) overrides.push_back(parse_override(s));
     spec = load_case(case_path, overrides);
   } catch (const CaseError& e) {
     std::fprintf(stderr, "%s\n", e.what());
