@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Fresh Debian 12 machine, as root: installs, builds and runs the default case
+# (cases/settle_box.toml: 2,400 spheres settling in a steel box) on the default Vulkan device.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+./build/repose devices
+./build/repose run cases/settle_box.toml --out out/settle_box --state-out out/settle_box/final.state "$@"
+echo "summary:"; cat out/settle_box/summary.json
