@@ -1,7 +1,507 @@
+// `repose design`, `repose fit`, `repose optimize`, `repose curve`: the calibration statistics
+// (host/stats) on plain CSV tables. Every output file is written whole or not at all
+// (temporary file + rename), and every error names the file, line and column to fix.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "cli/verbs.h"
+#include "stats/anova.h"
+#include "stats/atomic_file.h"
+#include "stats/calibration_curve.h"
+#include "stats/csv_table.h"
+#include "stats/dataset.h"
+#include "stats/design.h"
+#include "stats/errors.h"
+#include "stats/fit_file.h"
+#include "stats/json.h"
+#include "stats/optimize.h"
+#include "stats/report.h"
 
 namespace repose::cli {
 
-std::vector<Verb> stats_verbs() { return {}; }
+namespace {
+
+using namespace repose::stats;
+
+std::string join_args(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+std::string num(double v, int digits = 6) {
+  if (std::fabs(v) < 1e-12) v = 0;  // coded centres computed as (x - c) / h come out as +-3e-15
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+// Index of a factor given by name or by its letter (A, B, ...).
+int find_factor(const std::vector<std::string>& names, const std::string& key, const std::string& where) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == key) return static_cast<int>(i);
+  if (key.size() == 1) {
+    int f = factor_from_letter(key[0]);
+    if (f >= 0 && f < static_cast<int>(names.size())) return f;
+  }
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+  throw StatsError(where + ": unknown factor '" + key + "' (factors: " + list + ")");
+}
+
+// "NAME=VALUE" -> (name, value).
+std::pair<std::string, double> parse_assignment(const std::string& s, const char* option) {
+  auto eq = s.find('=');
+  double v = 0;
+  if (eq == std::string::npos || eq == 0 || !parse_number(s.substr(eq + 1), v))
+    throw StatsError(std::string(option) + " '" + s + "' is not NAME=VALUE");
+  return {s.substr(0, eq), v};
+}
+
+// ---------------------------------------------------------------------------------------
+int run_design(int argc, char** argv) {
+  CLI::App app{"Write an experimental design (coded and actual values) as CSV."};
+  std::string type, factor_list, alpha = "rotatable", out, fit_path;
+  std::vector<std::string> generators;
+  int centre = -1, fraction = 0, steps = 5;
+  double step = 1;
+  bool descent = false;
+  std::optional<std::uint64_t> seed;
+  app.add_option("--type", type, "pb12, pb20, factorial, fractional, ccd, bbd, or path (steepest ascent)")
+      ->required()
+      ->check(CLI::IsMember({"pb12", "pb20", "factorial", "fractional", "ccd", "bbd", "path"}));
+  app.add_option("--factors", factor_list, "NAME:LOW:HIGH,... actual values coded -1 and +1");
+  app.add_option("--centre,--center", centre,
+                 "centre points (default: 6 for ccd, 5 for bbd, 0 otherwise)");
+  app.add_option("--alpha", alpha, "ccd axial distance: rotatable, orthogonal, face, or a number");
+  app.add_option("--generators", generators, "fractional: generators such as D=ABC,E=-ABD")->delimiter(',');
+  app.add_option("--fraction", fraction, "fractional: p of 2^(k-p), with standard generators");
+  app.add_option("--seed", seed, "randomise the run order with this seed (std::mt19937_64)");
+  app.add_option("--fit", fit_path, "path: a first-order fit (repose fit --json) to follow");
+  app.add_option("--steps", steps, "path: number of steps (default 5)");
+  app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)");
+  app.add_flag("--descent", descent, "path: descend instead of ascend");
+  app.add_option("--out", out, "output CSV (default: standard output)");
+  CLI11_PARSE(app, argc, argv);
+
+  Design d;
+  if (type == "path") {
+    if (fit_path.empty()) throw StatsError("--type path needs --fit FIT.json (a first-order fit)");
+    SavedFit fit = read_fit_file(fit_path);
+    if (fit.ranges.empty())
+      throw StatsError(fit_path + ": the fit has no factor ranges (fit with --coded or --ranges)");
+    const int k = static_cast<int>(fit.factor_names.size());
+    Eigen::VectorXd slopes(k);
+    for (int i = 0; i < k; ++i) {
+      Term t{std::vector<int>(k, 0)};
+      t.powers[i] = 1;
+      slopes[i] = fit.coded.coefficient(t);
+    }
+    d = steepest_path(fit.ranges, slopes, step, steps, !descent);
+  } else {
+    if (factor_list.empty()) throw StatsError("--factors NAME:LOW:HIGH,... is required");
+    std::vector<Factor> factors = parse_factors(factor_list);
+    int centres = centre >= 0 ? centre : type == "ccd" ? 6 : type == "bbd" ? 5 : 0;
+    if (type == "pb12") d = plackett_burman(12, factors, centres);
+    else if (type == "pb20") d = plackett_burman(20, factors, centres);
+    else if (type == "factorial") d = full_factorial(factors, centres);
+    else if (type == "fractional") {
+      if (generators.empty() && fraction <= 0)
+        throw StatsError("--type fractional needs --generators D=ABC,... or --fraction P");
+      if (generators.empty()) generators = default_generators(static_cast<int>(factors.size()), fraction);
+      d = fractional_factorial(factors, generators, centres);
+    } else if (type == "ccd") d = central_composite(factors, parse_alpha(alpha), centres);
+    else d = box_behnken(factors, centres);
+  }
+  if (seed) randomise_run_order(d, *seed);
+
+  std::vector<std::string> comments = {"repose design: " + join_args(argc - 1, argv + 1)};
+  std::string summary = std::to_string(d.runs()) + " runs";
+  int counts[5] = {0, 0, 0, 0, 0};
+  for (auto p : d.points) ++counts[static_cast<int>(p)];
+  for (int t = 0; t < 5; ++t)
+    if (counts[t]) summary += ", " + std::to_string(counts[t]) + " " + point_type_name(static_cast<PointType>(t));
+  if (d.type == "ccd") summary += "; alpha = " + num(d.alpha, 10);
+  if (!d.generators.empty()) {
+    summary += "; generators";
+    for (const auto& g : d.generators) summary += " " + g;
+  }
+  if (!d.dummies.empty()) summary += "; " + std::to_string(d.dummies.size()) + " dummy columns";
+  summary += seed ? "; run order randomised with seed " + std::to_string(*seed) : "; standard order";
+  comments.push_back(summary);
+  std::string csv = format_csv(design_table(d), comments);
+  if (out.empty()) {
+    std::fputs(csv.c_str(), stdout);
+  } else {
+    write_file_atomic(out, csv);
+    std::printf("wrote %s: %s\n", out.c_str(), summary.c_str());
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+int run_fit(int argc, char** argv) {
+  CLI::App app{"Fit a polynomial model to a CSV table and print its ANOVA like Design-Expert."};
+  std::string table_path, response, model = "auto", json_out, snap, ss = "partial";
+  std::vector<std::string> factors, coded, ranges;
+  std::optional<double> reduce;
+  bool no_hierarchy = false;
+  app.add_option("table", table_path, "CSV table with one row per run")->required();
+  app.add_option("--response", response, "response column")->required();
+  app.add_option("--factors", factors, "factor columns, e.g. A,B,C")->required()->delimiter(',');
+  app.add_option("--model", model, "linear, interaction, quadratic, cubic, or auto (largest the design supports)")
+      ->check(CLI::IsMember({"auto", "linear", "interaction", "2fi", "quadratic", "cubic"}));
+  app.add_option("--coded", coded,
+                 "LOW:HIGH per factor: the columns hold actual values, coded with these ranges")
+      ->delimiter(',');
+  app.add_option("--ranges", ranges,
+                 "LOW:HIGH per factor: the columns are coded already; the ranges give the actual equation")
+      ->delimiter(',');
+  app.add_option("--snap-alpha", snap,
+                 "replace axial levels printed rounded (1.682) by the exact alpha: rotatable or a number");
+  app.add_option("--reduce", reduce, "drop terms with p above this value, one at a time, keeping hierarchy");
+  app.add_flag("--no-hierarchy", no_hierarchy, "with --reduce: allow dropping terms that others contain");
+  app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
+      ->check(CLI::IsMember({"partial", "sequential"}));
+  app.add_option("--json", json_out, "write the fit (for repose optimize) to this file");
+  CLI11_PARSE(app, argc, argv);
+  if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
+
+  Table table = read_csv(table_path);
+  auto parse_ranges = [&](const std::vector<std::string>& specs, const char* option) {
+    if (specs.size() != factors.size())
+      throw StatsError(std::string(option) + " needs one LOW:HIGH per factor: " + std::to_string(factors.size()) +
+                       " factors, " + std::to_string(specs.size()) + " ranges");
+    std::vector<Factor> out;
+    for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
+    return out;
+  };
+  DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
+  if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
+  const int k = static_cast<int>(factors.size());
+  if (!snap.empty()) {
+    double alpha = snap == "rotatable" ? std::pow(std::ldexp(1.0, k), 0.25) : 0;
+    if (snap != "rotatable" && (!parse_number(snap, alpha) || !(alpha > 0)))
+      throw StatsError("--snap-alpha '" + snap + "' is not rotatable or a positive number");
+    int n = snap_to_alpha(data.coded, alpha);
+    std::printf("axial levels: %d coded values set to +-%.6f\n", n, alpha);
+  }
+  SumOfSquaresType ss_type = ss == "partial" ? SumOfSquaresType::partial : SumOfSquaresType::sequential;
+
+  // "auto": the largest of quadratic, interaction, linear that the design can estimate.
+  std::vector<std::string> candidates = model == "auto" ? std::vector<std::string>{"quadratic", "interaction", "linear"}
+                                                        : std::vector<std::string>{model};
+  std::optional<Reduction> result;
+  std::string chosen;
+  for (size_t c = 0; c < candidates.size() && !result; ++c) {
+    auto terms = build_model(parse_model_kind(candidates[c]), k);
+    try {
+      if (reduce) {
+        result = reduce_backward(data.coded, data.y, terms, *reduce, !no_hierarchy, ss_type);
+      } else {
+        result = Reduction{analyse(data.coded, data.y, terms, ss_type), {}};
+      }
+      chosen = model_kind_name(parse_model_kind(candidates[c]));
+    } catch (const ModelError& e) {
+      if (c + 1 == candidates.size()) throw ModelError(table_path + ": " + e.what());
+      std::printf("%s model not estimable (%s); trying a smaller one\n", candidates[c].c_str(), e.what());
+    }
+  }
+  const ResponseSurface& fit = result->model;
+  std::printf("%s: %d runs, response %s\n\n", table_path.c_str(), table.rows(), response.c_str());
+  std::fputs(format_anova(fit, factors, chosen).c_str(), stdout);
+  if (!result->removed.empty()) {
+    std::printf("Removed (p > %s):", num(*reduce).c_str());
+    for (const auto& r : result->removed) std::printf(" %s (p = %s)", r.term.c_str(), format_p(r.p).c_str());
+    std::printf("\n");
+  }
+  std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
+              format_equations(fit, response, factors, data.ranges).c_str());
+  if (!json_out.empty()) {
+    write_file_atomic(json_out, fit_to_json(fit, data, table_path, chosen, result->removed).dump());
+    std::printf("wrote %s\n", json_out.c_str());
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// "min", "max", "target=V", each optionally followed by ":LOW:HIGH" (the acceptable range;
+// default: the observed response range of that fit).
+DesirabilityGoal parse_goal(const std::string& spec, const SavedFit& fit) {
+  auto parts = split(spec, ':');
+  DesirabilityGoal g;
+  g.low = fit.y_min;
+  g.high = fit.y_max;
+  const std::string& head = parts[0];
+  if (head == "min") g.kind = GoalKind::minimize;
+  else if (head == "max") g.kind = GoalKind::maximize;
+  else if (head.rfind("target=", 0) == 0) {
+    g.kind = GoalKind::target;
+    if (!parse_number(head.substr(7), g.target)) throw StatsError("--goal '" + spec + "': bad target value");
+  } else {
+    throw StatsError("--goal '" + spec + "' is not min, max or target=V (optionally :LOW:HIGH)");
+  }
+  if (parts.size() == 3) {
+    if (!parse_number(parts[1], g.low) || !parse_number(parts[2], g.high))
+      throw StatsError("--goal '" + spec + "': bad LOW:HIGH");
+  } else if (parts.size() != 1) {
+    throw StatsError("--goal '" + spec + "' is not GOAL or GOAL:LOW:HIGH");
+  }
+  if (!(g.low < g.high)) throw StatsError("--goal '" + spec + "': range reversed or empty");
+  if (g.kind == GoalKind::target && (g.target < g.low || g.target > g.high))
+    throw StatsError("--goal '" + spec + "': the target lies outside LOW:HIGH");
+  return g;
+}
+
+int run_optimize(int argc, char** argv) {
+  CLI::App app{"Optimise fitted models (repose fit --json) inside the design region, and report "
+               "every parameter set that does about as well."};
+  std::vector<std::string> fit_paths, goals, fixes, fixes_coded, compare;
+  bool minimize = false, maximize = false;
+  std::optional<double> target, tolerance;
+  std::string within = "data", json_out;
+  app.add_option("fits", fit_paths, "fit files; several with --goal each: desirability")->required();
+  auto* o_min = app.add_flag("--minimize,--minimise", minimize, "minimise the response");
+  auto* o_max = app.add_flag("--maximize,--maximise", maximize, "maximise the response");
+  auto* o_tgt = app.add_option("--target", target, "bring the response to this value");
+  o_min->excludes(o_max)->excludes(o_tgt);
+  o_max->excludes(o_tgt);
+  app.add_option("--goal", goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
+  app.add_option("--fix", fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
+  app.add_option("--fix-coded", fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
+  app.add_option("--within", within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
+  app.add_option("--tolerance", tolerance, "width of the reported near-optimal set, in response units");
+  app.add_option("--compare", compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
+  app.add_option("--json", json_out, "write the optimum and the near-optimal set to this file");
+  CLI11_PARSE(app, argc, argv);
+
+  std::vector<SavedFit> fits;
+  for (const auto& p : fit_paths) fits.push_back(read_fit_file(p));
+  const SavedFit& first = fits[0];
+  const int k = static_cast<int>(first.factor_names.size());
+  for (const auto& f : fits)
+    if (f.factor_names != first.factor_names)
+      throw StatsError(f.source + ": its factors differ from those of " + first.source);
+  const bool single = fits.size() == 1;
+  if (single && !goals.empty() && (minimize || maximize || target))
+    throw StatsError("give either --minimize/--maximize/--target or --goal");
+  if (single && goals.empty() && !minimize && !maximize && !target)
+    throw StatsError("say what to do: --minimize, --maximize or --target V");
+  if (!single && goals.size() != fits.size())
+    throw StatsError("several fits need one --goal each (" + std::to_string(fits.size()) + " fits, " +
+                     std::to_string(goals.size()) + " goals)");
+
+  Box box;
+  if (within == "data") {
+    box = Box{first.coded_min, first.coded_max};
+  } else if (within == "cube") {
+    box = Box::cube(k, 1);
+  } else {
+    double r = 0;
+    if (!parse_number(within, r) || !(r > 0)) throw StatsError("--within '" + within + "' is not data, cube or a radius");
+    box = Box::cube(k, r);
+  }
+  std::vector<std::string> fixed_names;
+  for (const auto& s : fixes) {
+    auto [name, v] = parse_assignment(s, "--fix");
+    int i = find_factor(first.factor_names, name, "--fix");
+    if (first.ranges.empty()) throw StatsError("--fix needs factor ranges in the fit; use --fix-coded");
+    box.fix(i, first.ranges[i].to_coded(v));
+    fixed_names.push_back(first.factor_names[i]);
+  }
+  for (const auto& s : fixes_coded) {
+    auto [name, v] = parse_assignment(s, "--fix-coded");
+    int i = find_factor(first.factor_names, name, "--fix-coded");
+    box.fix(i, v);
+    fixed_names.push_back(first.factor_names[i]);
+  }
+
+  OptimizeOptions opt;
+  if (tolerance) opt.tolerance = *tolerance;
+  std::vector<Objective> responses;
+  for (const auto& f : fits) responses.push_back([p = f.coded](const Eigen::VectorXd& x) { return p(x); });
+  Optimum best;
+  Goal goal;
+  std::string what;
+  if (single && goals.empty()) {
+    goal.kind = minimize ? GoalKind::minimize : maximize ? GoalKind::maximize : GoalKind::target;
+    if (target) goal.target = *target;
+    best = optimize(responses[0], box, goal, opt);
+    what = first.response;
+  } else {
+    std::vector<DesirabilityGoal> dg;
+    for (size_t i = 0; i < fits.size(); ++i) dg.push_back(parse_goal(goals[i], fits[i]));
+    if (single) {
+      // One fit with --goal: plain optimisation of that goal.
+      goal.kind = dg[0].kind;
+      goal.target = dg[0].target;
+      best = optimize(responses[0], box, goal, opt);
+      what = first.response;
+    } else {
+      best = optimize_desirability(responses, dg, box, opt);
+      what = "desirability";
+    }
+  }
+
+  auto actual = [&](int i, double coded) { return first.ranges.empty() ? coded : first.ranges[i].to_actual(coded); };
+  const bool desir = what == "desirability";
+  std::printf("Goal: %s %s", desir ? "maximise overall" : goal_name(goal).c_str(), what.c_str());
+  if (!fixed_names.empty()) {
+    std::printf("; fixed:");
+    for (const auto& n : fixed_names) std::printf(" %s", n.c_str());
+  }
+  std::printf("\nRegion (coded):");
+  for (int i = 0; i < k; ++i)
+    std::printf(" %s [%s, %s]", first.factor_names[i].c_str(), num(box.lower[i]).c_str(), num(box.upper[i]).c_str());
+  std::printf("\n\nOptimum: %s = %s\n", what.c_str(), num(best.value, 8).c_str());
+  if (desir)
+    for (size_t r = 0; r < fits.size(); ++r)
+      std::printf("  %s = %s\n", fits[r].response.c_str(), num(responses[r](best.x), 8).c_str());
+  for (int i = 0; i < k; ++i)
+    std::printf("  %-12s %-12s (coded %s)\n", first.factor_names[i].c_str(), num(actual(i, best.x[i]), 8).c_str(),
+                num(best.x[i], 6).c_str());
+  if (goal.kind == GoalKind::target && !desir && !best.target_reached)
+    std::printf("  the target %s is NOT reachable in this region (closest %s)\n", num(goal.target).c_str(),
+                num(best.value).c_str());
+
+  std::string band = desir ? "desirability within " + num(best.tolerance) + " of the best"
+                   : goal.kind == GoalKind::target ? what + " within " + num(best.tolerance) + " of the target"
+                                                   : what + " within " + num(best.tolerance) + " of the optimum";
+  std::printf("\nNear-optimal set (%s): %d of %d sampled points\n", band.c_str(), best.set_size, best.sampled);
+  std::printf("  %-12s %-26s %s\n", "factor", "coded extent", "actual extent");
+  for (int i = 0; i < k; ++i)
+    std::printf("  %-12s %-26s %s .. %s\n", first.factor_names[i].c_str(),
+                (num(best.set_lower[i], 4) + " .. " + num(best.set_upper[i], 4)).c_str(),
+                num(actual(i, best.set_lower[i]), 6).c_str(), num(actual(i, best.set_upper[i]), 6).c_str());
+  if (best.principal_direction.norm() > 0) {
+    std::string dir;
+    for (int i = 0; i < k; ++i) {
+      double c = best.principal_direction[i];
+      if (std::fabs(c) < 0.05) continue;
+      dir += (dir.empty() ? (c < 0 ? "-" : "") : (c < 0 ? " - " : " + ")) + num(std::fabs(c), 2) + " " + first.factor_names[i];
+    }
+    std::printf("  The set extends most along (coded) %s: moving along it barely changes %s, so\n"
+                "  this response cannot tell these parameter sets apart; a further test that responds\n"
+                "  to that combination of factors is needed to separate them.\n", dir.c_str(), what.c_str());
+  }
+  std::printf("\nRepresentative members (the optimum first):\n ");
+  for (int i = 0; i < k; ++i) std::printf(" %12s", first.factor_names[i].c_str());
+  std::printf(" %12s\n", what.c_str());
+  for (size_t r = 0; r < best.representatives.size(); ++r) {
+    std::printf(" ");
+    for (int i = 0; i < k; ++i) std::printf(" %12s", num(actual(i, best.representatives[r][i])).c_str());
+    std::printf(" %12s\n", num(best.representative_values[r]).c_str());
+  }
+
+  Json out = Json::object();
+  if (!compare.empty()) {
+    if (desir) throw StatsError("--compare works with a single response");
+    Eigen::VectorXd point = best.x;
+    for (const auto& s : compare) {
+      auto [name, v] = parse_assignment(s, "--compare");
+      int i = find_factor(first.factor_names, name, "--compare");
+      point[i] = first.ranges.empty() ? v : first.ranges[i].to_coded(v);
+    }
+    PointComparison c = compare_point(responses[0], goal, best, box, point);
+    std::printf("\nCompared point:");
+    for (int i = 0; i < k; ++i) std::printf(" %s=%s", first.factor_names[i].c_str(), num(actual(i, point[i])).c_str());
+    std::printf("\n  %s there = %s; optimum %s; %s by %s\n", what.c_str(), num(c.value, 6).c_str(),
+                num(best.value, 6).c_str(), c.gap > 0 ? "worse" : "not worse", num(std::fabs(c.gap), 4).c_str());
+    if (!c.inside_box) std::printf("  the point lies outside the optimisation region\n");
+    std::printf("  %s\n", c.in_near_set ? "it belongs to the near-optimal set"
+                                          : "it is NOT near-optimal: the fitted model disagrees with this point");
+    Json cj = Json::object();
+    Json p = Json::array();
+    for (int i = 0; i < k; ++i) p.push(actual(i, point[i]));
+    cj.set("point", p);
+    cj.set("value", c.value);
+    cj.set("gap", c.gap);
+    cj.set("near_optimal", c.in_near_set);
+    out.set("compared", cj);
+  }
+  if (!json_out.empty()) {
+    Json names = Json::array(), x = Json::array(), lo = Json::array(), hi = Json::array(), reps = Json::array();
+    for (int i = 0; i < k; ++i) {
+      names.push(first.factor_names[i]);
+      x.push(actual(i, best.x[i]));
+      lo.push(actual(i, best.set_lower[i]));
+      hi.push(actual(i, best.set_upper[i]));
+    }
+    for (size_t r = 0; r < best.representatives.size(); ++r) {
+      Json row = Json::array();
+      for (int i = 0; i < k; ++i) row.push(actual(i, best.representatives[r][i]));
+      row.push(best.representative_values[r]);
+      reps.push(row);
+    }
+    out.set("goal", desir ? std::string("desirability") : goal_name(goal));
+    out.set("factors", names);
+    out.set("optimum", x);
+    out.set("value", best.value);
+    out.set("tolerance", best.tolerance);
+    out.set("set_size", best.set_size);
+    out.set("sampled", best.sampled);
+    out.set("set_lower", lo);
+    out.set("set_upper", hi);
+    out.set("representatives", reps);
+    write_file_atomic(json_out, out.dump());
+    std::printf("\nwrote %s\n", json_out.c_str());
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+int run_curve(int argc, char** argv) {
+  CLI::App app{"Fit a calibration curve to a one-parameter sweep and read off the parameter at a measured value."};
+  std::string path, xcol, ycol;
+  double at = 0;
+  int degree = 3;
+  app.add_option("sweep", path, "CSV table of the sweep")->required();
+  app.add_option("--x", xcol, "swept parameter column")->required();
+  app.add_option("--y", ycol, "response column")->required();
+  app.add_option("--at", at, "measured response to invert")->required();
+  app.add_option("--degree", degree, "polynomial degree (default 3)");
+  CLI11_PARSE(app, argc, argv);
+  Table t = read_csv(path);
+  std::vector<double> x = t.numeric_column(xcol), y = t.numeric_column(ycol);
+  CalibrationCurve c;
+  try {
+    c = fit_curve(x, y, degree);
+  } catch (const CurveError& e) {
+    throw CurveError(path + ": " + e.what());
+  }
+  std::printf("%s: %d points, %s swept over [%s, %s]\n", path.c_str(), t.rows(), xcol.c_str(), num(c.x_min).c_str(),
+              num(c.x_max).c_str());
+  std::printf("%s =", ycol.c_str());
+  for (Eigen::Index i = c.coefficients.size() - 1; i >= 0; --i) {
+    double v = c.coefficients[i];
+    std::printf(" %s %s", v < 0 ? "-" : "+", num(std::fabs(v), 8).c_str());
+    if (i > 0) std::printf(" %s%s", xcol.c_str(), i > 1 ? ("^" + std::to_string(i)).c_str() : "");
+  }
+  std::printf("   (R^2 = %.6f)\n", c.r2);
+  double xv;
+  try {
+    xv = invert(c, at);
+  } catch (const CurveError& e) {
+    throw CurveError(path + ": " + e.what());
+  }
+  std::printf("%s = %s at %s = %s\n", xcol.c_str(), num(xv, 8).c_str(), ycol.c_str(), num(at).c_str());
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Verb> stats_verbs() {
+  return {
+      {"design", "write a design (PB, factorial, fractional, CCD, BBD, steepest path) as CSV", run_design},
+      {"fit", "fit a model to a CSV table; Design-Expert style ANOVA and equations", run_fit},
+      {"optimize", "optimise fitted models; report the set of near-optimal parameters", run_optimize},
+      {"curve", "fit a calibration curve to a sweep and invert it at a measured value", run_curve},
+  };
+}
 
 }  // namespace repose::cli

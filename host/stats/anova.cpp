@@ -137,6 +137,7 @@ ResponseSurface analyse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
     rs.pure_error = plain_row("Pure Error", ss_pe, df_pe);
   }
   rs.total = plain_row("Cor Total", sst, n - 1);
+  rs.total.ms = kNaN;  // Design-Expert prints no mean square for the total
 
   // Coefficient standard errors and variance inflation factors (VIF_j = 1 / (1 - R_j^2),
   // R_j^2 from regressing column j on the other non-intercept columns).

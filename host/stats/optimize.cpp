@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "stats/errors.h"
@@ -235,7 +236,11 @@ std::string goal_name(const Goal& g) {
   switch (g.kind) {
     case GoalKind::minimize: return "minimize";
     case GoalKind::maximize: return "maximize";
-    case GoalKind::target: return "target " + std::to_string(g.target);
+    case GoalKind::target: {
+      char buf[48];
+      std::snprintf(buf, sizeof buf, "target %g", g.target);
+      return buf;
+    }
   }
   return "?";
 }
