@@ -170,7 +170,7 @@ int run_bench(int argc, char** argv) {
   unsigned threads = 0;
   int device = -1;
   uint32_t steps = 200;
-  double settle = 0.25;
+  double settle = 0.6;
   std::string cache_dir = "out/bench";
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
@@ -178,7 +178,7 @@ int run_bench(int argc, char** argv) {
   app.add_option("--device", device, "Vulkan device index");
   app.add_option("--variant", variants, "kernel variants to compare, e.g. contact rows,wg=128");
   app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
-  app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.25)");
+  app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.6)");
   app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
   CLI11_PARSE(app, argc, argv);
 
@@ -207,24 +207,26 @@ int run_bench(int argc, char** argv) {
 
   std::printf("settled bed: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), %u timed steps\n",
               n, model.dt, steps);
-  std::printf("%-8s %-20s %14s %14s %10s %10s %10s\n", "backend", "variant", "particle-st/s",
-              "contacts/s", "contacts", "B/particle", "B/contact");
+  std::printf("%-8s %-20s %14s %14s %10s %10s %10s %9s\n", "backend", "variant", "particle-st/s",
+              "contacts/s", "contacts", "B/particle", "B/contact", "rebuilds");
   for (const auto& b : backends) {
     for (const auto& vt : variants) {
       KernelVariant v = parse_variant(vt);
       Simulation sim(model, make_backend(b, device, threads, v.workgroup), v, 50);
       sim.advance(50);  // warm up: list built, caches hot
+      uint32_t rebuilds_before = sim.rebuilds();
       auto t0 = std::chrono::steady_clock::now();
       sim.advance(steps);
       double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
       double contacts = sim.contacts();
       // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
       size_t per_contact_bytes = 4 * 4 + 5 * 16;  // partner, owner, old partner, transposed + 5 vec4
       double bytes_per_particle =
           double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
-      std::printf("%-8s %-20s %14.4g %14.4g %10.0f %10.0f %10zu\n", b.c_str(), v.name().c_str(),
+      std::printf("%-8s %-20s %14.4g %14.4g %10.0f %10.0f %10zu %9u\n", b.c_str(), v.name().c_str(),
                   double(n) * steps / secs, contacts * steps / secs, contacts, bytes_per_particle,
-                  per_contact_bytes);
+                  per_contact_bytes, rebuilds);
       auto times = sim.time_kernels(10);
       double total = 0;
       for (const auto& [k, t] : times) total += t;
