@@ -54,7 +54,8 @@ std::string format_anova(const ResponseSurface& fit, const std::vector<std::stri
     std::string label = "  " + fit.term_rows[t].source;
     if (term.order() == 1) {
       for (size_t i = 0; i < term.powers.size(); ++i)
-        if (term.powers[i] == 1 && i < names.size()) label += "-" + names[i];
+        if (term.powers[i] == 1 && i < names.size() && names[i] != fit.term_rows[t].source)
+          label.append("-").append(names[i]);  // "A-mu_s", but just "A" when the column is A
     }
     s += anova_line(fit.term_rows[t], label, false);
   }
