@@ -209,14 +209,15 @@ class CaseReader {
 
   CaseSpec read() {
     Section top(root_, "", file_);
-    top.allow_only({"simulation", "contact", "neighbour", "output", "material", "interaction",
-                    "sphere", "fill", "lattice", "wall"},
+    top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "material",
+                    "interaction", "sphere", "fill", "lattice", "wall"},
                    "the case file");
     spec_.path = file_;
     read_simulation();
     read_contact();
     read_neighbour();
     read_output();
+    read_experiment();
     for (const Section& s : entries("material")) read_material(s);
     if (spec_.materials.empty())
       throw CaseError({file_, "material", 0}, "the case has no [[material]]");
@@ -337,6 +338,22 @@ class CaseReader {
     s->allow_only({"interval", "vtk"}, "[output]");
     if (auto interval = s->number("interval")) spec_.output.interval = non_negative(*s, "interval", *interval);
     spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
+  }
+
+  void read_experiment() {
+    auto s = table("experiment");
+    if (!s) return;
+    s->allow_only({"type", "drop_height", "camera_fps", "max_time"}, "[experiment]");
+    spec_.experiment.where = s->where();
+    if (auto type = s->text("type")) {
+      if (*type != "drop") s->fail("type", "unknown experiment '" + *type + "' (drop)");
+      spec_.experiment.type = *type;
+    } else {
+      s->missing("type", " (drop)");
+    }
+    if (auto h = s->number("drop_height")) spec_.experiment.drop_height = positive(*s, "drop_height", *h);
+    if (auto f = s->number("camera_fps")) spec_.experiment.camera_fps = positive(*s, "camera_fps", *f);
+    if (auto t = s->number("max_time")) spec_.experiment.max_time = positive(*s, "max_time", *t);
   }
 
   void read_material(const Section& s) {

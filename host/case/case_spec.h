@@ -129,6 +129,15 @@ struct OutputSpec {
   bool vtk = true;
 };
 
+// The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]).
+struct ExperimentSpec {
+  std::string type;          // "drop"; empty: the case is a plain simulation
+  double drop_height = 0.5;  // m: the body's lowest point above the plate at release
+  double camera_fps = 1000;  // frames per second of the simulated high-speed camera
+  double max_time = 5.0;     // s: give up when the body has not rebounded by then
+  SourceRef where;
+};
+
 struct CaseSpec {
   std::string path;  // the case file
   std::string name;  // [simulation] name, else the file's stem
@@ -139,6 +148,7 @@ struct CaseSpec {
   TimeSpec time;
   NeighbourSpec neighbour;
   OutputSpec output;
+  ExperimentSpec experiment;
   std::vector<Material> materials;
   std::vector<Interaction> interactions;
   std::vector<SphereSpec> spheres;  // explicit [[sphere]] entries first, then expanded fills/lattices
