@@ -7,8 +7,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "case/case_error.h"
-#include "case/case_loader.h"
+#include "cli/cli_case.h"
 #include "cli/verbs.h"
 #include "engine/backend_factory.h"
 #include "engine/bench_bed.h"
@@ -85,15 +84,9 @@ int run_case(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   // Everything that can fail on bad input happens before anything is written.
-  CaseSpec spec;
-  try {
-    std::vector<CaseOverride> overrides;
-    for (const auto& s : sets) overrides.push_back(parse_override(s));
-    spec = load_case(case_path, overrides);
-  } catch (const CaseError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 2;
-  }
+  auto loaded = load_case_or_report(case_path, sets);
+  if (!loaded) return 2;
+  CaseSpec& spec = *loaded;
   KernelVariant variant = parse_variant(variant_text);
   Model model = build_model(spec);
   uint64_t total_steps = steps >= 0 ? uint64_t(steps)

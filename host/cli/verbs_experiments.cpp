@@ -4,8 +4,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
-#include "case/case_error.h"
-#include "case/case_loader.h"
+#include "cli/cli_case.h"
 #include "cli/verbs.h"
 #include "experiments/drop.h"
 #include "util/atomic_file.h"
@@ -31,16 +30,11 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--out", out_dir, "folder for drop.json and trajectory.csv (default out/CASE_NAME)");
   CLI11_PARSE(app, argc, argv);
 
-  CaseSpec spec;
-  try {
-    std::vector<CaseOverride> overrides;
-    for (const auto& s : sets) overrides.push_back(parse_override(s));
-    if (height > 0) overrides.push_back({"experiment.drop_height", std::to_string(height)});
-    spec = load_case(case_path, overrides);
-  } catch (const CaseError& e) {
-    std::fprintf(stderr, "%s\n", e.what());
-    return 2;
-  }
+  std::vector<CaseOverride> extra;
+  if (height > 0) extra.push_back({"experiment.drop_height", std::to_string(height)});
+  auto loaded = load_case_or_report(case_path, sets, extra);
+  if (!loaded) return 2;
+  CaseSpec& spec = *loaded;
   if (spec.experiment.type != type) {
     std::fprintf(stderr, "%s: [experiment] type is '%s', not '%s'\n", case_path.c_str(),
                  spec.experiment.type.c_str(), type.c_str());
