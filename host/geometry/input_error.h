@@ -1,0 +1,36 @@
+// The error every geometry reader throws: it names the file, and the line and column when known,
+// in the compiler style "file:line:column: message" that editors can jump to.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace repose {
+
+class InputError : public std::runtime_error {
+ public:
+  // line and column are 1-based; 0 means "not applicable" and is left out of the message.
+  InputError(std::string file, int line, int column, const std::string& message)
+      : std::runtime_error(format(file, line, column, message)),
+        file_(std::move(file)),
+        line_(line),
+        column_(column) {}
+
+  const std::string& file() const { return file_; }
+  int line() const { return line_; }
+  int column() const { return column_; }
+
+ private:
+  static std::string format(const std::string& file, int line, int column, const std::string& message) {
+    std::string where = file;
+    if (line > 0) where.append(":").append(std::to_string(line));
+    if (line > 0 && column > 0) where.append(":").append(std::to_string(column));
+    where.append(": ").append(message);
+    return where;
+  }
+
+  std::string file_;
+  int line_;
+  int column_;
+};
+
+}  // namespace repose
