@@ -59,6 +59,7 @@ static KernelBody body_of(KernelId k) {
     case KernelId::TransposeSort: return k_transpose_sort;
     case KernelId::ContactForces: return k_contact_forces;
     case KernelId::ContactRows: return k_contact_rows;
+    case KernelId::GatherLean: return k_gather_lean;
     default: return nullptr;
   }
 }

@@ -32,8 +32,8 @@ REPOSE_CONST kBindPartner = 15;      // uint [C]   j > i for particles, N + w fo
 REPOSE_CONST kBindOwner = 16;        // uint [C]   i
 REPOSE_CONST kBindHistory = 17;      // vec4 [C]   xyz tangential spring, w contact age (steps)
 REPOSE_CONST kBindOldRowStart = 18;  // uint [N+1] the list before a rebuild
-REPOSE_CONST kBindOldPartner = 19;   // uint [C]
-REPOSE_CONST kBindOldHistory = 20;   // vec4 [C]
+REPOSE_CONST kBindOldPartner = 19;   // uint [C]   same memory as trans_list (see below)
+REPOSE_CONST kBindOldHistory = 20;   // vec4 [C]   same memory as contact_force (see below)
 REPOSE_CONST kBindContactForce = 21; // vec4 [C]   force on the owner i (j gets minus it)
 REPOSE_CONST kBindTorqueI = 22;      // vec4 [C]   torque on i
 REPOSE_CONST kBindTorqueJ = 23;      // vec4 [C]   torque on j
@@ -42,6 +42,10 @@ REPOSE_CONST kBindTransFill = 25;    // uint [N]
 REPOSE_CONST kBindTransList = 26;    // uint [C]   contact indices, ascending within a row
 REPOSE_CONST kBindWallForce = 27;    // vec4 [W]   force on each wall (output only)
 REPOSE_CONST kBindingCount = 28;
+// Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
+// rebuild; trans_list (transpose_fill) and contact_force (contact kernel) are rewritten after
+// that in the same step, and no kernel touches both names of one buffer. Both backends bind one
+// buffer to both bindings.
 
 // ---- Control words: flags and indirect-dispatch arguments written on the device. ----
 REPOSE_CONST kCtlNeedRebuild = 0;    // set by the skin check, read by rebuild_args
@@ -67,6 +71,7 @@ REPOSE_CONST kFlagRollingConstTorque = 4u;    // EDEM standard rolling friction 
 REPOSE_CONST kFlagRollingRelativeOmega = 8u;  // LIGGGHTS cdt: relative instead of own omega
 REPOSE_CONST kFlagDrift = 16u;                // kick kernels: also move positions and check the skin
 REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs (setup, as LIGGGHTS)
+REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean entry (contacts.h)
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;

@@ -20,7 +20,16 @@ struct Layout {
   uint32_t table_size = 0;
   uint32_t capacity = 0;     // contact list entries
   uint32_t batch_steps = 1;  // wall states per upload
+  bool lean_contacts = false;  // no torque_j buffer (KernelVariant::lean)
 };
+
+// Device bytes per contact-list entry: partner, owner and transposed index, history, and the
+// force entry (full: force, torque_i, torque_j; lean: two vec4). The rebuild-only old_partner
+// and old_history share the memory of trans_list and contact_force, which every rebuild
+// rewrites after it has read them (shaders/repose_shared.h).
+inline size_t bytes_per_contact(const Layout& l) {
+  return 3 * sizeof(uint32_t) + sizeof(gpu::vec4) * (l.lean_contacts ? 3 : 4);
+}
 
 // One kernel launch: `groups` workgroups, or the indirect arguments at control word
 // `indirect_word` (>= 0). Scan dispatches carry a ScanPush instead of a SimPush.

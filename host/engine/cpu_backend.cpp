@@ -19,11 +19,12 @@ void CpuBackend::allocate(const Layout& l, const std::vector<uint32_t>& material
   auto v4 = [](std::vector<gpu::vec4>& v, size_t k) { v.assign(std::max<size_t>(k, 1), gpu::vec4(0.0f)); };
   auto u = [](std::vector<uint32_t>& v, size_t k) { v.assign(std::max<size_t>(k, 1), 0u); };
   v4(pos_, n); v4(vel_, n); v4(omega_, n); v4(force_, n); v4(torque_, n); v4(pos_at_build_, n);
-  v4(history_, c); v4(old_history_, c); v4(contact_force_, c); v4(torque_i_, c); v4(torque_j_, c);
+  // old_history and old_partner share contact_force and trans_list (shaders/repose_shared.h).
+  v4(history_, c); v4(contact_force_, c); v4(torque_i_, c); v4(torque_j_, l.lean_contacts ? 0 : c);
   v4(wall_force_, l.n_walls);
   u(control_, gpu::kControlWords); u(cell_of_, n); u(cell_start_, t + 1); u(cell_fill_, t);
   u(sorted_, n); u(row_start_, n + 1); u(partner_, c); u(owner_, c); u(old_row_start_, n + 1);
-  u(old_partner_, c); u(trans_start_, n + 1); u(trans_fill_, n); u(trans_list_, c);
+  u(trans_start_, n + 1); u(trans_fill_, n); u(trans_list_, c);
   material_ = material;
   pairs_ = pairs;
   walls_.assign(std::max<size_t>(size_t(l.batch_steps) * l.n_walls, 1), gpu::WallState{});
@@ -37,8 +38,8 @@ void CpuBackend::point_buffers() {
   buf_.control = control_.data(); buf_.cell_of = cell_of_.data(); buf_.cell_start = cell_start_.data();
   buf_.cell_fill = cell_fill_.data(); buf_.sorted = sorted_.data(); buf_.row_start = row_start_.data();
   buf_.partner = partner_.data(); buf_.owner = owner_.data(); buf_.history = history_.data();
-  buf_.old_row_start = old_row_start_.data(); buf_.old_partner = old_partner_.data();
-  buf_.old_history = old_history_.data(); buf_.contact_force = contact_force_.data();
+  buf_.old_row_start = old_row_start_.data(); buf_.old_partner = trans_list_.data();
+  buf_.old_history = contact_force_.data(); buf_.contact_force = contact_force_.data();
   buf_.torque_i = torque_i_.data(); buf_.torque_j = torque_j_.data();
   buf_.trans_start = trans_start_.data(); buf_.trans_fill = trans_fill_.data();
   buf_.trans_list = trans_list_.data(); buf_.wall_force = wall_force_.data();
@@ -97,11 +98,11 @@ std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
 
 size_t CpuBackend::memory_bytes() const {
   size_t b = 0;
-  for (auto* v : {&pos_, &vel_, &omega_, &force_, &torque_, &pos_at_build_, &history_, &old_history_,
+  for (auto* v : {&pos_, &vel_, &omega_, &force_, &torque_, &pos_at_build_, &history_,
                   &contact_force_, &torque_i_, &torque_j_, &wall_force_})
     b += v->size() * sizeof(gpu::vec4);
   for (auto* v : {&material_, &control_, &cell_of_, &cell_start_, &cell_fill_, &sorted_, &row_start_,
-                  &partner_, &owner_, &old_row_start_, &old_partner_, &trans_start_, &trans_fill_,
+                  &partner_, &owner_, &old_row_start_, &trans_start_, &trans_fill_,
                   &trans_list_})
     b += v->size() * sizeof(uint32_t);
   return b + pairs_.size() * sizeof(gpu::PairParams) + walls_.size() * sizeof(gpu::WallState);

@@ -22,17 +22,19 @@ class CpuBackend : public Backend {
   std::vector<uint32_t> read_control() override;
   std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;
   size_t memory_bytes() const override;
+  // Binding b's array (kernel tests compare raw buffers with the Vulkan backend).
+  const gpu::Buffers& buffers() const { return buf_; }
 
  private:
   void point_buffers();
   ThreadPool pool_;
   Layout layout_;
   // Storage, one vector per binding.
+  // No old_history_ / old_partner_: those bindings alias contact_force_ / trans_list_.
   std::vector<gpu::vec4> pos_, vel_, omega_, force_, torque_, pos_at_build_, history_,
-      old_history_, contact_force_, torque_i_, torque_j_, wall_force_;
+      contact_force_, torque_i_, torque_j_, wall_force_;
   std::vector<uint32_t> material_, control_, cell_of_, cell_start_, cell_fill_, sorted_,
-      row_start_, partner_, owner_, old_row_start_, old_partner_, trans_start_, trans_fill_,
-      trans_list_;
+      row_start_, partner_, owner_, old_row_start_, trans_start_, trans_fill_, trans_list_;
   std::vector<gpu::PairParams> pairs_;
   std::vector<gpu::WallState> walls_;
   gpu::Buffers buf_;

@@ -14,6 +14,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   layout_.n_materials = model_.n_materials;
   layout_.table_size = model_.table_size;
   layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
+  layout_.lean_contacts = variant_.lean;
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
   state_.pos = model_.pos;

@@ -1,12 +1,36 @@
 #include "engine/step_program.h"
 
+#include <sstream>
+#include <stdexcept>
+
 namespace repose {
 
 std::string KernelVariant::name() const {
   std::string s = contact == ContactKernel::PerContact ? "contact" : "rows";
   s += "-wg" + std::to_string(workgroup);
   if (rebuild_interval) s += "-every" + std::to_string(rebuild_interval);
+  if (lean) s += "-lean";
   return s;
+}
+
+KernelVariant KernelVariant::parse(const std::string& text) {
+  KernelVariant v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    if (item.empty()) continue;
+    if (item == "contact") v.contact = ContactKernel::PerContact;
+    else if (item == "rows") v.contact = ContactKernel::PerRow;
+    else if (item == "lean") v.lean = true;
+    else if (item == "full") v.lean = false;
+    else if (item.rfind("wg=", 0) == 0) v.workgroup = std::stoul(item.substr(3));
+    else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = std::stoul(item.substr(8));
+    else throw std::invalid_argument("unknown variant item '" + item +
+                                     "' (contact, rows, lean, full, wg=N, rebuild=N)");
+  }
+  if (v.workgroup == 0 || v.workgroup > 1024 || (v.workgroup & (v.workgroup - 1)))
+    throw std::invalid_argument("wg must be a power of two up to 1024");
+  return v;
 }
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) {
@@ -16,7 +40,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.capacity = l.capacity;
   p.table_size = l.table_size;
   p.n_materials = l.n_materials;
-  p.flags = m.flags;
+  p.flags = m.flags | (v.lean ? gpu::kFlagLeanContacts : 0u);
   p.wall_slot = 0;
   uint32_t interval = m.max_interval;
   if (v.rebuild_interval && (!interval || v.rebuild_interval < interval)) interval = v.rebuild_interval;
@@ -86,6 +110,22 @@ struct ProgramBuilder {
     else
       direct(KernelId::ContactRows, groups(l.n_particles, v.workgroup), push);
   }
+  // Sums the contacts into F, T and applies `kick` (with the push's drift flag). The lean
+  // gather with the relative rolling torque reads other particles' spins, so there the kick
+  // is a pass of its own (the same arithmetic, F and T read back as stored).
+  void gather(const Layout& l, const KernelVariant& v, const gpu::SimPush& p) {
+    uint32_t g = groups(l.n_particles, v.workgroup);
+    if (!v.lean) {
+      direct(KernelId::GatherKick, g, p);
+    } else if ((p.flags & gpu::kFlagRollingRelativeOmega) && p.kick > 0.0f) {
+      gpu::SimPush only = p;
+      only.kick = 0.0f;
+      direct(KernelId::GatherLean, g, only);
+      direct(KernelId::KickDrift, g, p);
+    } else {
+      direct(KernelId::GatherLean, g, p);
+    }
+  }
 };
 
 }  // namespace
@@ -102,7 +142,7 @@ std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
   b.push = frozen;
   gpu::SimPush gather = b.push;
   gather.kick = 0.0f;  // forces only: F(0), T(0)
-  b.direct(KernelId::GatherKick, groups(l.n_particles, v.workgroup), gather);
+  b.gather(l, v, gather);
   return b.out;
 }
 
@@ -121,7 +161,7 @@ std::vector<Dispatch> step_program(const Model& m, const Layout& l, const Kernel
     b.forces(l, v);
     gpu::SimPush second = b.push;
     second.kick = 0.5f;
-    b.direct(KernelId::GatherKick, g, second);
+    b.gather(l, v, second);
   } else {
     // Symplectic Euler: forces at x(t), v(t); then v += dt a; x += dt v.
     b.rebuild(l);
@@ -129,7 +169,7 @@ std::vector<Dispatch> step_program(const Model& m, const Layout& l, const Kernel
     gpu::SimPush last = b.push;
     last.kick = 1.0f;
     last.flags |= gpu::kFlagDrift;
-    b.direct(KernelId::GatherKick, g, last);
+    b.gather(l, v, last);
   }
   return b.out;
 }

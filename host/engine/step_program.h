@@ -14,7 +14,12 @@ struct KernelVariant {
   uint32_t workgroup = gpu::kDefaultWorkgroup;
   ContactKernel contact = ContactKernel::PerContact;
   uint32_t rebuild_interval = 0;  // forced rebuild every N steps (0: skin check only)
+  // Lean contact entries (32 B instead of 48 B of forces per contact; torques rebuilt in the
+  // gather, shaders/kernels/contacts.h). Same bytes as the full entries.
+  bool lean = false;
   std::string name() const;
+  // "rows,lean,wg=128,rebuild=20" -> variant; throws std::invalid_argument on anything else.
+  static KernelVariant parse(const std::string& text);
 };
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);

@@ -37,12 +37,16 @@ void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& mater
   sizes[kBindSorted] = n * u;
   sizes[kBindRowStart] = sizes[kBindOldRowStart] = sizes[kBindTransStart] = (n + 1) * u;
   sizes[kBindTransFill] = n * u;
-  sizes[kBindPartner] = sizes[kBindOwner] = sizes[kBindOldPartner] = sizes[kBindTransList] = c * u;
-  sizes[kBindHistory] = sizes[kBindOldHistory] = sizes[kBindContactForce] = sizes[kBindTorqueI] =
-      sizes[kBindTorqueJ] = c * v4;
+  sizes[kBindPartner] = sizes[kBindOwner] = sizes[kBindTransList] = c * u;
+  sizes[kBindHistory] = sizes[kBindContactForce] = sizes[kBindTorqueI] = c * v4;
+  sizes[kBindTorqueJ] = l.lean_contacts ? 0 : c * v4;
   sizes[kBindWallForce] = std::max<size_t>(l.n_walls, 1) * v4;
   std::array<const vk::Buffer*, kBindingCount> bound{};
   for (uint32_t i = 0; i < kBindingCount; ++i) {
+    if (i == kBindOldPartner || i == kBindOldHistory) {
+      buffers_[i] = vk::Buffer();  // aliases, bound below
+      continue;
+    }
     if (sizes[i] > ctx_.info().max_storage_range)
       throw vk::VulkanError("buffer " + std::to_string(i) + " needs " + std::to_string(sizes[i]) +
                             " bytes, above the device's storage-buffer range");
@@ -50,9 +54,12 @@ void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& mater
     buffers_[i] = vk::Buffer(ctx_, std::max<size_t>(sizes[i], 16), extra);
     bound[i] = &buffers_[i];
   }
+  bound[kBindOldPartner] = &buffers_[kBindTransList];
+  bound[kBindOldHistory] = &buffers_[kBindContactForce];
   // Zero everything once so no kernel ever reads uninitialised memory.
   ctx_.submit_and_wait([&](VkCommandBuffer cb) {
-    for (auto& buf : buffers_) vkCmdFillBuffer(cb, buf.handle(), 0, VK_WHOLE_SIZE, 0);
+    for (auto& buf : buffers_)
+      if (buf.handle() != VK_NULL_HANDLE) vkCmdFillBuffer(cb, buf.handle(), 0, VK_WHOLE_SIZE, 0);
   });
   b(kBindMaterial).upload(material.data(), material.size() * u);
   b(kBindPairs).upload(pairs.data(), pairs.size() * sizeof(PairParams));

@@ -28,6 +28,8 @@ class VulkanBackend : public Backend {
   size_t memory_bytes() const override;
 
   vk::Context& context() { return ctx_; }
+  // The first `bytes` of binding b's buffer (kernel tests compare raw buffers with the twin).
+  void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
   uint64_t validation_messages() const { return ctx_.validation_messages(); }
 
  private:

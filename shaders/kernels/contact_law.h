@@ -12,7 +12,37 @@ struct ContactOut {
   vec3 torque_i;
   vec3 torque_j;
   float normal_force;  // signed scalar normal force (negative = attractive)
+  vec3 n_x_ft;         // n x Ft: the tangential force's moment per unit lever arm
+  float roll_arm;      // mu_r |Fn| when a rolling torque applies, else -1
 };
+
+// Torque on one body of a contact: the tangential force's moment about its centre (r from the
+// centre to the contact point), plus EDEM's standard rolling torque against the body's own spin
+// when roll_arm >= 0. The lean gather calls it again on stored (n x Ft, mu_r |Fn|), so stored
+// and recomputed torques are the same bits.
+FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, vec3 w) {
+  precise vec3 t = scale3(n_x_ft, -r);
+  if (roll_arm >= 0.0f) {
+    precise float lw = length3(w);
+    if (lw > 0.0f) {
+      precise float k = -(roll_arm * r) / lw;
+      t = t + scale3(w, k);
+    }
+  }
+  return t;
+}
+
+// LIGGGHTS cdt rolling torque on i (j receives minus it): against the relative rotation, lever
+// arm R*. False (and nothing to add) when the two spins are equal.
+FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float radius_star, OUT(vec3) tr) {
+  precise vec3 w = w_i - w_j;
+  precise float lw = length3(w);
+  tr = vec3(0.0f);
+  if (!(lw > 0.0f)) return false;
+  precise float k = -(roll_arm * radius_star) / lw;
+  tr = scale3(w, k);
+  return true;
+}
 
 FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
                             float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
@@ -77,34 +107,22 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
 
   precise vec3 n_x_ft = cross3(n, ft);
   o.force_i = scale3(n, fn) + ft;
-  o.torque_i = scale3(n_x_ft, -ri);
-  o.torque_j = scale3(n_x_ft, -rj);
   o.normal_force = fn;
-
-  if ((flags & kFlagRollingConstTorque) != 0u && mu_r > 0.0f) {
-    precise float arm = mu_r * abs(fn);
-    if ((flags & kFlagRollingRelativeOmega) != 0u) {
-      // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
-      precise vec3 w = w_i - w_j;
-      precise float lw = length3(w);
-      if (lw > 0.0f) {
-        precise float k = -(arm * radius_star) / lw;
-        precise vec3 tr = scale3(w, k);
-        o.torque_i = o.torque_i + tr;
-        if (!j_is_wall) o.torque_j = o.torque_j - tr;
-      }
-    } else {
-      // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
-      precise float lwi = length3(w_i);
-      if (lwi > 0.0f) {
-        precise float ki = -(arm * ri) / lwi;
-        o.torque_i = o.torque_i + scale3(w_i, ki);
-      }
-      precise float lwj = length3(w_j);
-      if (!j_is_wall && lwj > 0.0f) {
-        precise float kj = -(arm * rj) / lwj;
-        o.torque_j = o.torque_j + scale3(w_j, kj);
-      }
+  o.n_x_ft = n_x_ft;
+  bool rolling = (flags & kFlagRollingConstTorque) != 0u && mu_r > 0.0f;
+  bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
+  precise float arm = rolling ? mu_r * abs(fn) : -1.0f;
+  o.roll_arm = arm;
+  // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
+  float own_arm = relative ? -1.0f : arm;
+  o.torque_i = body_torque(n_x_ft, ri, own_arm, w_i);
+  o.torque_j = body_torque(n_x_ft, rj, j_is_wall ? -1.0f : own_arm, w_j);
+  if (rolling && relative) {
+    // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
+    vec3 tr;
+    if (relative_rolling(w_i, w_j, arm, radius_star, tr)) {
+      o.torque_i = o.torque_i + tr;
+      if (!j_is_wall) o.torque_j = o.torque_j - tr;
     }
   }
   return o;

@@ -1,5 +1,9 @@
 // Contact forces: one invocation per contact (or per owner row, the `rows` variant), both
 // calling process_contact, which writes the contact's force and torques and updates its history.
+// Two storage formats per contact (SimPush::flags kFlagLeanContacts):
+//   full  contact_force (F_i, Fn), torque_i (T_i), torque_j (T_j)         48 B, gather_kick
+//   lean  contact_force (F_i, mu_r|Fn| or -1), torque_i (n x Ft, overlap)  32 B, gather_lean,
+//         which rebuilds T_i and T_j from these, the radii and the spins with body_torque().
 #ifndef REPOSE_KERNELS_CONTACTS_H
 #define REPOSE_KERNELS_CONTACTS_H
 
@@ -59,21 +63,28 @@ KFN(void, process_contact) uint i, uint c) {
     }
   }
 
+  bool lean = (PC.flags & kFlagLeanContacts) != 0u;
   if (!touching) {
-    // Separated: the tangential history ends with the contact (LIGGGHTS, EDEM).
+    // Separated: the tangential history ends with the contact (LIGGGHTS, EDEM). Lean: overlap 0
+    // tells gather_lean that the torques are zero.
     B_history[c] = vec4(0.0f);
     B_contact_force[c] = vec4(0.0f);
     B_torque_i[c] = vec4(0.0f);
-    B_torque_j[c] = vec4(0.0f);
+    if (!lean) B_torque_j[c] = vec4(0.0f);
     return;
   }
   PairParams pp = B_pairs[mi * PC.n_materials + mj];
   ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
                                pp, PC.dt, PC.flags, shear);
   if ((PC.flags & kFlagKeepHistory) == 0u) B_history[c] = vec4(shear, hist.w + 1.0f);
-  B_contact_force[c] = vec4(o.force_i, o.normal_force);
-  B_torque_i[c] = vec4(o.torque_i, 0.0f);
-  B_torque_j[c] = vec4(o.torque_j, 0.0f);
+  if (lean) {
+    B_contact_force[c] = vec4(o.force_i, o.roll_arm);
+    B_torque_i[c] = vec4(o.n_x_ft, overlap);
+  } else {
+    B_contact_force[c] = vec4(o.force_i, o.normal_force);
+    B_torque_i[c] = vec4(o.torque_i, 0.0f);
+    B_torque_j[c] = vec4(o.torque_j, 0.0f);
+  }
 }
 
 // Variant "contact": one invocation per contact of the list.

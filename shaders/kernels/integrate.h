@@ -52,4 +52,59 @@ KERNEL(k_gather_kick) uint i) {
   if (PC.kick > 0.0f) kick_and_drift(KB i, f, t);
 }
 
+// The torque a lean contact entry (contacts.h) puts on one of its bodies, with exactly the
+// arithmetic process_contact uses for the full entry: `rad` and `w` are that body's radius and
+// spin, `owner_side` tells i (+tr) from j (-tr). The relative rolling torque needs both spins
+// and radii (only with kFlagRollingRelativeOmega; the step program then kicks in a separate
+// pass so no spin changes while gathers read it).
+KFN(vec3, lean_torque) uint c, bool owner_side, float rad, vec3 w, vec4 a, vec4 b) {
+  if (!(b.w > 0.0f)) return vec3(0.0f);  // separated: the full entry stores zeros
+  bool relative = (PC.flags & kFlagRollingRelativeOmega) != 0u;
+  precise float r = rad - 0.5f * b.w;
+  vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, w);
+  if (relative && a.w >= 0.0f) {
+    uint i = B_owner[c];
+    uint p = B_partner[c];
+    vec4 pi = B_pos[i];
+    vec3 wi = xyz(B_omega[i]);
+    vec3 wj = vec3(0.0f);
+    float radius_star = pi.w;
+    if (p < PC.n_particles) {
+      float rad_j = B_pos[p].w;
+      wj = xyz(B_omega[p]);
+      radius_star = (pi.w * rad_j) / (pi.w + rad_j);
+    }
+    vec3 tr;
+    if (relative_rolling(wi, wj, a.w, radius_star, tr)) t = owner_side ? t + tr : t - tr;
+  }
+  return t;
+}
+
+// Variant "lean": the gather of gather_kick (same order, same sums) from lean contact entries.
+// Both lists go through one loop, so an invocation with a long own row and a short transposed
+// row (or the reverse) keeps its SIMD lanes busy on lavapipe.
+KERNEL(k_gather_lean) uint i) {
+  if (i >= PC.n_particles) return;
+  uint limit = B_control[kCtlContacts];
+  vec4 pi = B_pos[i];
+  vec3 wi = xyz(B_omega[i]);
+  precise vec3 f = vec3(0.0f);
+  precise vec3 t = vec3(0.0f);
+  uint begin = min(B_row_start[i], limit);
+  uint own = min(B_row_start[i + 1u], limit) - begin;
+  uint tbegin = B_trans_start[i];
+  uint total = own + (B_trans_start[i + 1u] - tbegin);
+  for (uint k = 0u; k < total; ++k) {
+    bool owner_side = k < own;
+    uint c = owner_side ? begin + k : B_trans_list[tbegin + (k - own)];
+    vec4 a = B_contact_force[c];
+    vec4 b = B_torque_i[c];
+    f = owner_side ? f + xyz(a) : f - xyz(a);
+    t = t + lean_torque(KB c, owner_side, pi.w, wi, a, b);
+  }
+  B_force[i] = vec4(f, 0.0f);
+  B_torque[i] = vec4(t, 0.0f);
+  if (PC.kick > 0.0f) kick_and_drift(KB i, f, t);
+}
+
 #endif
