@@ -25,24 +25,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "--variant rows,wg=128,rebuild=20" -> KernelVariant; throws on anything else.
-KernelVariant parse_variant(const std::string& text) {
-  KernelVariant v;
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    if (item.empty()) continue;
-    if (item == "contact") v.contact = ContactKernel::PerContact;
-    else if (item == "rows") v.contact = ContactKernel::PerRow;
-    else if (item.rfind("wg=", 0) == 0) v.workgroup = std::stoul(item.substr(3));
-    else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = std::stoul(item.substr(8));
-    else throw std::invalid_argument("unknown variant item '" + item +
-                                     "' (contact, rows, wg=N, rebuild=N)");
-  }
-  if (v.workgroup == 0 || v.workgroup > 1024 || (v.workgroup & (v.workgroup - 1)))
-    throw std::invalid_argument("wg must be a power of two up to 1024");
-  return v;
-}
+// "--variant rows,lean,wg=128,rebuild=20" -> KernelVariant; throws on anything else.
+KernelVariant parse_variant(const std::string& text) { return KernelVariant::parse(text); }
 
 int run_devices(int argc, char** argv) {
   CLI::App app{"List the Vulkan devices and which one `repose run` uses."};
@@ -79,7 +63,7 @@ int run_case(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
   app.add_option("--state-out", state_out, "write the final state here (docs/state-format.md)");
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--variant", variant_text, "kernel variant: contact|rows, wg=N, rebuild=N");
+  app.add_option("--variant", variant_text, "kernel variant: contact|rows, lean|full, wg=N, rebuild=N");
   app.add_flag("--quiet", quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
 
@@ -214,7 +198,9 @@ int run_bench(int argc, char** argv) {
       uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
       double contacts = sim.contacts();
       // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
-      size_t per_contact_bytes = 4 * 4 + 5 * 16;  // partner, owner, old partner, transposed + 5 vec4
+      Layout probe;
+      probe.lean_contacts = v.lean;
+      size_t per_contact_bytes = bytes_per_contact(probe);
       double bytes_per_particle =
           double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
       std::printf("%-8s %-20s %14.4g %14.4g %10.0f %10.0f %10zu %9u\n", b.c_str(), v.name().c_str(),
