@@ -1,0 +1,46 @@
+// Measured data for `repose diagnose` (README, "Measured data"): one CSV row per measured value,
+// columns case, set:KEY..., measure, value, replicate, optional sigma and t. Reading checks every
+// row against its case (the case loads with the row's overrides) and against the measure's units,
+// and reports problems as FILE:LINE:COLUMN: column 'NAME': what is wrong.
+#pragma once
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "case/case_loader.h"
+
+namespace repose {
+
+struct DataError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Measurement {
+  std::string case_path;              // resolved against the CSV's folder
+  std::vector<CaseOverride> sets;     // from the set:KEY columns, in column order
+  std::string measure;                // e.g. rebound_height, height (a series with t)
+  double value = 0;                   // SI units, angles in degrees
+  int replicate = 0;
+  std::optional<double> sigma;
+  std::optional<double> t;            // time within a series, s
+  int line = 0;                       // in the CSV
+};
+
+struct MeasuredData {
+  std::string path;
+  std::vector<Measurement> rows;
+};
+
+// The measures an experiment reports: name, whether it is a time series, and its unit.
+struct MeasureInfo {
+  const char* name;
+  bool series;
+  const char* unit;  // "m", "deg", "1"
+};
+const std::vector<MeasureInfo>& known_measures();
+
+// Throws DataError naming file, line and column.
+MeasuredData read_measured_data(const std::string& path);
+
+}  // namespace repose
