@@ -1,7 +1,389 @@
+// `repose template`, `repose clump`, `repose stl`, `repose heap-angle`: particle shapes, wall
+// meshes and the angle-of-repose measurement (host/geometry, host/measure) from the command
+// line. Input errors name the file, line and column; main() prints them and exits non-zero.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
 #include "cli/verbs.h"
+#include "geometry/clump.h"
+#include "geometry/sphere_csv.h"
+#include "geometry/stl.h"
+#include "geometry/templates.h"
+#include "measure/heap_angle.h"
+#include "measure/heap_png.h"
 
 namespace repose::cli {
 
-std::vector<Verb> geometry_verbs() { return {}; }
+namespace {
+
+constexpr double kDefaultDensity = 1000.0;
+
+// Minimal JSON emitter: keys in insertion order, numbers with 17 significant digits (read back
+// exactly), NaN as null.
+class JsonOut {
+ public:
+  JsonOut& open(const char* key = nullptr, char bracket = '{') {
+    separator(key);
+    text_ += bracket;
+    first_ = true;
+    return *this;
+  }
+  JsonOut& close(char bracket = '}') {
+    text_ += bracket;
+    first_ = false;
+    return *this;
+  }
+  JsonOut& number(const char* key, double v) {
+    separator(key);
+    if (!std::isfinite(v)) {
+      text_ += "null";
+    } else {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.17g", v);
+      text_ += buf;
+    }
+    return *this;
+  }
+  JsonOut& integer(const char* key, long long v) {
+    separator(key);
+    text_ += std::to_string(v);
+    return *this;
+  }
+  JsonOut& boolean(const char* key, bool v) {
+    separator(key);
+    text_ += v ? "true" : "false";
+    return *this;
+  }
+  JsonOut& string(const char* key, const std::string& v) {
+    separator(key);
+    quote(v);
+    return *this;
+  }
+  JsonOut& vec3(const char* key, const glm::dvec3& v) {
+    open(key, '[');
+    for (int k = 0; k < 3; ++k) number(nullptr, v[k]);
+    return close(']');
+  }
+  // Row-major: rows[a][b] = m[b][a] in glm's column-major storage.
+  JsonOut& mat3_rows(const char* key, const glm::dmat3& m) {
+    open(key, '[');
+    for (int row = 0; row < 3; ++row) vec3(nullptr, glm::dvec3(m[0][row], m[1][row], m[2][row]));
+    return close(']');
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  void separator(const char* key) {
+    if (!first_) text_ += ", ";
+    first_ = false;
+    if (key) {
+      quote(key);
+      text_ += ": ";
+    }
+  }
+  void quote(const std::string& v) {
+    text_ += '"';
+    for (char c : v) {
+      if (c == '"' || c == '\\') {
+        text_ += '\\';
+        text_ += c;
+      } else if (static_cast<unsigned char>(c) < 0x20) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04x", c);
+        text_ += buf;
+      } else {
+        text_ += c;
+      }
+    }
+    text_ += '"';
+  }
+  std::string text_;
+  bool first_ = true;
+};
+
+void write_text_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error(path + ": cannot open for writing");
+  out << text;
+  out.flush();
+  if (!out) throw std::runtime_error(path + ": write failed");
+}
+
+// ---------------------------------------------------------------------------------------
+int run_template(int argc, char** argv) {
+  CLI::App app{"Write a shipped clump template (sphere centres and radii, metres) as CSV."};
+  std::string name, out;
+  bool list = false;
+  app.add_option("name", name, "template name (see --list)");
+  app.add_option("--out", out, "CSV file to write (x,y,z,radius)");
+  app.add_flag("--list", list, "list the shipped templates");
+  CLI11_PARSE(app, argc, argv);
+  if (list) {
+    for (const ShippedTemplate& t : shipped_templates()) std::printf("%-22s %s\n", t.name.c_str(), t.summary.c_str());
+    return 0;
+  }
+  if (name.empty() || out.empty()) {
+    std::fprintf(stderr, "repose template: give a NAME and --out FILE.csv (or --list)\n");
+    return 2;
+  }
+  const ClumpTemplate clump = make_shipped_template(name);
+  write_sphere_csv(out, clump.spheres);
+  std::printf("wrote %s: %zu sub-spheres to %s\n", name.c_str(), clump.spheres.size(), out.c_str());
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+int run_clump(int argc, char** argv) {
+  CLI::App app{"Mass properties of a clump (multi-sphere body) from a CSV of sub-spheres."};
+  std::string file, principal_out;
+  double density = kDefaultDensity;
+  bool json = false;
+  std::optional<double> mass;
+  std::vector<double> com, inertia;
+  UnionIntegration integration;
+  app.add_option("file", file, "CSV with x,y,z,radius columns (metres)")->required();
+  app.add_option("--density", density, "kg/m^3, applied to the union volume (default 1000)");
+  app.add_flag("--json", json, "print JSON instead of text");
+  app.add_option("--depth", integration.refine_depth,
+                 "edge refinement depth of the integration (default 4: ~1e-5 relative; 6: ~1e-6)");
+  app.add_option("--principal-out", principal_out,
+                 "write the template re-expressed in its principal frame to this CSV");
+  app.add_option("--mass", mass, "explicit mass, kg (with --com and --inertia, as EDEM allows)");
+  app.add_option("--com", com, "explicit centre of mass x,y,z (m)")->expected(3)->delimiter(',');
+  app.add_option("--inertia", inertia, "explicit inertia Ixx,Iyy,Izz,Ixy,Ixz,Iyz about the centre of mass (kg m^2)")
+      ->expected(6)
+      ->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+
+  ClumpTemplate clump;
+  clump.name = file;
+  clump.spheres = read_sphere_csv(file);
+  const bool any_explicit = mass || !com.empty() || !inertia.empty();
+  if (any_explicit) {
+    if (!mass || com.size() != 3 || inertia.size() != 6)
+      throw std::invalid_argument("explicit properties need all of --mass, --com x,y,z and --inertia (6 values)");
+    ExplicitMassProperties e;
+    e.mass = *mass;
+    e.centre_of_mass = {com[0], com[1], com[2]};
+    e.inertia[0][0] = inertia[0];
+    e.inertia[1][1] = inertia[1];
+    e.inertia[2][2] = inertia[2];
+    e.inertia[0][1] = e.inertia[1][0] = inertia[3];
+    e.inertia[0][2] = e.inertia[2][0] = inertia[4];
+    e.inertia[1][2] = e.inertia[2][1] = inertia[5];
+    clump.explicit_properties = e;
+  }
+  const MassProperties p = compute_mass_properties(clump, density, integration);
+  if (!principal_out.empty()) write_sphere_csv(principal_out, to_principal_frame(clump, p).clump.spheres);
+
+  if (json) {
+    JsonOut j;
+    j.open();
+    j.string("file", file).integer("sub_spheres", static_cast<long long>(clump.spheres.size()));
+    j.boolean("explicit", p.is_explicit);
+    if (!p.is_explicit) j.number("density", density);
+    j.number("volume", p.volume).number("mass", p.mass).vec3("centre_of_mass", p.centre_of_mass);
+    j.mat3_rows("inertia", p.inertia).vec3("principal_moments", p.principal_moments);
+    j.open("principal_axes", '[');
+    for (int k = 0; k < 3; ++k) j.vec3(nullptr, p.principal_axes[k]);
+    j.close(']');
+    j.close();
+    std::printf("%s\n", j.text().c_str());
+    return 0;
+  }
+  std::printf("clump %s: %zu sub-spheres\n", file.c_str(), clump.spheres.size());
+  if (p.is_explicit)
+    std::printf("mass properties given explicitly (density unused)\n");
+  else
+    std::printf("density %.6g kg/m^3 on the union volume (overlaps counted once)\n", density);
+  std::printf("volume             %.9e m^3\n", p.volume);
+  std::printf("mass               %.9e kg\n", p.mass);
+  std::printf("centre of mass     % .9e % .9e % .9e m\n", p.centre_of_mass.x, p.centre_of_mass.y, p.centre_of_mass.z);
+  std::printf("inertia tensor about the centre of mass, kg m^2:\n");
+  for (int row = 0; row < 3; ++row)
+    std::printf("                   % .9e % .9e % .9e\n", p.inertia[0][row], p.inertia[1][row], p.inertia[2][row]);
+  std::printf("principal moments  % .9e % .9e % .9e kg m^2\n", p.principal_moments[0], p.principal_moments[1],
+              p.principal_moments[2]);
+  for (int k = 0; k < 3; ++k)
+    std::printf("principal axis %d   % .9f % .9f % .9f\n", k + 1, p.principal_axes[k].x, p.principal_axes[k].y,
+                p.principal_axes[k].z);
+  if (!principal_out.empty()) std::printf("principal-frame template written to %s\n", principal_out.c_str());
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+int run_stl(int argc, char** argv) {
+  CLI::App app{"Read an STL mesh (ASCII or binary) and report its size, bounds, area and closure."};
+  std::string file;
+  bool json = false;
+  app.add_option("file", file, "STL file")->required();
+  app.add_flag("--json", json, "print JSON instead of text");
+  CLI11_PARSE(app, argc, argv);
+
+  const StlFile stl = read_stl(file);
+  const MeshSummary s = summarize_mesh(stl.mesh);
+  if (json) {
+    JsonOut j;
+    j.open().string("file", file).string("format", stl.binary ? "binary" : "ascii").string("solid", stl.solid_name);
+    j.integer("triangles_in_file", static_cast<long long>(stl.triangles_in_file));
+    j.integer("triangles", static_cast<long long>(s.triangle_count)).integer("vertices", static_cast<long long>(s.vertex_count));
+    j.open("degenerate", '[');
+    for (const auto& d : stl.degenerate) {
+      j.open().integer("triangle", static_cast<long long>(d.index));
+      if (d.line) j.integer("line", d.line);
+      j.string("reason", d.reason).close();
+    }
+    j.close(']');
+    j.vec3("lower", s.lower).vec3("upper", s.upper).number("area", s.area).boolean("watertight", s.watertight);
+    j.integer("boundary_edges", static_cast<long long>(s.boundary_edges));
+    j.integer("non_manifold_edges", static_cast<long long>(s.non_manifold_edges));
+    j.integer("misoriented_edges", static_cast<long long>(s.misoriented_edges));
+    if (s.watertight) j.number("volume", s.volume);
+    j.close();
+    std::printf("%s\n", j.text().c_str());
+    return 0;
+  }
+  std::printf("stl %s: %s, solid '%s'\n", file.c_str(), stl.binary ? "binary" : "ASCII", stl.solid_name.c_str());
+  std::printf("triangles    %zu (%zu in the file)\n", s.triangle_count, stl.triangles_in_file);
+  std::printf("vertices     %zu (after merging equal corners)\n", s.vertex_count);
+  for (size_t i = 0; i < stl.degenerate.size() && i < 10; ++i) {
+    const auto& d = stl.degenerate[i];
+    std::printf("degenerate   triangle %zu%s: %s (dropped)\n", d.index,
+                d.line ? (" at line " + std::to_string(d.line)).c_str() : "", d.reason.c_str());
+  }
+  if (stl.degenerate.size() > 10) std::printf("degenerate   ... %zu in all\n", stl.degenerate.size());
+  std::printf("bounds       [% .6g, % .6g] x [% .6g, % .6g] x [% .6g, % .6g]\n", s.lower.x, s.upper.x, s.lower.y,
+              s.upper.y, s.lower.z, s.upper.z);
+  std::printf("area         %.9g\n", s.area);
+  if (s.watertight)
+    std::printf("watertight   yes (closed, consistently oriented), enclosed volume %.9g\n", s.volume);
+  else
+    std::printf("watertight   no: %zu boundary, %zu non-manifold, %zu misoriented edges\n", s.boundary_edges,
+                s.non_manifold_edges, s.misoriented_edges);
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+void slope_json(JsonOut& j, const char* key, const SlopeFit& f) {
+  j.open(key).boolean("valid", f.valid);
+  if (f.valid) {
+    j.number("angle_deg", f.angle_deg).number("slope", f.line.slope).number("intercept", f.line.intercept);
+    j.number("r_squared", f.line.r_squared).integer("points", static_cast<long long>(f.line.points));
+    j.number("from", f.from).number("to", f.to);
+  } else {
+    j.string("problem", f.problem);
+  }
+  j.close();
+}
+
+std::string slope_text(const SlopeFit& f, const char* coordinate) {
+  char buf[256];
+  if (!f.valid) return "not measured: " + f.problem;
+  std::snprintf(buf, sizeof buf, "%7.3f deg  (%zu points, %s from %.4g to %.4g m, R^2 %.4f)", f.angle_deg,
+                f.line.points, coordinate, f.from, f.to, f.line.r_squared);
+  return buf;
+}
+
+int run_heap_angle(int argc, char** argv) {
+  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
+  std::string file, view = "y", png, json;
+  bool axisymmetric = false;
+  HeapAngleOptions options;
+  AxisymmetricOptions axi;
+  std::vector<double> band, centre;
+  std::optional<double> floor_z;
+  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up")->required();
+  app.add_option("--view", view, "camera looks along x or y (image horizontal = the other one)")
+      ->check(CLI::IsMember({"x", "y"}));
+  app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
+  app.add_option("--json", json, "write the results as JSON to this file");
+  app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)");
+  app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
+      ->expected(2)
+      ->delimiter(',');
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)");
+  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)");
+  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)");
+  app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<Sphere> spheres = read_sphere_csv(file);
+  options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
+  options.floor_z = floor_z;
+  axi.floor_z = floor_z;
+  if (band.size() == 2) {
+    options.band_low = axi.band_low = band[0];
+    options.band_high = axi.band_high = band[1];
+  }
+  if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
+
+  const HeapAngle m = measure_heap_angle(spheres, options);
+  const char* horizontal = options.view == ViewAxis::Y ? "x" : "y";
+  std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
+              spheres.size(), view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
+              m.heap_height, horizontal, m.crest, m.holes_filled, options.band_low, options.band_high);
+  std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
+  std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
+  std::printf("mean angle   %7.3f deg\n", m.mean_deg);
+
+  std::optional<AxisymmetricHeapAngle> a;
+  if (axisymmetric) {
+    a = measure_axisymmetric_heap_angle(spheres, axi);
+    std::printf("3D fit       %d of %zu sectors, centre (%.6g, %.6g) m: mean %.3f deg, spread %.3f deg, range %.3f-%.3f deg\n",
+                a->valid_sectors, a->sectors.size(), a->centre.x, a->centre.y, a->mean_deg, a->spread_deg, a->min_deg,
+                a->max_deg);
+    for (const SectorFit& s : a->sectors)
+      std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
+  }
+  if (!png.empty()) {
+    write_heap_angle_png(png, m);
+    std::printf("picture      %s\n", png.c_str());
+  }
+  if (!json.empty()) {
+    JsonOut j;
+    j.open().string("file", file).integer("spheres", static_cast<long long>(spheres.size()));
+    j.string("view", view).number("pixel", m.image.pixel).number("floor_z", m.floor_z);
+    j.number("heap_height", m.heap_height).number("crest", m.crest);
+    j.number("band_low", options.band_low).number("band_high", options.band_high);
+    slope_json(j, "left", m.left);
+    slope_json(j, "right", m.right);
+    j.number("mean_deg", m.mean_deg);
+    if (a) {
+      j.open("axisymmetric").number("centre_x", a->centre.x).number("centre_y", a->centre.y);
+      j.integer("valid_sectors", a->valid_sectors).number("mean_deg", a->mean_deg).number("spread_deg", a->spread_deg);
+      j.number("min_deg", a->min_deg).number("max_deg", a->max_deg);
+      j.open("sectors", '[');
+      for (const SectorFit& s : a->sectors) {
+        j.open().number("from_deg", s.from_deg).number("to_deg", s.to_deg);
+        slope_json(j, "fit", s.fit);
+        j.close();
+      }
+      j.close(']').close();
+    }
+    j.close();
+    write_text_file(json, j.text() + "\n");
+    std::printf("results      %s\n", json.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Verb> geometry_verbs() {
+  return {
+      {"template", "write a shipped clump template (cabbage, cotton stalk, groups) as CSV", run_template},
+      {"clump", "volume, mass, centre of mass, inertia and principal axes of a clump CSV", run_clump},
+      {"stl", "read an STL mesh: triangles, bounds, area, watertightness", run_stl},
+      {"heap-angle", "angle of repose of a settled heap from its front view (and 3D sectors)", run_heap_angle},
+  };
+}
 
 }  // namespace repose::cli

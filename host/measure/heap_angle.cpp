@@ -1,0 +1,229 @@
+#include "measure/heap_angle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace repose {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr size_t kMinimumPoints = 3;
+
+void check_band(double low, double high) {
+  if (!(low >= 0 && low < high && high <= 1))
+    throw std::invalid_argument("height band must satisfy 0 <= low < high <= 1");
+}
+
+double lowest_bottom(const std::vector<Sphere>& spheres) {
+  double z = HUGE_VAL;
+  for (const Sphere& s : spheres) z = std::min(z, s.centre.z - s.radius);
+  return z;
+}
+
+// Fits z against x; `falling` is true where the slope should fall with x (right side, radius).
+SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, bool falling) {
+  SlopeFit out;
+  if (x.size() < kMinimumPoints) {
+    out.problem = "only " + std::to_string(x.size()) + " boundary points in the height band";
+    return out;
+  }
+  try {
+    out.line = fit_line(x, z);
+  } catch (const std::invalid_argument& e) {
+    out.problem = e.what();
+    return out;
+  }
+  const double rise = falling ? -out.line.slope : out.line.slope;
+  out.angle_deg = std::atan(rise) * 180.0 / kPi;
+  out.from = *std::min_element(x.begin(), x.end());
+  out.to = *std::max_element(x.begin(), x.end());
+  out.valid = true;
+  return out;
+}
+
+}  // namespace
+
+HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options) {
+  if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
+  check_band(options.band_low, options.band_high);
+  HeapAngle out;
+  out.floor_z = options.floor_z.value_or(lowest_bottom(spheres));
+
+  double pixel = options.pixel;
+  if (pixel <= 0) {
+    double u_min = HUGE_VAL, u_max = -HUGE_VAL, z_max = -HUGE_VAL;
+    for (const Sphere& s : spheres) {
+      const double u = horizontal_coordinate(s, options.view);
+      u_min = std::min(u_min, u - s.radius);
+      u_max = std::max(u_max, u + s.radius);
+      z_max = std::max(z_max, s.centre.z + s.radius);
+    }
+    pixel = std::max(u_max - u_min, z_max - out.floor_z) / 1600.0;
+  }
+  out.image = render_silhouette(spheres, options.view, pixel, out.floor_z);
+  out.holes_filled = fill_holes(out.image);
+  out.profile = top_profile(out.image);
+  out.fitted_columns.assign(out.profile.size(), 0);
+
+  // Crest: the highest profile column(s); left and right slopes start beside them.
+  int crest_first = -1, crest_last = -1, crest_row = -1;
+  for (int c = 0; c < out.image.width; ++c) {
+    const int row = out.profile[static_cast<size_t>(c)];
+    if (row > crest_row) {
+      crest_row = row;
+      crest_first = crest_last = c;
+    } else if (row == crest_row && row >= 0) {
+      crest_last = c;
+    }
+  }
+  if (crest_row < 0) throw std::invalid_argument("heap angle: empty silhouette");
+  const double top = out.image.row_top(crest_row);
+  out.heap_height = top - out.floor_z;
+  if (!(out.heap_height > 0)) throw std::invalid_argument("heap angle: heap top is not above the floor");
+  out.crest = 0.5 * (out.image.column_centre(crest_first) + out.image.column_centre(crest_last));
+  const double z_low = out.floor_z + options.band_low * out.heap_height;
+  const double z_high = out.floor_z + options.band_high * out.heap_height;
+
+  auto collect = [&](int start, int step, uint8_t tag, std::vector<double>& u, std::vector<double>& z) {
+    // Walk away from the crest while the columns stay occupied (contiguous with the heap).
+    for (int c = start; c >= 0 && c < out.image.width && out.profile[static_cast<size_t>(c)] >= 0; c += step) {
+      const double height = out.image.row_top(out.profile[static_cast<size_t>(c)]);
+      if (height >= z_low && height <= z_high) {
+        u.push_back(out.image.column_centre(c));
+        z.push_back(height);
+        out.fitted_columns[static_cast<size_t>(c)] = tag;
+      }
+    }
+  };
+  std::vector<double> u_left, z_left, u_right, z_right;
+  collect(crest_first - 1, -1, 1, u_left, z_left);
+  collect(crest_last + 1, +1, 2, u_right, z_right);
+  out.left = fit_slope(u_left, z_left, false);
+  out.right = fit_slope(u_right, z_right, true);
+
+  int valid = 0;
+  double sum = 0;
+  for (const SlopeFit* side : {&out.left, &out.right})
+    if (side->valid) {
+      ++valid;
+      sum += side->angle_deg;
+    }
+  out.mean_deg = valid ? sum / valid : kNaN;
+  return out;
+}
+
+AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>& spheres,
+                                                      const AxisymmetricOptions& options) {
+  if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
+  if (options.sectors < 1) throw std::invalid_argument("heap angle: sectors must be at least 1");
+  check_band(options.band_low, options.band_high);
+  AxisymmetricHeapAngle out;
+  out.floor_z = options.floor_z.value_or(lowest_bottom(spheres));
+
+  if (options.centre) {
+    out.centre = *options.centre;
+  } else {
+    // Volume-weighted medians of x and y: on the axis for an axisymmetric heap, and a body that
+    // rolled far away moves them by at most its share of the volume, never by its distance.
+    std::vector<std::pair<double, double>> xs, ys;  // (coordinate, weight)
+    double total = 0;
+    for (const Sphere& s : spheres) {
+      const double w = s.radius * s.radius * s.radius;
+      xs.push_back({s.centre.x, w});
+      ys.push_back({s.centre.y, w});
+      total += w;
+    }
+    auto weighted_median = [total](std::vector<std::pair<double, double>>& v) {
+      std::sort(v.begin(), v.end());
+      double running = 0;
+      for (const auto& [value, weight] : v) {
+        running += weight;
+        if (running >= 0.5 * total) return value;
+      }
+      return v.back().first;
+    };
+    out.centre = {weighted_median(xs), weighted_median(ys)};
+  }
+
+  double top = -HUGE_VAL, largest_radius = 0;
+  for (const Sphere& s : spheres) {
+    top = std::max(top, s.centre.z + s.radius);
+    largest_radius = std::max(largest_radius, std::hypot(s.centre.x - out.centre.x, s.centre.y - out.centre.y));
+  }
+  out.heap_height = top - out.floor_z;
+  if (!(out.heap_height > 0)) throw std::invalid_argument("heap angle: heap top is not above the floor");
+  const double bin = options.bin_width > 0 ? options.bin_width : largest_radius / 25.0;
+  if (!(bin > 0)) throw std::invalid_argument("heap angle: all spheres lie on the axis; give a bin width");
+  const int bins = static_cast<int>(std::floor(largest_radius / bin)) + 1;
+  const double z_low = out.floor_z + options.band_low * out.heap_height;
+  const double z_high = out.floor_z + options.band_high * out.heap_height;
+
+  // Highest top per (sector, bin), with the radius where it occurs.
+  struct Cell {
+    double top = -HUGE_VAL, radius = 0;
+    bool used = false;
+  };
+  std::vector<Cell> cells(static_cast<size_t>(options.sectors) * bins);
+  for (const Sphere& s : spheres) {
+    const double dx = s.centre.x - out.centre.x, dy = s.centre.y - out.centre.y;
+    const double radius = std::hypot(dx, dy);
+    double azimuth = std::atan2(dy, dx);
+    if (azimuth < 0) azimuth += 2 * kPi;
+    int sector = static_cast<int>(std::floor(azimuth / (2 * kPi) * options.sectors));
+    sector = std::min(sector, options.sectors - 1);
+    const int b = std::min(bins - 1, static_cast<int>(std::floor(radius / bin)));
+    Cell& cell = cells[static_cast<size_t>(sector) * bins + b];
+    const double sphere_top = s.centre.z + s.radius;
+    if (!cell.used || sphere_top > cell.top) {
+      cell.top = sphere_top;
+      cell.radius = radius;
+      cell.used = true;
+    }
+  }
+
+  std::vector<double> fitted_angles;
+  for (int sector = 0; sector < options.sectors; ++sector) {
+    SectorFit result;
+    result.from_deg = 360.0 * sector / options.sectors;
+    result.to_deg = 360.0 * (sector + 1) / options.sectors;
+    std::vector<double> radius, height;
+    int empty_run = 0;
+    bool started = false;
+    for (int b = 0; b < bins; ++b) {
+      const Cell& cell = cells[static_cast<size_t>(sector) * bins + b];
+      if (!cell.used) {
+        if (started && ++empty_run >= 2) break;
+        continue;
+      }
+      started = true;
+      empty_run = 0;
+      if (cell.top >= z_low && cell.top <= z_high) {
+        radius.push_back(cell.radius);
+        height.push_back(cell.top);
+      }
+    }
+    result.fit = fit_slope(radius, height, true);
+    if (result.fit.valid) fitted_angles.push_back(result.fit.angle_deg);
+    out.sectors.push_back(result);
+  }
+
+  out.valid_sectors = static_cast<int>(fitted_angles.size());
+  if (fitted_angles.empty()) {
+    out.mean_deg = out.spread_deg = out.min_deg = out.max_deg = kNaN;
+    return out;
+  }
+  double sum = 0;
+  for (double a : fitted_angles) sum += a;
+  out.mean_deg = sum / fitted_angles.size();
+  double squares = 0;
+  for (double a : fitted_angles) squares += (a - out.mean_deg) * (a - out.mean_deg);
+  out.spread_deg = fitted_angles.size() > 1 ? std::sqrt(squares / (fitted_angles.size() - 1)) : 0.0;
+  out.min_deg = *std::min_element(fitted_angles.begin(), fitted_angles.end());
+  out.max_deg = *std::max_element(fitted_angles.begin(), fitted_angles.end());
+  return out;
+}
+
+}  // namespace repose
