@@ -8,9 +8,14 @@
 // integrand has its square-root edge) are split into quadrants recursively, refine_depth times,
 // and the finest edge cells take 2x2 Gauss points.
 //
-// Accuracy at the defaults (measured by tests/geometry/test_clump.cpp against closed forms):
-// relative error of volume and inertia below 1e-5 for a sphere, two overlapping spheres and a
-// chain; the result does not depend on the order of the spheres beyond rounding.
+// Accuracy, measured by tests/geometry/test_clump.cpp against closed forms (a sphere, two
+// overlapping equal and unequal spheres, chains with and without triple overlaps, lines along
+// and across the overlaps), worst relative error of volume / of any inertia entry:
+//   refine_depth 4 (default): 1.6e-5 / 2.0e-5;  5: 5.7e-6 / 8.2e-6;  6: 1.4e-6 / 2.2e-6.
+// Each level costs about 2.5x the time; at the default a cabbage (203 spheres) takes ~0.5 s and
+// the 720-sphere stalk ~0.6 s on one core. The error comes from the square-root edges and
+// decreases like (cell size)^1.5. The result does not depend on the order of the spheres beyond
+// rounding.
 #pragma once
 #include <glm/mat3x3.hpp>
 #include <glm/vec3.hpp>
