@@ -147,9 +147,17 @@ class Tokenizer {
     throw InputError(name_, at.line, at.column, message);
   }
 
+  // Keywords are matched without regard to case: some exporters write "FACET NORMAL".
+  static bool is(const Token& t, const char* keyword) {
+    if (t.text.size() != std::strlen(keyword)) return false;
+    for (size_t i = 0; i < t.text.size(); ++i)
+      if (std::tolower(static_cast<unsigned char>(t.text[i])) != keyword[i]) return false;
+    return true;
+  }
+
   void expect(const char* keyword) {
     Token t = next();
-    if (t.text != keyword) fail(t, std::string("expected '") + keyword + "', found " + describe(t));
+    if (!is(t, keyword)) fail(t, std::string("expected '") + keyword + "', found " + describe(t));
   }
 
   double number(const char* what) {
@@ -191,21 +199,21 @@ StlFile parse_ascii(const std::string& bytes, const std::string& source_name) {
   MeshBuilder builder(file);
   Tokenizer tokens(bytes, source_name);
   Tokenizer::Token t = tokens.next();
-  if (t.text != "solid") tokens.fail(t, "expected 'solid', found " + Tokenizer::describe(t));
+  if (!Tokenizer::is(t, "solid")) tokens.fail(t, "expected 'solid', found " + Tokenizer::describe(t));
   file.solid_name = tokens.rest_of_line();
   // Some exporters write several solids one after another; all their facets are read.
   while (true) {
     t = tokens.next();
-    if (t.text == "endsolid") {
+    if (Tokenizer::is(t, "endsolid")) {
       tokens.rest_of_line();
       Tokenizer::Token after = tokens.next();
       if (after.text.empty()) break;
-      if (after.text != "solid")
+      if (!Tokenizer::is(after, "solid"))
         tokens.fail(after, "expected 'solid' or end of file after 'endsolid', found " + Tokenizer::describe(after));
       tokens.rest_of_line();
       continue;
     }
-    if (t.text != "facet")
+    if (!Tokenizer::is(t, "facet"))
       tokens.fail(t, "expected 'facet' or 'endsolid', found " + Tokenizer::describe(t) +
                          (t.text.empty() ? " (file truncated?)" : ""));
     const int facet_line = t.line;
@@ -221,7 +229,7 @@ StlFile parse_ascii(const std::string& bytes, const std::string& source_name) {
       corners[k].z = tokens.number("vertex z");
     }
     Tokenizer::Token end_loop = tokens.next();
-    if (end_loop.text != "endloop")
+    if (!Tokenizer::is(end_loop, "endloop"))
       tokens.fail(end_loop, "expected 'endloop' after three vertices, found " + Tokenizer::describe(end_loop));
     tokens.expect("endfacet");
     builder.add(corners, facet_line);
@@ -233,7 +241,9 @@ StlFile parse_ascii(const std::string& bytes, const std::string& source_name) {
 // "solid" at the start and no control bytes other than whitespace in the first kilobyte: text.
 bool looks_like_ascii(const std::string& bytes) {
   size_t first = bytes.find_first_not_of(" \t\r\n");
-  if (first == std::string::npos || bytes.compare(first, 5, "solid") != 0) return false;
+  if (first == std::string::npos || bytes.size() < first + 5) return false;
+  for (size_t i = 0; i < 5; ++i)
+    if (std::tolower(static_cast<unsigned char>(bytes[first + i])) != "solid"[i]) return false;
   size_t probe = std::min<size_t>(bytes.size(), 1024);
   for (size_t i = 0; i < probe; ++i) {
     unsigned char c = static_cast<unsigned char>(bytes[i]);

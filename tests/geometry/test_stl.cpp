@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -163,4 +164,12 @@ TEST_CASE("degenerate triangles are dropped and reported", "[stl]") {
   const std::vector<Triangle> only_bad = {{glm::dvec3(0, 0, 0), glm::dvec3(1, 0, 0), glm::dvec3(2, 0, 0)}};
   CHECK(error_of(binary_stl(only_bad)) ==
         "wall.stl: all 1 triangles are degenerate (zero area); first: triangle 1: corners are collinear (zero area)");
+}
+
+TEST_CASE("ASCII STL keywords are read without regard to case", "[stl]") {
+  std::string upper = ascii_stl(cube());
+  for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  const StlFile f = parse_stl(upper, "upper.stl");
+  CHECK_FALSE(f.binary);
+  check_unit_cube(f);
 }
