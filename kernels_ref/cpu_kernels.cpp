@@ -40,40 +40,41 @@ namespace repose::gpu {
 
 using KernelBody = void (*)(Buffers&, uint);
 
-static KernelBody body_of(KernelId k) {
-  switch (k) {
-    case KernelId::KickDrift: return k_kick_drift;
-    case KernelId::GatherKick: return k_gather_kick;
-    case KernelId::RebuildArgs: return [](Buffers& b, uint i) { if (i == 0u) k_rebuild_args(b, 0u); };
-    case KernelId::SaveOldRows: return k_save_old_rows;
-    case KernelId::SaveOldContacts: return k_save_old_contacts;
-    case KernelId::ClearBuckets: return k_clear_buckets;
-    case KernelId::BucketCount: return k_bucket_count;
-    case KernelId::BucketScatter: return k_bucket_scatter;
-    case KernelId::BucketSort: return k_bucket_sort;
-    case KernelId::ContactCount: return k_contact_count;
-    case KernelId::RowsScanned: return [](Buffers& b, uint i) { if (i == 0u) k_rows_scanned(b, 0u); };
-    case KernelId::ContactFill: return k_contact_fill;
-    case KernelId::TransposeCount: return k_transpose_count;
-    case KernelId::TransposeFill: return k_transpose_fill;
-    case KernelId::TransposeSort: return k_transpose_sort;
-    case KernelId::ContactForces: return k_contact_forces;
-    case KernelId::ContactRows: return k_contact_rows;
-    case KernelId::GatherLean: return k_gather_lean;
-    default: return nullptr;
-  }
+// Runs invocations [0, n) of Body over the pool; a template so that the body inlines into the
+// loop (no indirect call per invocation, which costs ~0.1 ms per 50k-particle kernel).
+template <KernelBody Body>
+static void run_parallel(Buffers& buf, uint64_t n, ThreadPool& pool) {
+  pool.parallel_for(n, [&](uint64_t begin, uint64_t end) {
+    for (uint64_t i = begin; i < end; ++i) Body(buf, static_cast<uint>(i));
+  });
 }
 
 void run_kernel(KernelId k, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
-  KernelBody body = body_of(k);
   // Single-invocation control kernels must not run on several threads at once.
   if (k == KernelId::RebuildArgs || k == KernelId::RowsScanned) {
-    if (invocations > 0) body(buf, 0u);
+    if (invocations > 0) (k == KernelId::RebuildArgs ? k_rebuild_args : k_rows_scanned)(buf, 0u);
     return;
   }
-  pool.parallel_for(invocations, [&](uint64_t begin, uint64_t end) {
-    for (uint64_t i = begin; i < end; ++i) body(buf, static_cast<uint>(i));
-  });
+  if (invocations == 0) return;
+  switch (k) {
+    case KernelId::KickDrift: return run_parallel<k_kick_drift>(buf, invocations, pool);
+    case KernelId::GatherKick: return run_parallel<k_gather_kick>(buf, invocations, pool);
+    case KernelId::GatherLean: return run_parallel<k_gather_lean>(buf, invocations, pool);
+    case KernelId::SaveOldRows: return run_parallel<k_save_old_rows>(buf, invocations, pool);
+    case KernelId::SaveOldContacts: return run_parallel<k_save_old_contacts>(buf, invocations, pool);
+    case KernelId::ClearBuckets: return run_parallel<k_clear_buckets>(buf, invocations, pool);
+    case KernelId::BucketCount: return run_parallel<k_bucket_count>(buf, invocations, pool);
+    case KernelId::BucketScatter: return run_parallel<k_bucket_scatter>(buf, invocations, pool);
+    case KernelId::BucketSort: return run_parallel<k_bucket_sort>(buf, invocations, pool);
+    case KernelId::ContactCount: return run_parallel<k_contact_count>(buf, invocations, pool);
+    case KernelId::ContactFill: return run_parallel<k_contact_fill>(buf, invocations, pool);
+    case KernelId::TransposeCount: return run_parallel<k_transpose_count>(buf, invocations, pool);
+    case KernelId::TransposeFill: return run_parallel<k_transpose_fill>(buf, invocations, pool);
+    case KernelId::TransposeSort: return run_parallel<k_transpose_sort>(buf, invocations, pool);
+    case KernelId::ContactForces: return run_parallel<k_contact_forces>(buf, invocations, pool);
+    case KernelId::ContactRows: return run_parallel<k_contact_rows>(buf, invocations, pool);
+    default: return;
+  }
 }
 
 void run_scan(Buffers& buf, const ScanPush& push) {

@@ -1,6 +1,17 @@
 #include "thread_pool.h"
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define REPOSE_PAUSE() _mm_pause()
+#else
+#define REPOSE_PAUSE() ((void)0)
+#endif
+
 namespace repose {
+
+// Spin iterations before a worker sleeps (~50-100 us): longer than the gap between the kernels
+// of a step, shorter than the time between batches.
+static constexpr int kSpinBeforeSleep = 20000;
 
 ThreadPool::ThreadPool(unsigned threads) {
   if (threads == 0) threads = 1;
@@ -10,7 +21,8 @@ ThreadPool::ThreadPool(unsigned threads) {
 ThreadPool::~ThreadPool() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    stopping_ = true;
+    stopping_.store(true);
+    generation_.fetch_add(1, std::memory_order_release);
   }
   wake_.notify_all();
   for (auto& w : workers_) w.join();
@@ -25,43 +37,48 @@ static void run_share(const std::function<void(uint64_t, uint64_t)>& body, uint6
 
 void ThreadPool::parallel_for(uint64_t n, const std::function<void(uint64_t, uint64_t)>& body) {
   if (n == 0) return;
-  // Small jobs are not worth waking anyone for.
+  // Small jobs are not worth handing out.
   if (workers_.empty() || n < 256) {
     body(0, n);
     return;
   }
+  job_ = &body;
+  job_size_ = n;
+  pending_.store(static_cast<unsigned>(workers_.size()), std::memory_order_relaxed);
   {
+    // The release publishes job_ to workers that acquire the new generation; the lock orders it
+    // against a worker that is about to sleep.
     std::lock_guard<std::mutex> lock(mutex_);
-    job_ = &body;
-    job_size_ = n;
-    pending_ = static_cast<unsigned>(workers_.size());
-    ++generation_;
+    generation_.fetch_add(1, std::memory_order_release);
+    if (sleepers_ > 0) wake_.notify_all();
   }
-  wake_.notify_all();
   run_share(body, n, 0, size());
-  std::unique_lock<std::mutex> lock(mutex_);
-  done_.wait(lock, [this] { return pending_ == 0; });
+  for (int spins = 0; pending_.load(std::memory_order_acquire) != 0; ++spins) {
+    if (spins < kSpinBeforeSleep) REPOSE_PAUSE();
+    else std::this_thread::yield();
+  }
   job_ = nullptr;
 }
 
 void ThreadPool::worker_loop(unsigned index) {
   uint64_t seen = 0;
   for (;;) {
-    const std::function<void(uint64_t, uint64_t)>* job;
-    uint64_t n;
-    {
+    uint64_t g = generation_.load(std::memory_order_acquire);
+    for (int spins = 0; g == seen && spins < kSpinBeforeSleep; ++spins) {
+      REPOSE_PAUSE();
+      g = generation_.load(std::memory_order_acquire);
+    }
+    if (g == seen) {
       std::unique_lock<std::mutex> lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
-      if (stopping_) return;
-      seen = generation_;
-      job = job_;
-      n = job_size_;
+      ++sleepers_;
+      wake_.wait(lock, [&] { return generation_.load(std::memory_order_acquire) != seen; });
+      --sleepers_;
+      g = generation_.load(std::memory_order_acquire);
     }
-    run_share(*job, n, index, size());
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--pending_ == 0) done_.notify_one();
-    }
+    if (stopping_.load()) return;
+    seen = g;
+    run_share(*job_, job_size_, index, size());
+    pending_.fetch_sub(1, std::memory_order_acq_rel);
   }
 }
 
