@@ -18,12 +18,11 @@ struct ContactOut {
 
 // Torque on one body of a contact: the tangential force's moment about its centre (r from the
 // centre to the contact point), plus EDEM's standard rolling torque against the body's own spin
-// when roll_arm >= 0. The lean gather calls it again on stored (n x Ft, mu_r |Fn|), so stored
-// and recomputed torques are the same bits.
-FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, vec3 w) {
+// when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once per body). The lean gather
+// calls it again on stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
+FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, vec3 w, float lw) {
   precise vec3 t = scale3(n_x_ft, -r);
   if (roll_arm >= 0.0f) {
-    precise float lw = length3(w);
     if (lw > 0.0f) {
       precise float k = -(roll_arm * r) / lw;
       t = t + scale3(w, k);
@@ -113,10 +112,16 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   precise float arm = rolling ? mu_r * abs(fn) : -1.0f;
   o.roll_arm = arm;
+  o.torque_i = vec3(0.0f);
+  o.torque_j = vec3(0.0f);
+  if ((flags & kFlagLeanContacts) != 0u) return o;  // the gather derives the torques
   // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
   float own_arm = relative ? -1.0f : arm;
-  o.torque_i = body_torque(n_x_ft, ri, own_arm, w_i);
-  o.torque_j = body_torque(n_x_ft, rj, j_is_wall ? -1.0f : own_arm, w_j);
+  float arm_j = j_is_wall ? -1.0f : own_arm;
+  precise float lw_i = own_arm >= 0.0f ? length3(w_i) : 0.0f;
+  precise float lw_j = arm_j >= 0.0f ? length3(w_j) : 0.0f;
+  o.torque_i = body_torque(n_x_ft, ri, own_arm, w_i, lw_i);
+  o.torque_j = body_torque(n_x_ft, rj, arm_j, w_j, lw_j);
   if (rolling && relative) {
     // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
     vec3 tr;

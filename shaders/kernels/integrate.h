@@ -57,11 +57,11 @@ KERNEL(k_gather_kick) uint i) {
 // spin, `owner_side` tells i (+tr) from j (-tr). The relative rolling torque needs both spins
 // and radii (only with kFlagRollingRelativeOmega; the step program then kicks in a separate
 // pass so no spin changes while gathers read it).
-KFN(vec3, lean_torque) uint c, bool owner_side, float rad, vec3 w, vec4 a, vec4 b) {
+KFN(vec3, lean_torque) uint c, bool owner_side, float rad, vec3 w, float lw, vec4 a, vec4 b) {
   if (!(b.w > 0.0f)) return vec3(0.0f);  // separated: the full entry stores zeros
   bool relative = (PC.flags & kFlagRollingRelativeOmega) != 0u;
   precise float r = rad - 0.5f * b.w;
-  vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, w);
+  vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, w, lw);
   if (relative && a.w >= 0.0f) {
     uint i = B_owner[c];
     uint p = B_partner[c];
@@ -88,6 +88,7 @@ KERNEL(k_gather_lean) uint i) {
   uint limit = B_control[kCtlContacts];
   vec4 pi = B_pos[i];
   vec3 wi = xyz(B_omega[i]);
+  precise float lwi = length3(wi);  // |w_i| once, not per contact
   precise vec3 f = vec3(0.0f);
   precise vec3 t = vec3(0.0f);
   uint begin = min(B_row_start[i], limit);
@@ -100,7 +101,7 @@ KERNEL(k_gather_lean) uint i) {
     vec4 a = B_contact_force[c];
     vec4 b = B_torque_i[c];
     f = owner_side ? f + xyz(a) : f - xyz(a);
-    t = t + lean_torque(KB c, owner_side, pi.w, wi, a, b);
+    t = t + lean_torque(KB c, owner_side, pi.w, wi, lwi, a, b);
   }
   B_force[i] = vec4(f, 0.0f);
   B_torque[i] = vec4(t, 0.0f);
