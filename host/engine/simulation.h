@@ -40,6 +40,8 @@ class Simulation {
   uint32_t contacts() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlContacts]; }
   uint32_t rebuilds() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlRebuildCount]; }
   uint32_t capacity() const { return layout_.capacity; }
+  const Layout& layout() const { return layout_; }
+  const KernelVariant& variant() const { return variant_; }
   uint32_t retries() const { return retries_; }
   Backend& backend() { return *backend_; }
   const Backend& backend() const { return *backend_; }
