@@ -36,7 +36,7 @@ inline uint atomicMax(uint& target, uint value) {
 }
 }  // namespace repose::gpu
 
-// GLSL's `precise` has no C++ meaning: C++ already evaluates as written without -ffast-math.
+// GLSL's `precise` has no C++ meaning: C++ already evaluates as written without fast-math flags.
 #define precise
 #define INOUT(T) T&
 #define OUT(T) T&

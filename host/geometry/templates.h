@@ -38,7 +38,7 @@ ClumpTemplate cotton_stalk_group2(const ClumpTemplate& stalk);
 // run from the stem (the -z pole) over the head, each of 25 overlapping spheres whose radius
 // tapers from 12 mm near the stem to 5 mm at the tip while their protrusion beyond the core
 // tapers from 4 mm to 2 mm; the polar angle goes from 160 degrees (near the stem) to 30 degrees.
-// A stem stub of two spheres (radius 15 mm and 10 mm, protruding 5 and 6 mm) closes the -z pole.
+// A short stem of two spheres (radius 15 mm and 10 mm, protruding 5 and 6 mm) closes the -z pole.
 struct CabbageSpec {
   double core_diameter = 0.160;
   int veins = 8;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <string>
 
 #include "case/case_spec.h"
@@ -63,6 +64,33 @@ struct CaseBuilder {
     spec.walls.push_back(w);
   }
 };
+
+// n spheres of ~4 mm on a grid of `spacing` radii (jittered by `jitter` radii) above a floor
+// and beside a side wall, moving and spinning at random: seeded, with particle and wall contacts.
+inline CaseSpec seeded_cloud(uint32_t n, uint64_t seed, double spacing, double jitter) {
+  CaseBuilder b;
+  int grain = b.material(1000, 5e6, 0.3);
+  int steel = b.material(7800, 8e10, 0.3);
+  b.interaction(grain, grain, 0.5, 0.4, 0.05);
+  b.interaction(grain, steel, 0.6, 0.3, 0.02);
+  b.spec.gravity = {0, 0, -9.81};
+  b.spec.time.rayleigh_fraction = 0.2;
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double r = 0.004;
+  int side = 1;
+  while (side * side * side < int(n)) ++side;
+  for (uint32_t i = 0; i < n; ++i) {
+    Vec3d p = {(i % side) * spacing * r + jitter * r * u(rng),
+               ((i / side) % side) * spacing * r + jitter * r * u(rng),
+               0.95 * r + (i / (side * side)) * spacing * r};
+    b.sphere(p, r * (1 + 0.05 * u(rng)), grain, {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)},
+             {20 * u(rng), 20 * u(rng), 20 * u(rng)});
+  }
+  b.plane({0, 0, 0}, {0, 0, 1}, steel);
+  b.plane({-r, 0, 0}, {1, 0, 0}, steel);
+  return b.spec;
+}
 
 inline std::unique_ptr<Simulation> simulate(const CaseSpec& spec, const std::string& backend = "cpu",
                                             unsigned threads = 1, KernelVariant variant = {},

@@ -62,31 +62,12 @@ TEST_CASE("random clouds around workgroup boundaries: twin and lavapipe identica
           "[engine][bitexact]") {
   for (uint32_t wg : {32u, 64u}) {
     for (uint32_t n : {1u, wg - 1, wg, wg + 1, 2 * wg + 1}) {
-      CaseBuilder b;
-      int grain = b.material(1000, 5e6, 0.3);
-      int steel = b.material(7800, 8e10, 0.3);
-      b.interaction(grain, grain, 0.5, 0.4, 0.05);
-      b.interaction(grain, steel, 0.6, 0.3, 0.02);
-      b.spec.gravity = {0, 0, -9.81};
-      b.spec.time.rayleigh_fraction = 0.2;
-      std::mt19937_64 rng(n * 1000 + wg);
-      std::uniform_real_distribution<double> u(-1, 1);
-      double r = 0.004;
-      // Loose cloud on a coarse jittered grid (no initial overlaps), moving at random.
-      int side = 1;
-      while (side * side * side < int(n)) ++side;
-      for (uint32_t i = 0; i < n; ++i) {
-        Vec3d p = {(i % side) * 2.5 * r + 0.3 * r * u(rng), ((i / side) % side) * 2.5 * r + 0.3 * r * u(rng),
-                   r + 0.001 + (i / (side * side)) * 2.5 * r};
-        b.sphere(p, r * (1 + 0.2 * u(rng) * 0.5), grain, {0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)},
-                 {20 * u(rng), 20 * u(rng), 20 * u(rng)});
-      }
-      b.plane({0, 0, 0}, {0, 0, 1}, steel);
-      b.plane({-r, 0, 0}, {1, 0, 0}, steel);
+      // Loose cloud on a coarse jittered grid, moving at random.
+      CaseSpec cloud = seeded_cloud(n, n * 1000 + wg, 2.5, 0.3);
       KernelVariant v;
       v.workgroup = wg;
-      auto cpu = simulate(b.spec, "cpu", 2, v, 7);
-      auto gpu = simulate(b.spec, "vulkan", 1, v, 7);
+      auto cpu = simulate(cloud, "cpu", 2, v, 7);
+      auto gpu = simulate(cloud, "vulkan", 1, v, 7);
       cpu->advance(60);
       gpu->advance(60);
       std::string which;

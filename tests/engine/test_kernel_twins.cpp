@@ -14,30 +14,6 @@ using namespace repose::test;
 
 namespace {
 
-CaseSpec seeded_cloud(uint32_t n, uint64_t seed) {
-  CaseBuilder b;
-  int grain = b.material(1000, 5e6, 0.3);
-  int steel = b.material(7800, 8e10, 0.3);
-  b.interaction(grain, grain, 0.5, 0.4, 0.05);
-  b.interaction(grain, steel, 0.6, 0.3, 0.02);
-  b.spec.gravity = {0, 0, -9.81};
-  b.spec.time.rayleigh_fraction = 0.2;
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> u(-1, 1);
-  const double r = 0.004;
-  int side = 1;
-  while (side * side * side < int(n)) ++side;
-  for (uint32_t i = 0; i < n; ++i) {
-    // Spacing 2.05 r: many pairs already touching, so every kernel has real work.
-    Vec3d p = {(i % side) * 2.05 * r, ((i / side) % side) * 2.05 * r, r * 0.95 + (i / (side * side)) * 2.05 * r};
-    b.sphere(p, r * (1 + 0.02 * u(rng)), grain, {0.2 * u(rng), 0.2 * u(rng), 0.2 * u(rng)},
-             {20 * u(rng), 20 * u(rng), 20 * u(rng)});
-  }
-  b.plane({0, 0, 0}, {0, 0, 1}, steel);
-  b.plane({-r, 0, 0}, {1, 0, 0}, steel);
-  return b.spec;
-}
-
 struct Binding {
   uint32_t index;
   const char* name;
@@ -51,7 +27,8 @@ TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispa
   for (const char* variant_text : {"contact", "rows,lean"}) {
     for (uint32_t n : {63u, 64u, 65u, 129u}) {
       KernelVariant v = KernelVariant::parse(variant_text);
-      CaseSpec spec = seeded_cloud(n, n);
+      // Spacing 2.05 radii: many pairs already touching, so every kernel has real work.
+      CaseSpec spec = seeded_cloud(n, n, 2.05, 0.0);
       auto cpu_sim = simulate(spec, "cpu", 2, v, 1);
       auto gpu_sim = simulate(spec, "vulkan", 1, v, 1);
       cpu_sim->advance(3);  // a few steps so histories are non-zero
@@ -86,6 +63,14 @@ TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispa
         cpu.execute({d}, nullptr);
         gpu.execute({d}, nullptr);
         for (const Binding& bind : bindings) {
+          // The two scatters place ids by atomic cursor, in thread order; the sort kernel right
+          // after them fixes the order, and the comparison happens there.
+          bool scattered = (d.kernel == KernelId::BucketScatter && bind.index == gpu::kBindSorted) ||
+                           (d.kernel == KernelId::TransposeFill && bind.index == gpu::kBindTransList);
+          if (scattered) {
+            ++checked;
+            continue;
+          }
           std::vector<char> from_gpu(bind.bytes);
           gpu.read_binding(bind.index, from_gpu.data(), bind.bytes);
           bool same = std::memcmp(from_gpu.data(), bind.cpu, bind.bytes) == 0;
