@@ -99,6 +99,18 @@ FN bool near_pair(vec4 pi, vec4 pj, float skin) {
   return dot3(d, d) < reach * reach;
 }
 
+// Writes list entry `slot` (i, partner), carrying the pair's history over from i's old row
+// (zero for a new pair); slots beyond the capacity are counted but not written (overflow).
+KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint old_end) {
+  if (slot >= PC.capacity) return;
+  B_partner[slot] = partner;
+  B_owner[slot] = i;
+  vec4 carried = vec4(0.0f);
+  for (uint o = old_begin; o < old_end; ++o)
+    if (B_old_partner[o] == partner) carried = B_old_history[o];
+  B_history[slot] = carried;
+}
+
 // Walks the 27 cells around i in a fixed order, then the walls. With `fill`, writes partners,
 // owners and carried histories from `base`; returns the number of candidates.
 KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
@@ -124,17 +136,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
           if (!near_pair(pi, pj, PC.skin)) continue;
-          if (fill) {
-            uint slot = base + k;
-            if (slot < PC.capacity) {
-              B_partner[slot] = j;
-              B_owner[slot] = i;
-              vec4 carried = vec4(0.0f);
-              for (uint o = old_begin; o < old_end; ++o)
-                if (B_old_partner[o] == j) carried = B_old_history[o];
-              B_history[slot] = carried;
-            }
-          }
+          if (fill) write_candidate(KB base + k, i, j, old_begin, old_end);
           k = k + 1u;
         }
       }
@@ -145,18 +147,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     vec3 n;
     float overlap;
     if (!wall_contact(ws, xyz(pi), pi.w, PC.skin, n, overlap)) continue;
-    if (fill) {
-      uint slot = base + k;
-      uint partner = PC.n_particles + w;
-      if (slot < PC.capacity) {
-        B_partner[slot] = partner;
-        B_owner[slot] = i;
-        vec4 carried = vec4(0.0f);
-        for (uint o = old_begin; o < old_end; ++o)
-          if (B_old_partner[o] == partner) carried = B_old_history[o];
-        B_history[slot] = carried;
-      }
-    }
+    if (fill) write_candidate(KB base + k, i, PC.n_particles + w, old_begin, old_end);
     k = k + 1u;
   }
   return k;
