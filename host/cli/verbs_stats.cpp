@@ -11,7 +11,7 @@
 
 #include "cli/verbs.h"
 #include "stats/anova.h"
-#include "stats/atomic_file.h"
+#include "util/atomic_file.h"
 #include "stats/calibration_curve.h"
 #include "stats/csv_table.h"
 #include "stats/dataset.h"
@@ -138,7 +138,7 @@ int run_design(int argc, char** argv) {
   if (out.empty()) {
     std::fputs(csv.c_str(), stdout);
   } else {
-    write_file_atomic(out, csv);
+    repose::write_file_atomically(out, csv);
     std::printf("wrote %s: %s\n", out.c_str(), summary.c_str());
   }
   return 0;
@@ -223,7 +223,7 @@ int run_fit(int argc, char** argv) {
   std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
               format_equations(fit, response, factors, data.ranges).c_str());
   if (!json_out.empty()) {
-    write_file_atomic(json_out, fit_to_json(fit, data, table_path, chosen, result->removed).dump());
+    repose::write_file_atomically(json_out, fit_to_json(fit, data, table_path, chosen, result->removed).dump());
     std::printf("wrote %s\n", json_out.c_str());
   }
   return 0;
@@ -448,7 +448,7 @@ int run_optimize(int argc, char** argv) {
     out.set("set_lower", lo);
     out.set("set_upper", hi);
     out.set("representatives", reps);
-    write_file_atomic(json_out, out.dump());
+    repose::write_file_atomically(json_out, out.dump());
     std::printf("\nwrote %s\n", json_out.c_str());
   }
   return 0;

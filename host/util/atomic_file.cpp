@@ -26,4 +26,8 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   }
 }
 
+void write_file_atomically(const std::string& path, const std::string& content) {
+  write_file_atomically(path, [&](std::ostream& out) { out << content; }, true);
+}
+
 }  // namespace repose

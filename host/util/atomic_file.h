@@ -12,4 +12,7 @@ namespace repose {
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
                            bool binary = false);
 
+// The same for content already in memory.
+void write_file_atomically(const std::string& path, const std::string& content);
+
 }  // namespace repose
