@@ -1,6 +1,7 @@
 // The one exception a case file's problems are reported with, worded for the person who wrote
 // the file: "FILE:LINE: KEY: what is wrong" (TOML syntax errors: "FILE:LINE:COLUMN: ...").
 #pragma once
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -37,5 +38,12 @@ class CaseError : public std::runtime_error {
   std::string problem_;
   int column_ = 0;
 };
+
+// A number as case-file messages quote it: 6 significant digits.
+inline std::string format_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
 
 }  // namespace repose

@@ -126,14 +126,14 @@ int run_case(int argc, char** argv) {
   progress.finish();
   double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  RunInfo info{backend_name, variant.name(), wall, frame_count};
+  RunInfo info{backend_name, variant.name(), wall, frame_count, sim.wall_forces()};
   write_run_summary(out_dir + "/summary.json", sim, info);
   if (!state_out.empty()) write_state_file(state_out, sim.state(), sim.step(), sim.time());
   auto e = sim.kinetic_energy();
   std::printf("%s: %llu steps, t = %.4g s, %u contacts, kinetic energy %.6g J, %.3g particle-steps/s (%s)\n",
               spec.name.c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
               wall > 0 ? double(m.n_particles) * sim.step() / wall : 0.0, format_duration(wall).c_str());
-  for (const auto& w : sim.wall_forces())
+  for (const auto& w : info.wall_forces)
     if (w.fx != 0 || w.fy != 0 || w.fz != 0)
       std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
   std::printf("wrote %s/summary.json%s%s\n", out_dir.c_str(),

@@ -6,7 +6,7 @@
 
 namespace repose {
 
-void write_run_summary(const std::string& path, Simulation& sim, const RunInfo& info) {
+void write_run_summary(const std::string& path, const Simulation& sim, const RunInfo& info) {
   const Model& m = sim.model();
   auto energy = sim.kinetic_energy();
   nlohmann::ordered_json j;
@@ -26,7 +26,7 @@ void write_run_summary(const std::string& path, Simulation& sim, const RunInfo& 
                          {"total", energy.total()}};
   j["total_mass"] = m.total_mass;
   auto walls = nlohmann::ordered_json::array();
-  for (const auto& w : sim.wall_forces())
+  for (const auto& w : info.wall_forces)
     walls.push_back({{"name", w.name}, {"force", {w.fx, w.fy, w.fz}}});
   j["wall_forces"] = walls;
   j["frames"] = info.frames;

@@ -11,8 +11,9 @@ struct RunInfo {
   std::string variant;
   double wall_seconds = 0;
   unsigned frames = 0;
+  std::vector<WallForce> wall_forces;  // at the end of the run (Simulation::wall_forces)
 };
 
-void write_run_summary(const std::string& path, Simulation& sim, const RunInfo& info);
+void write_run_summary(const std::string& path, const Simulation& sim, const RunInfo& info);
 
 }  // namespace repose

@@ -1,6 +1,8 @@
 // `repose run` as a user runs it: a good case writes its results; a bad case names file, key
 // and line, exits non-zero and writes nothing; the same case gives the same state bytes.
 #include <catch2/catch.hpp>
+
+#include "tests/cli_support.h"
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -10,18 +12,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct CliResult {
-  int code;
-  std::string output;
-};
-
-CliResult run_cli(const std::string& args) {
-  fs::path log = fs::temp_directory_path() / "repose_cli_test.log";
-  int status = std::system((std::string(REPOSE_BINARY) + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text};
-}
+repose::test::CliRun run_cli(const std::string& args) { return repose::test::run_repose(args); }
 
 fs::path fresh_dir(const std::string& name) {
   fs::path d = fs::temp_directory_path() / ("repose_test_" + name);
@@ -40,14 +31,14 @@ TEST_CASE("repose run writes summary, frames and a state file that repeats byte 
   fs::path out = fresh_dir("run_ok");
   std::string base = std::string("run ") + REPOSE_SOURCE_DIR + "/cases/settle_box.toml --backend cpu --steps 300 --quiet";
   auto a = run_cli(base + " --out " + out.string() + " --state-out " + (out / "a.state").string());
-  REQUIRE(a.code == 0);
+  REQUIRE(a.status == 0);
   CHECK(fs::exists(out / "summary.json"));
   CHECK(fs::exists(out / "frames"));
   auto b = run_cli(base + " --threads 1 --out " + out.string() + " --state-out " + (out / "b.state").string());
-  REQUIRE(b.code == 0);
+  REQUIRE(b.status == 0);
   auto c = run_cli(std::string("run ") + REPOSE_SOURCE_DIR + "/cases/settle_box.toml --backend vulkan --steps 300 --quiet --out " +
                    out.string() + " --state-out " + (out / "c.state").string());
-  REQUIRE(c.code == 0);
+  REQUIRE(c.status == 0);
   std::string sa = slurp(out / "a.state");
   CHECK(sa.size() > 100000);
   CHECK(sa == slurp(out / "b.state"));
@@ -87,8 +78,8 @@ TEST_CASE("bad case files: file, key and line named, non-zero exit, nothing writ
     fs::path out = dir / "out";
     auto r = run_cli("run " + file.string() + " --backend cpu --out " + out.string() + " --state-out " +
                      (dir / "s.state").string());
-    INFO(bad.what << ": exit " << r.code << ", message: " << r.output);
-    CHECK(r.code != 0);
+    INFO(bad.what << ": exit " << r.status << ", message: " << r.output);
+    CHECK(r.status != 0);
     CHECK(r.output.find("bad.toml") != std::string::npos);
     CHECK(r.output.find(bad.key) != std::string::npos);
     CHECK(r.output.find(":" + std::to_string(bad.line)) != std::string::npos);
@@ -107,7 +98,7 @@ TEST_CASE("a time step above the stable limit is refused", "[engine][cli]") {
                          "[[sphere]]\nmaterial = \"g\"\nradius = 0.01\nposition = [0, 0, 0]\n";
   auto r = run_cli("run " + file.string() + " --backend cpu --out " + (dir / "out").string());
   INFO(r.output);
-  CHECK(r.code != 0);
+  CHECK(r.status != 0);
   CHECK(r.output.find("dt.toml:3") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "out"));
 }

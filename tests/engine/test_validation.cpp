@@ -6,6 +6,7 @@
 #include "case/case_loader.h"
 #include "engine/vulkan_backend.h"
 #include "engine_test_support.h"
+#include "tests/cli_support.h"
 
 using namespace repose;
 
@@ -26,10 +27,8 @@ TEST_CASE("Vulkan backend under the validation layer sends no message", "[engine
 }
 
 TEST_CASE("repose devices lists lavapipe", "[engine][vulkan]") {
-  std::string out = std::string(std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "/tmp") + "/repose_devices.txt";
-  int rc = std::system((std::string(REPOSE_BINARY) + " devices > " + out + " 2>&1").c_str());
-  REQUIRE(rc == 0);
-  std::ifstream in(out);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
+  auto r = repose::test::run_repose("devices");
+  REQUIRE(r.status == 0);
+  const std::string& text = r.output;
   CHECK(text.find("llvmpipe") != std::string::npos);
 }

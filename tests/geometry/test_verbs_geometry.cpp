@@ -1,6 +1,8 @@
 // The geometry verbs as a user runs them: `repose template`, `repose clump`, `repose stl`.
 #include <catch2/catch.hpp>
 
+#include "tests/cli_support.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -9,22 +11,8 @@
 
 namespace {
 
-struct Run {
-  int status;
-  std::string output;  // stdout and stderr
-};
-
-Run run(const std::string& arguments) {
-  const std::string command = std::string(REPOSE_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe);
-  std::string output;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using Run = repose::test::CliRun;
+Run run(const std::string& arguments) { return repose::test::run_repose(arguments); }
 
 std::string temp(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("repose_verbs_" + name)).string();

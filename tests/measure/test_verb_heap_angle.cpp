@@ -1,6 +1,8 @@
 // `repose heap-angle` on a heap written as CSV: text, JSON and PNG outputs, and its errors.
 #include <catch2/catch.hpp>
 
+#include "tests/cli_support.h"
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -14,22 +16,8 @@
 
 namespace {
 
-struct Run {
-  int status;
-  std::string output;
-};
-
-Run run(const std::string& arguments) {
-  const std::string command = std::string(REPOSE_BINARY) + " " + arguments + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe);
-  std::string output;
-  char buffer[4096];
-  size_t n;
-  while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
-}
+using Run = repose::test::CliRun;
+Run run(const std::string& arguments) { return repose::test::run_repose(arguments); }
 
 // The number printed right after `label` in text.
 double number_after(const std::string& text, const std::string& label) {
