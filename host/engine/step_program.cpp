@@ -54,6 +54,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.inv_cell = float(1.0 / m.cell);
   p.skin = float(m.skin);
   p.half_skin_sq = float(0.25 * m.skin * m.skin);
+  p.air_drag = float(m.air_drag);
   return p;
 }
 
