@@ -27,7 +27,7 @@ const std::vector<ModelExtension>& model_extensions() {
        [](CaseSpec& s, const std::vector<double>& p) { drop_interaction(s).viscoelastic_time = p.at(0); }},
       {"air_drag",
        "quadratic air drag 0.5 rho C_d A v^2 on the body (A its projected area, rho = 1.2 kg/m^3)",
-       {{"drag_coefficient", "1", 1e-3, 5.0, true}},
+       {{"drag_coefficient", "1", 1e-3, 2.0, true}},  // 2: a flat plate broadside, the bluffest body
        {"rebound_height", "restitution", "height"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {

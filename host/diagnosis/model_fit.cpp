@@ -121,6 +121,32 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
     return std::make_pair(x[best], f[best]);
   };
 
+  // Golden-section search of one dimension over its whole range (the profile's inner fit).
+  auto golden = [&](std::vector<double> u, size_t d, int evaluations) {
+    const double r = 0.6180339887498949;
+    double a = 0, b = 1;
+    std::vector<double> p = u, q = u;
+    p[d] = b - r * (b - a);
+    q[d] = a + r * (b - a);
+    double fp = objective(p), fq = objective(q);
+    for (int i = 2; i < evaluations; ++i) {
+      if (fp < fq) {
+        b = q[d];
+        q = p;
+        fq = fp;
+        p[d] = b - r * (b - a);
+        fp = objective(p);
+      } else {
+        a = p[d];
+        p = q;
+        fp = fq;
+        q[d] = a + r * (b - a);
+        fq = objective(q);
+      }
+    }
+    return fp < fq ? std::make_pair(p, fp) : std::make_pair(q, fq);
+  };
+
   std::vector<size_t> all_dims(n);
   for (size_t k = 0; k < n; ++k) all_dims[k] = k;
   // Parameters without a start value: scan the first of them over its range, the started ones
@@ -133,10 +159,12 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
     for (size_t j = 0; j < held.size(); ++j) held[j] = j;
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> best_u = u0;
-    for (int i = 0; i <= 5; ++i) {
+    for (int i = 0; i <= 9; ++i) {
       std::vector<double> u = u0;
-      u[k] = i / 5.0;
-      auto [ui, fi] = held.empty() ? std::make_pair(u, objective(u)) : nelder_mead(u, held, 0.04, 8);
+      u[k] = i / 9.0;
+      auto [ui, fi] = held.empty()       ? std::make_pair(u, objective(u))
+                      : held.size() == 1 ? golden(u, held[0], 14)
+                                         : nelder_mead(u, held, 0.04, 12);
       if (fi < best) { best = fi; best_u = ui; }
     }
     u0 = best_u;

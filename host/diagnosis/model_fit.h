@@ -24,7 +24,7 @@ double chi_square(const Observations& obs, const std::vector<double>& predicted,
 // Fits `extension` (nullptr: the baseline) on the conditions marked in `use`, starting from
 // `start` (empty: the middle of each range, the case's restitution).
 ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
-                   const std::vector<double>& start = {}, double step = 0.15, int max_evaluations = 60,
+                   const std::vector<double>& start = {}, double step = 0.15, int max_evaluations = 80,
                    const std::vector<double>& target = {});
 
 }  // namespace repose
