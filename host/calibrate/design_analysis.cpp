@@ -43,10 +43,11 @@ void pool_replicates(const std::vector<std::vector<double>>& groups, double& sd,
   df = 0;
   for (const auto& g : groups) {
     if (g.size() < 2) continue;
+    // Deviations from the first value: identical replicates give exactly zero.
     double m = 0;
-    for (double v : g) m += v;
+    for (double v : g) m += v - g[0];
     m /= double(g.size());
-    for (double v : g) ss += (v - m) * (v - m);
+    for (double v : g) ss += (v - g[0] - m) * (v - g[0] - m);
     df += int(g.size()) - 1;
   }
   sd = df > 0 ? std::sqrt(ss / df) : 0;
@@ -171,11 +172,12 @@ void add_verification(const CampaignPlan& plan, const std::vector<RunRecord>& ru
   groups.push_back(v);
   pool_replicates(groups, res.replicate_sd, res.replicate_df);
   if (!v.empty()) {
-    double m = 0;
-    for (double e : v) m += e;
-    m /= double(v.size());
+    double d = 0;
+    for (double e : v) d += e - v[0];
+    d /= double(v.size());
     double ss = 0;
-    for (double e : v) ss += (e - m) * (e - m);
+    for (double e : v) ss += (e - v[0] - d) * (e - v[0] - d);
+    const double m = v[0] + d;
     res.verification_mean = m;
     res.verification_sd = v.size() > 1 ? std::sqrt(ss / double(v.size() - 1)) : 0;
     res.verification_error = (m - plan.measured) / plan.measured;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 
@@ -113,7 +114,9 @@ void RunStore::load_runs() {
     r.spec.seed = uint64_t(q.integer(4));
     auto factors = nlohmann::json::parse(q.text(5));
     for (const auto& name : factor_names_) r.spec.x.push_back(factors.at(name).get<double>());
-    for (auto& [k, v] : nlohmann::json::parse(q.text(6)).items()) r.responses[k] = v.get<double>();
+    const auto responses = nlohmann::json::parse(q.text(6));  // named: items() does not extend its life
+    for (auto& [k, v] : responses.items())
+      r.responses[k] = v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();  // NaN is stored as null
     r.wall_s = q.real(7);
     r.host = q.text(8);
     r.rank = int(q.integer(9));

@@ -63,7 +63,7 @@ TEST_CASE("the adaptive loop calibrates the drop test's e within 1 % in under 20
   test::write_text(dir + "/plan.toml",
                    "[campaign]\nexperiment = \"drop\"\ncase = \"" + test::drop_case_path() + "\"\nmode = \"adaptive\"\n"
                    "[response]\nname = \"restitution\"\nmeasured = 0.44\nmeasured_sd = 0.02\ntolerance = 0.01\n"
-                   "[set]\n\"experiment.drop_height\" = 0.1\n\"simulation.rayleigh_fraction\" = 0.2\n"
+                   "[set]\n\"experiment.drop_height\" = 0.1\n\"simulation.rayleigh_fraction\" = 0.03\n"
                    "[[factor]]\nname = \"e\"\nkey = \"interaction.stalk/steel.restitution\"\nlow = 0.2\nhigh = 0.8\n"
                    "[adaptive]\ninitial = 3\nbudget = 19\n[verification]\nruns = 2\n");
   auto run = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 2");
