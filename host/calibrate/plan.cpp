@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -335,8 +336,12 @@ std::vector<std::string> CampaignPlan::factor_names() const {
 }
 
 std::string exact_number(double value) {
+  // The shortest of %.15g .. %.17g that reads back as the same double: exact, yet "0.3".
   char text[40];
-  std::snprintf(text, sizeof text, "%.17g", value);
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
   return text;
 }
 
@@ -446,7 +451,7 @@ std::string canonical_plan_text(const CampaignPlan& p) {
     std::string rows;
     for (const auto& row : d.table_rows) {
       rows += rows.empty() ? "" : ";";
-      for (size_t j = 0; j < row.size(); ++j) rows += (j ? "," : "") + exact_number(row[j]);
+      for (size_t j = 0; j < row.size(); ++j) rows.append(j ? "," : "").append(exact_number(row[j]));
     }
     kv["design.table_rows"] = rows;
   } else {

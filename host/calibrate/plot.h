@@ -51,7 +51,7 @@ class Chart {
 
   int w_, h_;
   double x0_, x1_, y0_, y1_;
-  int left_ = 90, right_ = 20, top_ = 40, bottom_ = 60;
+  int left_ = 90, right_ = 20, top_ = 56, bottom_ = 60;
   std::string title_, x_label_, y_label_;
   std::vector<uint8_t> pixels_;
 };
