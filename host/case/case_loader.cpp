@@ -14,12 +14,15 @@
 #include <optional>
 #include <sstream>
 
+#include "case/body_pose.h"
 #include "case/case_override.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
 #include "case/spelling.h"
 #include "case/time_step.h"
+#include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
+#include "geometry/templates.h"
 
 namespace repose {
 namespace {
@@ -205,7 +208,7 @@ class CaseReader {
   CaseSpec read() {
     Section top(root_, "", file_);
     top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "material",
-                    "interaction", "sphere", "fill", "lattice", "wall"},
+                    "interaction", "template", "sphere", "clump", "fill", "lattice", "wall"},
                    "the case file");
     spec_.path = file_;
     read_simulation();
@@ -217,15 +220,17 @@ class CaseReader {
     if (spec_.materials.empty())
       throw CaseError({file_, "material", 0}, "the case has no [[material]]");
     for (const Section& s : entries("interaction")) read_interaction(s);
+    for (const Section& s : entries("template")) read_template(s);
     for (const Section& s : entries("sphere")) read_sphere(s);
+    for (const Section& s : entries("clump")) read_clump(s);
     int fill_index = 0;
     for (const Section& s : entries("fill")) read_fill(s, fill_index++);
     for (const Section& s : entries("lattice")) read_lattice(s);
     int wall_index = 0;
     for (const Section& s : entries("wall")) read_wall(s, wall_index++);
     check_experiment_walls();
-    if (spec_.spheres.empty() && spec_.fills.empty() && spec_.lattices.empty())
-      throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[fill]] or [[lattice]]");
+    if (spec_.spheres.empty() && spec_.bodies.empty() && spec_.fills.empty() && spec_.lattices.empty())
+      throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[clump]], [[fill]] or [[lattice]]");
     check_interactions_cover_use();
     expand_particles(spec_);
     check_time_step();
@@ -537,30 +542,120 @@ class CaseReader {
     spec_.spheres.push_back(sphere);
   }
 
+  // A number, or [min, max] with 0 < min <= max.
+  void positive_range(const Section& s, std::string_view k, double& low, double& high) {
+    const toml::node* node = s.table().get(k);
+    if (!node) return;
+    if (node->is_array()) {
+      const toml::array& range = *node->as_array();
+      if (range.size() != 2 || !range.get(0)->is_number() || !range.get(1)->is_number())
+        s.fail(k, "expected a number or [min, max]");
+      low = range.get(0)->value<double>().value();
+      high = range.get(1)->value<double>().value();
+      if (!(low > 0)) s.fail(k, "the smallest value " + format_number(low) + " must be greater than 0");
+      if (high < low) s.fail(k, "[min, max] has max < min");
+    } else {
+      low = high = positive(s, k, s.required_number(k));
+    }
+  }
+
+  int template_of(const Section& s) const {
+    std::string name = s.required_text("template", " (a [[template]] name)");
+    std::vector<std::string> names;
+    for (size_t t = 0; t < spec_.templates.size(); ++t) {
+      if (spec_.templates[t].name == name) return int(t);
+      names.push_back(spec_.templates[t].name);
+    }
+    if (names.empty()) s.fail("template", "no [[template]] named '" + name + "': the case defines none");
+    s.fail("template", "no [[template]] named '" + name + "' (templates: " + quoted_list(names) + ")" +
+                           did_you_mean(name, names));
+  }
+
+  // [[template]]: name, and builtin = "cabbage" (the shipped templates) or file = "x.csv"
+  // (sphere centres and radii, relative to the case file), optional mass (kg).
+  void read_template(const Section& s) {
+    s.allow_only({"name", "builtin", "file", "mass"}, "a [[template]]");
+    TemplateSpec t;
+    t.where = s.where();
+    t.name = s.required_text("name");
+    for (const TemplateSpec& other : spec_.templates)
+      if (other.name == t.name)
+        s.fail("name", "duplicate template '" + t.name + "' (first at line " + std::to_string(other.where.line) + ")");
+    if (s.has("builtin") == s.has("file"))
+      s.fail(s.has("file") ? "file" : "name", "give exactly one of builtin = \"NAME\" and file = \"PATH.csv\"");
+    if (auto builtin = s.text("builtin")) {
+      try {
+        t.clump = make_shipped_template(*builtin);
+      } catch (const std::invalid_argument& error) {
+        s.fail("builtin", error.what());
+      }
+    } else {
+      std::string file = *s.text("file");
+      std::filesystem::path path = std::filesystem::path(file_).parent_path() / file;
+      try {
+        t.clump.spheres = read_sphere_csv(path.string());
+      } catch (const std::exception& error) {
+        s.fail("file", error.what());
+      }
+    }
+    t.clump.name = t.name;
+    if (auto mass = s.number("mass")) t.mass = positive(s, "mass", *mass);
+    spec_.templates.push_back(std::move(t));
+  }
+
+  // [[clump]]: one body of a template at a given pose.
+  void read_clump(const Section& s) {
+    s.allow_only({"template", "material", "position", "orientation", "scale", "velocity", "angular_velocity"},
+                 "a [[clump]]");
+    BodySpec body;
+    body.where = s.where();
+    body.template_index = template_of(s);
+    body.material = material_of(s);
+    body.position = s.required_vector3("position");
+    if (auto scale = s.number("scale")) body.scale = positive(s, "scale", *scale);
+    if (const toml::node* node = s.table().get("orientation")) {
+      const toml::array* q = node->as_array();
+      if (!q || q->size() != 4 || !std::all_of(q->begin(), q->end(), [](const toml::node& n) { return n.is_number(); }))
+        s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
+      double norm = 0;
+      for (size_t k = 0; k < 4; ++k) {
+        body.orientation[k] = q->get(k)->value<double>().value();
+        norm += body.orientation[k] * body.orientation[k];
+      }
+      if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
+      for (double& c : body.orientation) c /= std::sqrt(norm);
+    }
+    body.velocity = s.vector3("velocity").value_or(Vec3d{});
+    body.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
+    note_use(particle_users_, body.material, s);
+    spec_.bodies.push_back(body);
+  }
+
   void read_fill(const Section& s, int index) {
-    s.allow_only({"material", "count", "radius", "box", "cylinder", "seed", "velocity"}, "a [[fill]]");
+    s.allow_only({"material", "count", "radius", "template", "scale", "box", "cylinder", "seed", "velocity"},
+                 "a [[fill]]");
     FillSpec fill;
     fill.where = s.where();
     fill.material = material_of(s);
     auto count = s.integer("count");
-    if (!count) s.missing("count", " (number of spheres)");
+    if (!count) s.missing("count", " (number of spheres or bodies)");
     if (*count <= 0 || *count > 100000000) s.fail("count", "must be between 1 and 1e8");
     fill.count = int(*count);
 
-    const toml::node* radius = s.table().get("radius");
-    if (!radius) s.missing("radius", " (m, or [min, max] for sizes uniform between them)");
-    if (radius->is_array()) {
-      const toml::array& range = *radius->as_array();
-      if (range.size() != 2 || !range.get(0)->is_number() || !range.get(1)->is_number())
-        s.fail("radius", "expected a number or [min, max]");
-      fill.radius_min = range.get(0)->value<double>().value();
-      fill.radius_max = range.get(1)->value<double>().value();
-      if (!(fill.radius_min > 0)) s.fail("radius", "the smallest radius " + format_number(fill.radius_min) + " must be greater than 0");
-      if (fill.radius_max < fill.radius_min) s.fail("radius", "[min, max] has max < min");
+    // The radius that must fit in the region: a sphere's, or a body's bounding sphere.
+    double reach = 0;
+    if (s.has("template")) {
+      if (s.has("radius")) s.fail("radius", "a template fill sizes its bodies with scale, not radius");
+      fill.template_index = template_of(s);
+      positive_range(s, "scale", fill.scale_min, fill.scale_max);
+      reach = bounding_radius(spec_.templates[size_t(fill.template_index)].clump) * fill.scale_max;
     } else {
-      fill.radius_min = fill.radius_max = positive(s, "radius", s.required_number("radius"));
+      if (s.has("scale")) s.fail("scale", "scale applies to template fills (give template = \"NAME\")");
+      if (!s.has("radius")) s.missing("radius", " (m, or [min, max] for sizes uniform between them)");
+      positive_range(s, "radius", fill.radius_min, fill.radius_max);
+      reach = fill.radius_max;
     }
-    double diameter = 2 * fill.radius_max;
+    double diameter = 2 * reach;
 
     auto box = s.sub("box");
     auto cylinder = s.sub("cylinder");
@@ -583,9 +678,9 @@ class CaseReader {
       fill.cyl_axis = unit(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
       fill.cyl_radius = cylinder->required_number("radius", " (m)");
       fill.cyl_height = cylinder->required_number("height", " (m)");
-      if (!(fill.cyl_radius >= fill.radius_max))
-        cylinder->fail("radius", format_number(fill.cyl_radius) + " m is less than a sphere radius " +
-                                     format_number(fill.radius_max) + " m");
+      if (!(fill.cyl_radius >= reach))
+        cylinder->fail("radius", format_number(fill.cyl_radius) + " m is less than a particle radius " +
+                                     format_number(reach) + " m");
       if (!(fill.cyl_height >= diameter))
         cylinder->fail("height", format_number(fill.cyl_height) + " m is less than a sphere diameter " +
                                      format_number(diameter) + " m");
@@ -805,6 +900,7 @@ class CaseReader {
   size_t particles_of(int material) const {
     size_t count = 0;
     for (const SphereSpec& sphere : spec_.spheres) count += sphere.material == material;
+    for (const BodySpec& body : spec_.bodies) count += body.material == material;
     for (const FillSpec& fill : spec_.fills) count += fill.material == material ? size_t(fill.count) : 0;
     for (const LatticeSpec& lattice : spec_.lattices)
       if (lattice.material == material)
@@ -815,12 +911,12 @@ class CaseReader {
   void check_time_step() {
     RayleighLimit limit = rayleigh_limit(spec_);
     if (!spec_.time.dt || *spec_.time.dt <= limit.time) return;
-    const SphereSpec& sphere = spec_.spheres[size_t(limit.sphere)];
     throw CaseError(spec_.time.where,
                     format_number(*spec_.time.dt) + " s is above the Rayleigh time " + format_number(limit.time) +
-                        " s set by " + sphere.where.key + " (line " + std::to_string(sphere.where.line) +
-                        ", radius " + format_number(sphere.radius) + " m, material '" +
-                        spec_.materials[size_t(sphere.material)].name +
+                        " s set by " + limit.where.key + " (line " + std::to_string(limit.where.line) +
+                        ", " + (limit.body >= 0 ? "sub-sphere radius " : "radius ") +
+                        format_number(limit.radius) + " m, material '" +
+                        spec_.materials[size_t(limit.material)].name +
                         "'), where the contact law is unstable; lower dt or give rayleigh_fraction "
                         "(0.1 to 0.4 is usual)");
   }

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/clump.h"
+
 namespace repose {
 
 using Vec3d = std::array<double, 3>;
@@ -47,6 +49,28 @@ struct SphereSpec {
   SourceRef where;  // the [[sphere]], [[fill]] or [[lattice]] entry that made it
 };
 
+// A clump template ([[template]]): rigid sub-spheres in the template frame, from one of the
+// shipped templates or a sphere CSV. Mass properties come from the union volume and the body's
+// material density, or from an explicit mass (the union's centre and inertia scaled to it).
+struct TemplateSpec {
+  std::string name;
+  ClumpTemplate clump;
+  std::optional<double> mass;  // kg at scale 1
+  SourceRef where;
+};
+
+// One rigid body of a template, placed by a [[clump]] or by a template [[fill]].
+struct BodySpec {
+  int template_index = 0;
+  int material = 0;
+  double scale = 1;                               // lengths x scale (mass x scale^3)
+  Vec3d position{};                               // where the template's origin goes
+  std::array<double, 4> orientation{1, 0, 0, 0};  // unit quaternion (w, x, y, z), template -> world
+  Vec3d velocity{};                               // of the centre of mass
+  Vec3d angular_velocity{};
+  SourceRef where;
+};
+
 // A region filled at random without overlap (random sequential addition from a seed).
 struct FillSpec {
   enum class Shape { Box, Cylinder } shape = Shape::Box;
@@ -55,6 +79,8 @@ struct FillSpec {
   double cyl_radius = 0, cyl_height = 0;      //           radius and height
   int count = 0;
   double radius_min = 0, radius_max = 0;  // equal for one size; uniform in [min, max] otherwise
+  int template_index = -1;                // >= 0: bodies of this template at random orientations,
+  double scale_min = 1, scale_max = 1;    //        scaled uniformly in [min, max]
   int material = 0;
   uint64_t seed = 0;
   Vec3d velocity{};
@@ -189,6 +215,8 @@ struct CaseSpec {
   std::vector<Material> materials;
   std::vector<Interaction> interactions;
   std::vector<SphereSpec> spheres;  // explicit [[sphere]] entries first, then expanded fills/lattices
+  std::vector<TemplateSpec> templates;
+  std::vector<BodySpec> bodies;     // explicit [[clump]] entries first, then template fills
   std::vector<FillSpec> fills;
   std::vector<LatticeSpec> lattices;
   std::vector<WallSpec> walls;

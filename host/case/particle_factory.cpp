@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 
+#include "case/body_pose.h"
 #include "case/case_error.h"
 #include "case/sphere_grid.h"
 
@@ -137,25 +138,55 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
   }
 }
 
-void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
-  std::mt19937_64 engine(fill.seed);
-  auto uniform = [&engine] { return unit_interval(engine()); };
-
-  bool box = fill.shape == FillSpec::Shape::Box;
+// A fill's region and random points in it, keeping a margin from its boundary.
+struct FillRegion {
+  const FillSpec& fill;
+  bool box;
   Vec3d e1{}, e2{};
-  if (!box) perpendicular_basis(fill.cyl_axis, e1, e2);
+  Vec3d lo{}, hi{};  // bounding box, for choosing which existing spheres can interfere
 
-  // Bounding box of the region, for choosing which existing spheres can interfere.
-  Vec3d lo = fill.box_min, hi = fill.box_max;
-  if (!box) {
+  explicit FillRegion(const FillSpec& f) : fill(f), box(f.shape == FillSpec::Shape::Box) {
+    lo = fill.box_min;
+    hi = fill.box_max;
+    if (box) return;
+    perpendicular_basis(fill.cyl_axis, e1, e2);
     for (int axis = 0; axis < 3; ++axis) {
       double top = fill.cyl_base[axis] + fill.cyl_axis[axis] * fill.cyl_height;
       lo[axis] = std::min(fill.cyl_base[axis], top) - fill.cyl_radius;
       hi[axis] = std::max(fill.cyl_base[axis], top) + fill.cyl_radius;
     }
   }
+
+  template <class Uniform>
+  Vec3d random_point(double margin, Uniform& uniform) const {
+    Vec3d centre{};
+    if (box) {
+      for (int axis = 0; axis < 3; ++axis) {
+        double span = fill.box_max[axis] - fill.box_min[axis] - 2 * margin;
+        centre[axis] = fill.box_min[axis] + margin + span * uniform();
+      }
+      return centre;
+    }
+    double along = margin + (fill.cyl_height - 2 * margin) * uniform();
+    double a, b;  // uniform in the unit disc by rejection from the square
+    do {
+      a = 2 * uniform() - 1;
+      b = 2 * uniform() - 1;
+    } while (a * a + b * b > 1);
+    double reach = fill.cyl_radius - margin;
+    for (int axis = 0; axis < 3; ++axis)
+      centre[axis] = fill.cyl_base[axis] + fill.cyl_axis[axis] * along + e1[axis] * (reach * a) +
+                     e2[axis] * (reach * b);
+    return centre;
+  }
+};
+
+void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
+  std::mt19937_64 engine(fill.seed);
+  auto uniform = [&engine] { return unit_interval(engine()); };
+  FillRegion region(fill);
   std::vector<int> ids;
-  SphereGrid grid = grid_near(spheres, lo, hi, fill.radius_max, ids);
+  SphereGrid grid = grid_near(spheres, region.lo, region.hi, fill.radius_max, ids);
 
   for (int placed = 0; placed < fill.count; ++placed) {
     double radius = fill.radius_min;
@@ -164,23 +195,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     bool found = false;
     Vec3d centre{};
     for (int attempt = 0; attempt < kFillTriesPerSphere && !found; ++attempt) {
-      if (box) {
-        for (int axis = 0; axis < 3; ++axis) {
-          double span = fill.box_max[axis] - fill.box_min[axis] - 2 * radius;
-          centre[axis] = fill.box_min[axis] + radius + span * uniform();
-        }
-      } else {
-        double along = radius + (fill.cyl_height - 2 * radius) * uniform();
-        double a, b;  // uniform in the unit disc by rejection from the square
-        do {
-          a = 2 * uniform() - 1;
-          b = 2 * uniform() - 1;
-        } while (a * a + b * b > 1);
-        double reach = fill.cyl_radius - radius;
-        for (int axis = 0; axis < 3; ++axis)
-          centre[axis] = fill.cyl_base[axis] + fill.cyl_axis[axis] * along +
-                         e1[axis] * (reach * a) + e2[axis] * (reach * b);
-      }
+      centre = region.random_point(radius, uniform);
       found = grid.find_overlap(centre, radius) < 0;
     }
     if (!found)
@@ -201,10 +216,60 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
   }
 }
 
+void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
+  const TemplateSpec& templ = spec.templates.at(size_t(fill.template_index));
+  std::mt19937_64 engine(fill.seed);
+  auto uniform = [&engine] { return unit_interval(engine()); };
+  FillRegion region(fill);
+  double bound = bounding_radius(templ.clump);
+  double largest_sub = 0;
+  for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius);
+
+  std::vector<SphereSpec> occupied = spec.spheres;
+  for (const BodySpec& body : spec.bodies) {
+    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
+    occupied.insert(occupied.end(), subs.begin(), subs.end());
+  }
+  std::vector<int> ids;
+  SphereGrid grid = grid_near(occupied, region.lo, region.hi, largest_sub * fill.scale_max, ids);
+
+  for (int placed = 0; placed < fill.count; ++placed) {
+    BodySpec body;
+    body.template_index = fill.template_index;
+    body.material = fill.material;
+    body.velocity = fill.velocity;
+    body.where = fill.where;
+    body.scale = fill.scale_min;
+    if (fill.scale_max > fill.scale_min) body.scale += (fill.scale_max - fill.scale_min) * uniform();
+    bool found = false;
+    std::vector<SphereSpec> subs;
+    for (int attempt = 0; attempt < kFillTriesPerBody && !found; ++attempt) {
+      body.orientation = random_orientation(uniform);
+      body.position = region.random_point(bound * body.scale, uniform);
+      subs = body_spheres(body, templ);
+      found = std::all_of(subs.begin(), subs.end(), [&](const SphereSpec& s) {
+        return grid.find_overlap(s.position, s.radius) < 0;
+      });
+    }
+    if (!found)
+      throw CaseError(fill.where,
+                      "only " + std::to_string(placed) + " of the " + std::to_string(fill.count) +
+                          " '" + templ.name + "' bodies (count) fit without overlap: body " +
+                          std::to_string(placed + 1) + " found no free place in " +
+                          std::to_string(kFillTriesPerBody) +
+                          " random poses; enlarge the region or lower count");
+    for (const SphereSpec& s : subs) grid.insert(s.position, s.radius);
+    spec.bodies.push_back(body);
+  }
+}
+
 void expand_particles(CaseSpec& spec) {
   check_no_overlaps(spec.spheres);
   for (const LatticeSpec& lattice : spec.lattices) append_lattice(lattice, spec.spheres);
-  for (const FillSpec& fill : spec.fills) append_fill(fill, spec.spheres);
+  for (const FillSpec& fill : spec.fills)
+    if (fill.template_index < 0) append_fill(fill, spec.spheres);
+  for (const FillSpec& fill : spec.fills)
+    if (fill.template_index >= 0) append_body_fill(fill, spec);
 }
 
 }  // namespace repose

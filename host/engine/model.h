@@ -34,6 +34,11 @@ struct Model {
   std::vector<gpu::vec4> pos, vel, omega;  // w: radius, 1/mass, 1/inertia
   std::vector<uint32_t> material;
   std::vector<gpu::PairParams> pairs;      // [M*M]
+  // Rigid bodies (clumps). Empty when every particle is a free sphere; otherwise every particle
+  // is a sub-sphere of exactly one body (a lone sphere is a one-sphere body), bodies' spheres
+  // contiguous and in body order, and pos/vel/omega above are derived by body_place.
+  std::vector<gpu::Body> bodies;
+  std::vector<gpu::SubSphere> subs;
   std::vector<ModelWall> walls;
   double dt = 0;
   double rayleigh_time = 0;
@@ -43,6 +48,7 @@ struct Model {
   Vec3d gravity{};
   Integrator integrator = Integrator::VelocityVerlet;
   uint32_t flags = 0;            // contact options (gpu::kFlag...)
+  double large_radius = 3.0e38;  // particles above it use the large bucket (neighbour.h)
   double skin = 0;
   double cell = 0;               // hash cell edge
   uint32_t table_size = 0;       // hash buckets

@@ -59,6 +59,7 @@ class Simulation {
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
   Model model_;
+  ConstantData constants_;
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;
