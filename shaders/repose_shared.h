@@ -83,6 +83,18 @@ REPOSE_CONST kScanTransposed = 2;
 
 REPOSE_CONST kWallPlane = 0;
 REPOSE_CONST kWallCylinder = 1;
+REPOSE_CONST kWallRectangle = 2;
+REPOSE_CONST kWallTriangle = 3;
+// Which part of a rectangle or triangle is closest to a sphere (walls.h).
+REPOSE_CONST kFeatureFace = 0;
+REPOSE_CONST kFeatureEdge = 1;
+REPOSE_CONST kFeatureVertex = 2;
+// Two triangles of a mesh are coplanar (one flat patch) when |n1 . n2| reaches this (0.26 deg).
+#ifdef __cplusplus
+inline constexpr float kCoplanarCos = 0.99999f;
+#else
+const float kCoplanarCos = 0.99999f;
+#endif
 
 REPOSE_CONST kDefaultWorkgroup = 64;
 REPOSE_CONST kScanWorkgroup = 256;      // threads of the single-group scan
@@ -96,12 +108,16 @@ struct PairParams {
 
 // One wall at one step of a batch; the host evaluates prescribed motion.
 struct WallState {
-  vec4 p0;     // plane: point;  cylinder: base centre
-  vec4 p1;     // plane: unit normal into the domain; cylinder: unit axis, w radius
+  vec4 p0;     // plane: point;  cylinder: base centre;  rectangle: centre;  triangle: vertex a
+  vec4 p1;     // plane, rectangle: unit normal into the domain; cylinder: unit axis, w radius;
+               // triangle: vertex b
   vec4 vel;    // xyz translational velocity, w cylinder height
   vec4 omega;  // xyz angular velocity about `centre`
   vec4 centre; // xyz a point on the rotation axis
-  uvec4 info;  // x type, y material, zw unused
+  uvec4 info;  // x type, y material, z mesh id (triangles), w unused
+  vec4 p2;     // rectangle: unit in-plane axis u, w half extent along u;  triangle: vertex c
+  vec4 p3;     // rectangle: unit axis v, w half extent along v;  triangle: unit normal
+  uvec4 topo;  // triangle: the mesh's vertex ids of a, b, c (shared corners, walls.h); w unused
 };
 
 // A rigid body (a clump of sub-spheres; with kFlagBodies a lone sphere is a one-sphere body).
@@ -157,7 +173,7 @@ struct ScanPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(PairParams) == 32);
-static_assert(sizeof(WallState) == 96);
+static_assert(sizeof(WallState) == 144);
 static_assert(sizeof(Body) == 144);
 static_assert(sizeof(SubSphere) == 32);
 static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");

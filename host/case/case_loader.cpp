@@ -21,6 +21,7 @@
 #include "case/spelling.h"
 #include "case/time_step.h"
 #include "geometry/sphere_csv.h"
+#include "geometry/stl.h"
 #include "geometry/templates.h"
 
 namespace repose {
@@ -227,6 +228,7 @@ class CaseReader {
     for (const Section& s : entries("lattice")) read_lattice(s);
     int wall_index = 0;
     for (const Section& s : entries("wall")) read_wall(s, wall_index++);
+    check_experiment_walls();
     if (spec_.spheres.empty() && spec_.bodies.empty() && spec_.fills.empty() && spec_.lattices.empty())
       throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[clump]], [[fill]] or [[lattice]]");
     check_interactions_cover_use();
@@ -342,17 +344,63 @@ class CaseReader {
   void read_experiment() {
     auto s = table("experiment");
     if (!s) return;
-    s->allow_only({"type", "drop_height", "camera_fps", "max_time"}, "[experiment]");
-    spec_.experiment.where = s->where();
-    if (auto type = s->text("type")) {
-      if (*type != "drop") s->fail("type", "unknown experiment '" + *type + "' (drop)");
-      spec_.experiment.type = *type;
-    } else {
-      s->missing("type", " (drop)");
+    ExperimentSpec& ex = spec_.experiment;
+    std::vector<std::string> types{"drop", "slide", "roll", "repose"};
+    std::string type = s->required_text("type", " (drop, slide, roll or repose)");
+    if (std::find(types.begin(), types.end(), type) == types.end())
+      s->fail("type", "unknown experiment '" + type + "' (drop, slide, roll or repose)" + did_you_mean(type, types));
+    ex.type = type;
+    std::vector<std::string> allowed{"type", "max_time"};
+    std::vector<std::string> tilt{"plate", "tilt_rate", "tilt_axis", "settle_time", "onset_distance", "max_angle"};
+    if (type == "drop") allowed.insert(allowed.end(), {"drop_height", "camera_fps"});
+    if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
+    if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
+    if (type == "repose")
+      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "heap_side", "axisymmetric", "floor_z"});
+    s->allow_only(allowed, "[experiment] of type '" + type + "'");
+    ex.where = s->where();
+    if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
+    if (auto h = s->number("drop_height")) ex.drop_height = positive(*s, "drop_height", *h);
+    if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
+    ex.plate = s->text("plate").value_or("");
+    if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
+    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit(*s, "tilt_axis", *a);
+    if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
+    if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
+    if (auto a = s->number("max_angle")) {
+      if (!(*a > 0 && *a < 90)) s->fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
+      ex.max_angle_deg = *a;
     }
-    if (auto h = s->number("drop_height")) spec_.experiment.drop_height = positive(*s, "drop_height", *h);
-    if (auto f = s->number("camera_fps")) spec_.experiment.camera_fps = positive(*s, "camera_fps", *f);
-    if (auto t = s->number("max_time")) spec_.experiment.max_time = positive(*s, "max_time", *t);
+    ex.method = s->choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
+    if (auto b = s->number("incline_angle")) {
+      if (!(*b > 0 && *b < 60)) s->fail("incline_angle", format_number(*b) + " must lie between 0 and 60 degrees");
+      ex.incline_deg = *b;
+    }
+    if (auto d = s->number("slope_distance")) ex.slope_distance = positive(*s, "slope_distance", *d);
+    if (auto v = s->number("stop_speed")) ex.stop_speed = positive(*s, "stop_speed", *v);
+    ex.lift_wall = s->text("lift_wall").value_or("");
+    if (type == "repose" && ex.lift_wall.empty())
+      s->missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
+    if (auto t = s->number("lift_end")) ex.lift_end = non_negative(*s, "lift_end", *t);
+    if (auto e = s->number("settle_energy")) ex.settle_energy = positive(*s, "settle_energy", *e);
+    ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
+    ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
+    ex.axisymmetric = s->boolean("axisymmetric").value_or(false);
+    if (auto z = s->number("floor_z")) ex.heap_floor_z = *z;
+  }
+
+  // [experiment] names walls; they must exist (checked once all walls are read).
+  void check_experiment_walls() {
+    const ExperimentSpec& ex = spec_.experiment;
+    auto exists = [&](const std::string& name) {
+      return std::any_of(spec_.walls.begin(), spec_.walls.end(), [&](const WallSpec& w) { return w.name == name; });
+    };
+    std::vector<std::string> names;
+    for (const WallSpec& w : spec_.walls) names.push_back(w.name);
+    for (const auto& [key, name] : {std::pair<std::string, std::string>{"plate", ex.plate}, {"lift_wall", ex.lift_wall}})
+      if (!name.empty() && !exists(name))
+        throw CaseError({file_, "experiment." + key, ex.where.line},
+                        "no [[wall]] is named '" + name + "'" + did_you_mean(name, names));
   }
 
   void read_material(const Section& s) {
@@ -737,23 +785,29 @@ class CaseReader {
     if (!s.has("type")) {
       // Without a type, a misspelt "type" is likelier than a missing one: suggest among all keys.
       s.allow_only({"name", "type", "material", "motion", "point", "normal", "min", "max", "base", "axis",
-                    "radius", "height"},
+                    "radius", "height", "open", "centre", "edge_axis", "size", "file", "scale", "offset"},
                    "a [[wall]]");
-      s.missing("type", " ('plane', 'box' or 'cylinder')");
+      s.missing("type", " ('plane', 'box', 'cylinder', 'rectangle' or 'mesh')");
     }
     WallSpec wall;
     wall.type = s.choice<WallSpec::Type>(
-        "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder}},
+        "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder},
+                 {"rectangle", WallSpec::Type::Rectangle}, {"mesh", WallSpec::Type::Mesh}},
         WallSpec::Type::Plane);
     std::vector<std::string> allowed{"name", "type", "material", "motion"};
     const char* kind = "";
     switch (wall.type) {
       case WallSpec::Type::Plane: allowed.insert(allowed.end(), {"point", "normal"}); kind = "a plane [[wall]]"; break;
-      case WallSpec::Type::Box: allowed.insert(allowed.end(), {"min", "max"}); kind = "a box [[wall]]"; break;
+      case WallSpec::Type::Box: allowed.insert(allowed.end(), {"min", "max", "open"}); kind = "a box [[wall]]"; break;
       case WallSpec::Type::Cylinder:
         allowed.insert(allowed.end(), {"base", "axis", "radius", "height"});
         kind = "a cylinder [[wall]]";
         break;
+      case WallSpec::Type::Rectangle:
+        allowed.insert(allowed.end(), {"centre", "normal", "edge_axis", "size"});
+        kind = "a rectangle [[wall]]";
+        break;
+      case WallSpec::Type::Mesh: allowed.insert(allowed.end(), {"file", "scale", "offset"}); kind = "a mesh [[wall]]"; break;
     }
     s.allow_only(allowed, kind);
     wall.where = s.where();
@@ -779,7 +833,10 @@ class CaseReader {
         for (int axis = 0; axis < 3; ++axis)
           if (!(wall.box_max[axis] > wall.box_min[axis]))
             s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+        wall.open_faces = box_open_faces(s);
         break;
+      case WallSpec::Type::Rectangle: read_rectangle(s, wall); break;
+      case WallSpec::Type::Mesh: read_mesh(s, wall); break;
       case WallSpec::Type::Cylinder:
         wall.base = s.required_vector3("base");
         wall.axis = unit(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
@@ -790,6 +847,66 @@ class CaseReader {
     if (auto motion = s.sub("motion")) read_motion(*motion, wall.motion);
     note_use(wall_users_, wall.material, s);
     spec_.walls.push_back(wall);
+  }
+
+  // `open = ["zmax"]`: faces of a box left out.
+  std::vector<std::string> box_open_faces(const Section& s) {
+    const toml::node* node = s.table().get("open");
+    if (!node) return {};
+    const std::vector<std::string> faces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    const toml::array* array = node->as_array();
+    if (!array) s.wrong_type("open", "an array of face names such as [\"zmax\"]");
+    std::vector<std::string> open;
+    for (const toml::node& element : *array) {
+      if (!element.is_string()) s.fail("open", "expected face names (strings) such as \"zmax\"");
+      std::string face = element.as_string()->get();
+      if (std::find(faces.begin(), faces.end(), face) == faces.end())
+        s.fail("open", "'" + face + "' is not one of " + quoted_list(faces) + did_you_mean(face, faces));
+      open.push_back(face);
+    }
+    return open;
+  }
+
+  void read_rectangle(const Section& s, WallSpec& wall) {
+    wall.point = s.required_vector3("centre");
+    wall.normal = unit(s, "normal", s.required_vector3("normal"));
+    Vec3d u = unit(s, "edge_axis", s.required_vector3("edge_axis"));
+    double along = u[0] * wall.normal[0] + u[1] * wall.normal[1] + u[2] * wall.normal[2];
+    if (std::abs(along) > 1e-6)
+      s.fail("edge_axis", "must be perpendicular to the normal (their dot product is " + format_number(along) + ")");
+    wall.edge_axis = u;
+    const toml::node* node = s.table().get("size");
+    if (!node) s.missing("size", " ([length along edge_axis, length across], m)");
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 2 || !array->get(0)->is_number() || !array->get(1)->is_number())
+      s.fail("size", "expected [length along edge_axis, length across] in m");
+    for (size_t k = 0; k < 2; ++k) {
+      const toml::node& e = *array->get(k);
+      wall.size[k] = e.is_integer() ? double(e.as_integer()->get()) : e.as_floating_point()->get();
+      if (!(wall.size[k] > 0) || !std::isfinite(wall.size[k]))
+        s.fail("size", "side lengths must be positive, got " + format_number(wall.size[k]));
+    }
+  }
+
+  // The STL is read here, so that a missing, broken or empty file is reported as a case error.
+  void read_mesh(const Section& s, WallSpec& wall) {
+    std::string file = s.required_text("file", " (an STL file, relative to the case)");
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = std::filesystem::path(file_).parent_path() / path;
+    double scale = positive(s, "scale", s.number("scale").value_or(1.0));
+    Vec3d offset = s.vector3("offset").value_or(Vec3d{0, 0, 0});
+    StlFile stl;
+    try {
+      stl = read_stl(path.string());
+    } catch (const std::exception& e) {
+      s.fail("file", e.what());
+    }
+    auto mesh = std::make_shared<WallMesh>();
+    mesh->file = path.string();
+    for (const auto& v : stl.mesh.vertices)
+      mesh->vertices.push_back({v.x * scale + offset[0], v.y * scale + offset[1], v.z * scale + offset[2]});
+    mesh->triangles = stl.mesh.triangles;
+    wall.mesh = std::move(mesh);
   }
 
   void read_motion(const Section& s, WallMotion& motion) {

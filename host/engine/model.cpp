@@ -173,16 +173,43 @@ gpu::WallState Model::wall_state(size_t w, double t) const {
   Vec3d axis = dot(m.rotation_axis, m.rotation_axis) > 0 ? unit(m.rotation_axis) : Vec3d{0, 0, 1};
   double angle = m.angular_rate * active;
   Vec3d centre = add(m.rotation_axis_point, shift);
-  Vec3d p0 = add(centre, rotate_about(sub(mw.p0, m.rotation_axis_point), axis, angle));
-  Vec3d p1 = rotate_about(mw.p1, axis, angle);
+  auto point = [&](Vec3d p) { return add(centre, rotate_about(sub(p, m.rotation_axis_point), axis, angle)); };
+  auto direction = [&](Vec3d d) { return rotate_about(d, axis, angle); };
+  bool triangle = mw.kind == gpu::kWallTriangle;
   gpu::WallState s;
-  s.p0 = v4(p0, 0);
-  s.p1 = v4(p1, mw.kind == gpu::kWallCylinder ? mw.radius : 0.0);
+  s.p0 = v4(point(mw.p0), 0);
+  s.p1 = v4(triangle ? point(mw.p1) : direction(mw.p1), mw.kind == gpu::kWallCylinder ? mw.radius : 0.0);
   s.vel = v4(moving ? m.velocity : Vec3d{0, 0, 0}, mw.height);
   s.omega = v4(moving ? mul(axis, m.angular_rate) : Vec3d{0, 0, 0}, 0);
   s.centre = v4(centre, 0);
-  s.info = gpu::uvec4(mw.kind, mw.material, 0u, 0u);
+  s.info = gpu::uvec4(mw.kind, mw.material, mw.mesh_id, 0u);
+  s.p2 = v4(triangle ? point(mw.p2) : direction(mw.p2), mw.half_u);
+  s.p3 = v4(direction(mw.p3), mw.half_v);
+  s.topo = gpu::uvec4(mw.vertex_ids[0], mw.vertex_ids[1], mw.vertex_ids[2], 0u);
   return s;
+}
+
+std::vector<size_t> Model::wall_groups() const {
+  std::vector<size_t> group;
+  std::vector<std::string> names;
+  for (const auto& w : walls) {
+    // Mesh triangles share their wall's name; box faces keep their own (base.xmin ...).
+    auto it = std::find(names.begin(), names.end(), w.name);
+    if (it == names.end()) {
+      names.push_back(w.name);
+      group.push_back(names.size() - 1);
+    } else {
+      group.push_back(size_t(it - names.begin()));
+    }
+  }
+  return group;
+}
+
+std::vector<std::string> Model::wall_group_names() const {
+  std::vector<std::string> names;
+  for (const auto& w : walls)
+    if (std::find(names.begin(), names.end(), w.name) == names.end()) names.push_back(w.name);
+  return names;
 }
 
 Model build_model(const CaseSpec& spec) {
@@ -238,16 +265,55 @@ Model build_model(const CaseSpec& spec) {
       mw.spec_index = static_cast<int>(wi);
       m.walls.push_back(mw);
     };
+    auto face = [&](Vec3d point, Vec3d normal, const std::string& suffix) {
+      if (std::find(w.open_faces.begin(), w.open_faces.end(), suffix) == w.open_faces.end())
+        plane(point, normal, base + "." + suffix);
+    };
     switch (w.type) {
       case WallSpec::Type::Plane: plane(w.point, w.normal, base); break;
       case WallSpec::Type::Box: {
-        // Six inward-facing planes; particles live inside.
-        plane(w.box_min, {1, 0, 0}, base + ".xmin");
-        plane(w.box_max, {-1, 0, 0}, base + ".xmax");
-        plane(w.box_min, {0, 1, 0}, base + ".ymin");
-        plane(w.box_max, {0, -1, 0}, base + ".ymax");
-        plane(w.box_min, {0, 0, 1}, base + ".zmin");
-        plane(w.box_max, {0, 0, -1}, base + ".zmax");
+        // Six inward-facing planes (less the open ones); particles live inside.
+        face(w.box_min, {1, 0, 0}, "xmin");
+        face(w.box_max, {-1, 0, 0}, "xmax");
+        face(w.box_min, {0, 1, 0}, "ymin");
+        face(w.box_max, {0, -1, 0}, "ymax");
+        face(w.box_min, {0, 0, 1}, "zmin");
+        face(w.box_max, {0, 0, -1}, "zmax");
+        break;
+      }
+      case WallSpec::Type::Rectangle: {
+        ModelWall mw;
+        mw.kind = gpu::kWallRectangle;
+        mw.material = static_cast<uint32_t>(w.material);
+        mw.p0 = w.point;
+        mw.p1 = unit(w.normal);
+        mw.p2 = unit(sub(w.edge_axis, mul(mw.p1, dot(w.edge_axis, mw.p1))));
+        mw.p3 = cross(mw.p1, mw.p2);
+        mw.half_u = 0.5 * w.size[0];
+        mw.half_v = 0.5 * w.size[1];
+        mw.motion = w.motion;
+        mw.name = base;
+        mw.spec_index = static_cast<int>(wi);
+        m.walls.push_back(mw);
+        break;
+      }
+      case WallSpec::Type::Mesh: {
+        // One wall row per triangle; vertex ids let the kernels find shared corners.
+        for (const auto& tri : w.mesh->triangles) {
+          ModelWall mw;
+          mw.kind = gpu::kWallTriangle;
+          mw.material = static_cast<uint32_t>(w.material);
+          mw.p0 = w.mesh->vertices[tri[0]];
+          mw.p1 = w.mesh->vertices[tri[1]];
+          mw.p2 = w.mesh->vertices[tri[2]];
+          mw.p3 = unit(cross(sub(mw.p1, mw.p0), sub(mw.p2, mw.p0)));
+          mw.mesh_id = static_cast<uint32_t>(wi);
+          mw.vertex_ids = tri;
+          mw.motion = w.motion;
+          mw.name = base;
+          mw.spec_index = static_cast<int>(wi);
+          m.walls.push_back(mw);
+        }
         break;
       }
       case WallSpec::Type::Cylinder: {
@@ -294,8 +360,10 @@ Model build_model(const CaseSpec& spec) {
     extent = std::max(extent, std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z));
   double wall_speed = 0;
   for (const auto& w : m.walls) {
-    double lever = extent + std::sqrt(dot(w.motion.rotation_axis_point, w.motion.rotation_axis_point)) +
-                   w.radius + w.height;
+    double reach = w.radius + w.height + std::hypot(w.half_u, w.half_v);
+    for (const Vec3d& p : {w.p0, w.p1, w.p2})
+      reach = std::max(reach, std::sqrt(dot(p, p)));
+    double lever = extent + std::sqrt(dot(w.motion.rotation_axis_point, w.motion.rotation_axis_point)) + reach;
     wall_speed = std::max(wall_speed, std::sqrt(dot(w.motion.velocity, w.motion.velocity)) +
                                           std::abs(w.motion.angular_rate) * lever);
   }

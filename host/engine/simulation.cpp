@@ -145,9 +145,15 @@ EnergySummary Simulation::kinetic_energy() const {
 std::vector<WallForce> Simulation::wall_forces() {
   gpu::SimPush push = base_push(model_, layout_, variant_);
   auto f = backend_->wall_forces(push);
+  // One entry per named wall: a mesh's triangles are summed in wall order (fixed, so repeatable).
   std::vector<WallForce> out;
-  for (size_t w = 0; w < f.size(); ++w)
-    out.push_back({model_.walls[w].name, f[w].x, f[w].y, f[w].z});
+  for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0});
+  auto group = model_.wall_groups();
+  for (size_t w = 0; w < f.size(); ++w) {
+    out[group[w]].fx += f[w].x;
+    out[group[w]].fy += f[w].y;
+    out[group[w]].fz += f[w].z;
+  }
   return out;
 }
 
