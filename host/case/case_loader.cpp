@@ -603,6 +603,24 @@ class CaseReader {
     spec_.templates.push_back(std::move(t));
   }
 
+  // `orientation = [w, x, y, z]`, normalised; the identity when absent.
+  std::array<double, 4> orientation_of(const Section& s) const {
+    std::array<double, 4> q{1, 0, 0, 0};
+    const toml::node* node = s.table().get("orientation");
+    if (!node) return q;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& n) { return n.is_number(); }))
+      s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
+    double norm = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      q[k] = a->get(k)->value<double>().value();
+      norm += q[k] * q[k];
+    }
+    if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
+    for (double& c : q) c /= std::sqrt(norm);
+    return q;
+  }
+
   // [[clump]]: one body of a template at a given pose.
   void read_clump(const Section& s) {
     s.allow_only({"template", "material", "position", "orientation", "scale", "velocity", "angular_velocity"},
@@ -613,18 +631,7 @@ class CaseReader {
     body.material = material_of(s);
     body.position = s.required_vector3("position");
     if (auto scale = s.number("scale")) body.scale = positive(s, "scale", *scale);
-    if (const toml::node* node = s.table().get("orientation")) {
-      const toml::array* q = node->as_array();
-      if (!q || q->size() != 4 || !std::all_of(q->begin(), q->end(), [](const toml::node& n) { return n.is_number(); }))
-        s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
-      double norm = 0;
-      for (size_t k = 0; k < 4; ++k) {
-        body.orientation[k] = q->get(k)->value<double>().value();
-        norm += body.orientation[k] * body.orientation[k];
-      }
-      if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
-      for (double& c : body.orientation) c /= std::sqrt(norm);
-    }
+    body.orientation = orientation_of(s);
     body.velocity = s.vector3("velocity").value_or(Vec3d{});
     body.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
     note_use(particle_users_, body.material, s);
@@ -760,18 +767,7 @@ class CaseReader {
     for (int axis = 0; axis < 3; ++axis)
       if (!(lattice.spacing_xyz[axis] > 0)) s.fail("spacing", "every cell edge must be greater than 0");
     if (auto scale = s.number("scale")) lattice.scale = positive(s, "scale", *scale);
-    if (const toml::node* node = s.table().get("orientation")) {
-      const toml::array* q = node->as_array();
-      if (!q || q->size() != 4 || !std::all_of(q->begin(), q->end(), [](const toml::node& n) { return n.is_number(); }))
-        s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
-      double norm = 0;
-      for (size_t k = 0; k < 4; ++k) {
-        lattice.orientation[k] = q->get(k)->value<double>().value();
-        norm += lattice.orientation[k] * lattice.orientation[k];
-      }
-      if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
-      for (double& c : lattice.orientation) c /= std::sqrt(norm);
-    }
+    lattice.orientation = orientation_of(s);
     if (auto count = s.integer("count")) {
       if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
       lattice.max_count = int(*count);

@@ -59,6 +59,16 @@ void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
         axis[0] * e1[1] - axis[1] * e1[0]};
 }
 
+// Every sphere and body sub-sphere placed so far, in the world.
+std::vector<SphereSpec> occupied_spheres(const CaseSpec& spec) {
+  std::vector<SphereSpec> occupied = spec.spheres;
+  for (const BodySpec& body : spec.bodies) {
+    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
+    occupied.insert(occupied.end(), subs.begin(), subs.end());
+  }
+  return occupied;
+}
+
 }  // namespace
 
 void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
@@ -206,11 +216,7 @@ void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec) {
                                          std::to_string(sites.size()) + " sites fit in the box");
     sites.resize(size_t(lattice.max_count));
   }
-  std::vector<SphereSpec> occupied = spec.spheres;
-  for (const BodySpec& body : spec.bodies) {
-    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
-    occupied.insert(occupied.end(), subs.begin(), subs.end());
-  }
+  std::vector<SphereSpec> occupied = occupied_spheres(spec);
   double largest_sub = 0;
   for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius * lattice.scale);
   std::vector<int> ids;
@@ -275,11 +281,7 @@ void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
   double largest_sub = 0;
   for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius);
 
-  std::vector<SphereSpec> occupied = spec.spheres;
-  for (const BodySpec& body : spec.bodies) {
-    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
-    occupied.insert(occupied.end(), subs.begin(), subs.end());
-  }
+  std::vector<SphereSpec> occupied = occupied_spheres(spec);
   std::vector<int> ids;
   SphereGrid grid = grid_near(occupied, region.lo, region.hi, largest_sub * fill.scale_max, ids);
 

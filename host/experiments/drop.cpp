@@ -95,7 +95,8 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
     sim.advance(frame_steps);
     double h = height(sim.state()), v = normal_speed(sim.state());
     r.trajectory.push_back({sim.time(), h});
-    if (!touched && h < 0) {
+    // A frame below the plate, or (a contact shorter than a frame) the fall turned into a rise.
+    if (!touched && (h < 0 || (prev_speed < 0 && v > 0))) {
       touched = true;
       touch_time = sim.time();
       r.impact_speed = -prev_speed;
