@@ -32,6 +32,7 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   fs::create_directories(out_dir);
   RunStore store(db_path, plan, options.fresh);
   Executor executor(plan, store, mpi, options.jobs, options.quiet);
+  executor.set_picture_dir(out_dir);
 
   CampaignRecord record;
   record.plan = &plan;
@@ -76,6 +77,10 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   record.hosts.assign(hosts.begin(), hosts.end());
   record.figures = write_figures(plan, record.result, record.model_runs, out_dir);
   if (record.loop) record.figures.push_back(write_convergence_figure(plan, loop, out_dir));
+  for (const auto& s : verify)
+    if (fs::exists(out_dir + "/" + s.id + ".png"))
+      record.figures.push_back({s.id + ".png", "Verification run " + s.id + " (seed " + std::to_string(s.seed) +
+                                                   "): the experiment's own picture."});
   write_campaign_report(record, out_dir);
 
   CampaignSummary summary;

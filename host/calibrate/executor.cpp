@@ -43,7 +43,10 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
   std::vector<RunJob> todo;
   for (const auto& s : specs) {
     const RunRecord* stored = store_.find(s.id);
-    if (!stored) todo.push_back(make_job(plan_, s));
+    if (!stored) {
+      todo.push_back(make_job(plan_, s));
+      if (s.phase == "verify" && !picture_dir_.empty()) todo.back().options.picture_path = picture_dir_ + "/" + s.id + ".png";
+    }
     else if (stored->spec.x != s.x || stored->spec.seed != s.seed)
       throw std::runtime_error(store_.path() + " holds run " + s.id + " at other parameters than the campaign asks for now "
                                "(the analysis it followed changed?); start again with --new");

@@ -23,6 +23,9 @@ class Executor {
   void run(const std::vector<RunSpec>& specs, const std::string& label);
 
   int simulated() const { return simulated_; }  // runs this process ran or received
+  // Verification runs save the experiment's picture (a heap) as DIR/RUN_ID.png on the machine
+  // that runs them (a shared folder under MPI on several machines).
+  void set_picture_dir(const std::string& dir) { picture_dir_ = dir; }
 
  private:
   const CampaignPlan& plan_;
@@ -31,6 +34,7 @@ class Executor {
   int jobs_;
   bool quiet_;
   int simulated_ = 0;
+  std::string picture_dir_;
 };
 
 }  // namespace repose::calibrate

@@ -15,6 +15,7 @@ struct ExperimentOptions {
   std::string backend = "cpu";  // each simulation single-threaded on the cpu backend by default
   int device = -1;
   unsigned threads = 1;
+  std::string picture_path;     // non-empty: save the experiment's picture there (a heap's PNG)
 };
 
 using Responses = std::map<std::string, double>;
@@ -22,7 +23,7 @@ using ExperimentFunction = std::function<Responses(const CaseSpec&, const Experi
 
 struct ExperimentType {
   std::string name;
-  std::vector<std::string> responses;  // the names its function returns, for checking plans
+  std::vector<std::string> responses;  // the names its function may return, for checking plans
   ExperimentFunction run;
 };
 

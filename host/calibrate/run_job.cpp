@@ -66,7 +66,8 @@ std::string job_to_text(const RunJob& job) {
   for (const auto& ov : job.overrides) o.push_back({ov.key, ov.value});
   json j = {{"spec", spec_to_json(job.spec)}, {"experiment", job.experiment}, {"case_path", job.case_path},
             {"case_text", job.case_text}, {"overrides", o}, {"backend", job.options.backend},
-            {"device", job.options.device}, {"threads", job.options.threads}};
+            {"device", job.options.device}, {"threads", job.options.threads},
+            {"picture_path", job.options.picture_path}};
   return j.dump();
 }
 
@@ -81,6 +82,7 @@ RunJob job_from_text(const std::string& text) {
   job.options.backend = j.at("backend");
   job.options.device = j.at("device");
   job.options.threads = j.at("threads");
+  job.options.picture_path = j.at("picture_path");
   return job;
 }
 

@@ -1,6 +1,7 @@
 // Bad plans are refused when loaded, before anything runs, with the plan file, line and key.
 #include <catch2/catch.hpp>
 
+#include "calibrate/experiment_runner.h"
 #include "calibrate/plan.h"
 #include "calibrate_support.h"
 
@@ -119,14 +120,19 @@ TEST_CASE("the calibrate verb reports a bad plan with exit code 2 and writes not
   CHECK_FALSE(std::filesystem::exists(dir + "/out"));
 }
 
-TEST_CASE("the shipped plans load (the cabbage plan waits for the repose experiment)") {
+TEST_CASE("the shipped plans load (the cabbage plan waits for its heap case)") {
   const std::string cases = std::string(REPOSE_SOURCE_DIR) + "/cases/calibrate/";
   CHECK_NOTHROW(load_plan(cases + "drop_restitution.toml"));
   CHECK_NOTHROW(load_plan(cases + "drop_restitution_adaptive.toml"));
   try {
     load_plan(cases + "cabbage_repose_adaptive.toml");
-    WARN("the repose experiment is registered now: give cabbage_repose_adaptive.toml its heap case");
+    WARN("cabbage_repose_adaptive.toml loads now: run it and record the number of simulations");
   } catch (const CaseError& e) {
-    CHECK(std::string(e.what()).find("unknown experiment 'repose'") != std::string::npos);
+    CHECK(std::string(e.what()).find("is a 'drop' experiment, not 'repose'") != std::string::npos);
   }
+}
+
+TEST_CASE("every registered experiment is reachable by name") {
+  for (const char* name : {"drop", "slide", "roll", "repose"}) CHECK(find_experiment(name).name == name);
+  CHECK_THROWS_WITH(find_experiment("shear_box"), Catch::Contains("registered: drop, repose, roll, slide"));
 }
