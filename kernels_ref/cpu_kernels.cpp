@@ -31,6 +31,8 @@ namespace repose::gpu {
 #define B_trans_fill buf.trans_fill
 #define B_trans_list buf.trans_list
 #define B_wall_force buf.wall_force
+#define B_bodies buf.bodies
+#define B_subs buf.subs
 #define PC buf.push
 #define KERNEL(name) inline void name(Buffers& buf,
 #define KFN(ret, name) inline ret name(Buffers& buf,
@@ -73,6 +75,9 @@ void run_kernel(KernelId k, Buffers& buf, uint64_t invocations, ThreadPool& pool
     case KernelId::TransposeSort: return run_parallel<k_transpose_sort>(buf, invocations, pool);
     case KernelId::ContactForces: return run_parallel<k_contact_forces>(buf, invocations, pool);
     case KernelId::ContactRows: return run_parallel<k_contact_rows>(buf, invocations, pool);
+    case KernelId::BodyKickDrift: return run_parallel<k_body_kick_drift>(buf, invocations, pool);
+    case KernelId::BodyPlace: return run_parallel<k_body_place>(buf, invocations, pool);
+    case KernelId::BodyGatherKick: return run_parallel<k_body_gather_kick>(buf, invocations, pool);
     default: return;
   }
 }

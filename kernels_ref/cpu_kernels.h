@@ -39,6 +39,8 @@ struct Buffers {
   uint* trans_fill = nullptr;
   uint* trans_list = nullptr;
   vec4* wall_force = nullptr;
+  Body* bodies = nullptr;
+  SubSphere* subs = nullptr;
   SimPush push{};
 };
 

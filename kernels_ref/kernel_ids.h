@@ -8,7 +8,8 @@ namespace repose {
 enum class KernelId : uint32_t {
   KickDrift, GatherKick, RebuildArgs, SaveOldRows, SaveOldContacts, ClearBuckets, BucketCount,
   BucketScatter, BucketSort, ContactCount, RowsScanned, ContactFill, TransposeCount,
-  TransposeFill, TransposeSort, ContactForces, ContactRows, Scan, WallReduce, GatherLean, Count
+  TransposeFill, TransposeSort, ContactForces, ContactRows, Scan, WallReduce, GatherLean,
+  BodyKickDrift, BodyPlace, BodyGatherKick, Count
 };
 
 inline const char* kernel_shader_name(KernelId k) {
@@ -17,7 +18,8 @@ inline const char* kernel_shader_name(KernelId k) {
       "save_old_contacts", "clear_buckets", "bucket_count",  "bucket_scatter",
       "bucket_sort",    "contact_count",   "rows_scanned",   "contact_fill",
       "transpose_count", "transpose_fill", "transpose_sort", "contact_forces",
-      "contact_rows",   "scan",            "wall_reduce",    "gather_lean"};
+      "contact_rows",   "scan",            "wall_reduce",    "gather_lean",
+      "body_kick_drift", "body_place",     "body_gather_kick"};
   static_assert(sizeof(names) / sizeof(names[0]) == static_cast<int>(KernelId::Count));
   return names[static_cast<int>(k)];
 }

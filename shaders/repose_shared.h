@@ -24,8 +24,8 @@ REPOSE_CONST kBindPairs = 7;         // PairParams [M*M]
 REPOSE_CONST kBindWalls = 8;         // WallState [steps_per_batch * W]
 REPOSE_CONST kBindControl = 9;       // uint [kControlWords]
 REPOSE_CONST kBindCellOf = 10;       // uint [N]   hash bucket of each particle
-REPOSE_CONST kBindCellStart = 11;    // uint [T+1] counts, scanned in place to starts
-REPOSE_CONST kBindCellFill = 12;     // uint [T]   scatter cursor
+REPOSE_CONST kBindCellStart = 11;    // uint [T+2] counts, scanned in place to starts
+REPOSE_CONST kBindCellFill = 12;     // uint [T+1] scatter cursor
 REPOSE_CONST kBindSorted = 13;       // uint [N]   particle ids by bucket, by id within a bucket
 REPOSE_CONST kBindRowStart = 14;     // uint [N+1] contacts per owner, scanned in place (CSR)
 REPOSE_CONST kBindPartner = 15;      // uint [C]   j > i for particles, N + w for walls
@@ -41,7 +41,9 @@ REPOSE_CONST kBindTransStart = 24;   // uint [N+1] contacts in which a particle 
 REPOSE_CONST kBindTransFill = 25;    // uint [N]
 REPOSE_CONST kBindTransList = 26;    // uint [C]   contact indices, ascending within a row
 REPOSE_CONST kBindWallForce = 27;    // vec4 [W]   force on each wall (output only)
-REPOSE_CONST kBindingCount = 28;
+REPOSE_CONST kBindBodies = 28;       // Body [B]   rigid bodies (clumps), only with kFlagBodies
+REPOSE_CONST kBindSubSpheres = 29;   // SubSphere [N] each particle's body and body-frame offset
+REPOSE_CONST kBindingCount = 30;
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild; trans_list (transpose_fill) and contact_force (contact kernel) are rewritten after
 // that in the same step, and no kernel touches both names of one buffer. Both backends bind one
@@ -72,6 +74,7 @@ REPOSE_CONST kFlagRollingRelativeOmega = 8u;  // LIGGGHTS cdt: relative instead 
 REPOSE_CONST kFlagDrift = 16u;                // kick kernels: also move positions and check the skin
 REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs (setup, as LIGGGHTS)
 REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean entry (contacts.h)
+REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of rigid bodies (bodies.h)
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;
@@ -80,6 +83,18 @@ REPOSE_CONST kScanTransposed = 2;
 
 REPOSE_CONST kWallPlane = 0;
 REPOSE_CONST kWallCylinder = 1;
+REPOSE_CONST kWallRectangle = 2;
+REPOSE_CONST kWallTriangle = 3;
+// Which part of a rectangle or triangle is closest to a sphere (walls.h).
+REPOSE_CONST kFeatureFace = 0;
+REPOSE_CONST kFeatureEdge = 1;
+REPOSE_CONST kFeatureVertex = 2;
+// Two triangles of a mesh are coplanar (one flat patch) when |n1 . n2| reaches this (0.26 deg).
+#ifdef __cplusplus
+inline constexpr float kCoplanarCos = 0.99999f;
+#else
+const float kCoplanarCos = 0.99999f;
+#endif
 
 REPOSE_CONST kDefaultWorkgroup = 64;
 REPOSE_CONST kScanWorkgroup = 256;      // threads of the single-group scan
@@ -94,12 +109,37 @@ struct PairParams {
 
 // One wall at one step of a batch; the host evaluates prescribed motion.
 struct WallState {
-  vec4 p0;     // plane: point;  cylinder: base centre
-  vec4 p1;     // plane: unit normal into the domain; cylinder: unit axis, w radius
+  vec4 p0;     // plane: point;  cylinder: base centre;  rectangle: centre;  triangle: vertex a
+  vec4 p1;     // plane, rectangle: unit normal into the domain; cylinder: unit axis, w radius;
+               // triangle: vertex b
   vec4 vel;    // xyz translational velocity, w cylinder height
   vec4 omega;  // xyz angular velocity about `centre`
   vec4 centre; // xyz a point on the rotation axis
-  uvec4 info;  // x type, y material, zw unused
+  uvec4 info;  // x type, y material, z mesh id (triangles), w unused
+  vec4 p2;     // rectangle: unit in-plane axis u, w half extent along u;  triangle: vertex c
+  vec4 p3;     // rectangle: unit axis v, w half extent along v;  triangle: unit normal
+  uvec4 topo;  // triangle: the mesh's vertex ids of a, b, c (shared corners, walls.h); w unused
+};
+
+// A rigid body (a clump of sub-spheres; with kFlagBodies a lone sphere is a one-sphere body).
+// The body frame is the principal frame, so the inertia tensor there is diagonal. Angular
+// momentum is the integrated quantity: a torque-free body keeps it to the bit.
+struct Body {
+  vec4 pos;          // xyz centre of mass, w 1/mass
+  vec4 vel;          // xyz velocity of the centre of mass
+  vec4 quat;         // orientation (x, y, z, w): body frame -> world
+  vec4 ang_mom;      // xyz angular momentum about the centre of mass, world frame
+  vec4 omega;        // xyz angular velocity, world frame (follows from quat and ang_mom)
+  vec4 inv_inertia;  // xyz 1 / principal moments of inertia
+  vec4 force;        // xyz sum of the sub-spheres' contact forces (no gravity)
+  vec4 torque;       // xyz torque about the centre of mass
+  uvec4 spheres;     // x first sub-sphere, y count (sub-spheres of a body are contiguous)
+};
+
+// What a particle needs to know of its body; static during a run.
+struct SubSphere {
+  vec4 local;  // xyz centre in the body frame, w radius
+  uvec4 info;  // x body index
 };
 
 // Push constants of the simulation kernels (<= 128 bytes, lavapipe's limit).
@@ -121,6 +161,8 @@ struct SimPush {
   float inv_cell;      // 1 / hash cell edge
   float skin;
   float half_skin_sq;  // (skin/2)^2: a particle moved this far (squared) forces a rebuild
+  uint n_bodies;       // rigid bodies (0 without kFlagBodies)
+  float large_radius;  // particles above this radius go to the large bucket (neighbour.h)
   float air_drag;      // extension air_drag: 0.5 rho_air C_d pi (x r^2 = drag per v^2), 0: off
 };
 
@@ -133,7 +175,9 @@ struct ScanPush {
 
 #ifdef __cplusplus
 static_assert(sizeof(PairParams) == 32);
-static_assert(sizeof(WallState) == 96);
+static_assert(sizeof(WallState) == 144);
+static_assert(sizeof(Body) == 144);
+static_assert(sizeof(SubSphere) == 32);
 static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");
 static_assert(sizeof(ScanPush) <= 128);
 }  // namespace repose::gpu

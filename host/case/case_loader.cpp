@@ -14,11 +14,15 @@
 #include <optional>
 #include <sstream>
 
+#include "case/body_pose.h"
 #include "case/case_override.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
 #include "case/spelling.h"
 #include "case/time_step.h"
+#include "geometry/sphere_csv.h"
+#include "geometry/stl.h"
+#include "geometry/templates.h"
 
 namespace repose {
 namespace {
@@ -204,7 +208,7 @@ class CaseReader {
   CaseSpec read() {
     Section top(root_, "", file_);
     top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "air_drag", "material",
-                    "interaction", "sphere", "fill", "lattice", "wall"},
+                    "interaction", "template", "sphere", "clump", "fill", "lattice", "wall"},
                    "the case file");
     spec_.path = file_;
     read_simulation();
@@ -217,14 +221,17 @@ class CaseReader {
     if (spec_.materials.empty())
       throw CaseError({file_, "material", 0}, "the case has no [[material]]");
     for (const Section& s : entries("interaction")) read_interaction(s);
+    for (const Section& s : entries("template")) read_template(s);
     for (const Section& s : entries("sphere")) read_sphere(s);
+    for (const Section& s : entries("clump")) read_clump(s);
     int fill_index = 0;
     for (const Section& s : entries("fill")) read_fill(s, fill_index++);
     for (const Section& s : entries("lattice")) read_lattice(s);
     int wall_index = 0;
     for (const Section& s : entries("wall")) read_wall(s, wall_index++);
-    if (spec_.spheres.empty() && spec_.fills.empty() && spec_.lattices.empty())
-      throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[fill]] or [[lattice]]");
+    check_experiment_walls();
+    if (spec_.spheres.empty() && spec_.bodies.empty() && spec_.fills.empty() && spec_.lattices.empty())
+      throw CaseError({file_, "", 0}, "the case has no particles: add [[sphere]], [[clump]], [[fill]] or [[lattice]]");
     check_interactions_cover_use();
     expand_particles(spec_);
     check_time_step();
@@ -338,17 +345,63 @@ class CaseReader {
   void read_experiment() {
     auto s = table("experiment");
     if (!s) return;
-    s->allow_only({"type", "drop_height", "camera_fps", "max_time"}, "[experiment]");
-    spec_.experiment.where = s->where();
-    if (auto type = s->text("type")) {
-      if (*type != "drop") s->fail("type", "unknown experiment '" + *type + "' (drop)");
-      spec_.experiment.type = *type;
-    } else {
-      s->missing("type", " (drop)");
+    ExperimentSpec& ex = spec_.experiment;
+    std::vector<std::string> types{"drop", "slide", "roll", "repose"};
+    std::string type = s->required_text("type", " (drop, slide, roll or repose)");
+    if (std::find(types.begin(), types.end(), type) == types.end())
+      s->fail("type", "unknown experiment '" + type + "' (drop, slide, roll or repose)" + did_you_mean(type, types));
+    ex.type = type;
+    std::vector<std::string> allowed{"type", "max_time"};
+    std::vector<std::string> tilt{"plate", "tilt_rate", "tilt_axis", "settle_time", "onset_distance", "max_angle"};
+    if (type == "drop") allowed.insert(allowed.end(), {"drop_height", "camera_fps"});
+    if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
+    if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
+    if (type == "repose")
+      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "heap_side", "axisymmetric", "floor_z"});
+    s->allow_only(allowed, "[experiment] of type '" + type + "'");
+    ex.where = s->where();
+    if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
+    if (auto h = s->number("drop_height")) ex.drop_height = positive(*s, "drop_height", *h);
+    if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
+    ex.plate = s->text("plate").value_or("");
+    if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
+    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit(*s, "tilt_axis", *a);
+    if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
+    if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
+    if (auto a = s->number("max_angle")) {
+      if (!(*a > 0 && *a < 90)) s->fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
+      ex.max_angle_deg = *a;
     }
-    if (auto h = s->number("drop_height")) spec_.experiment.drop_height = positive(*s, "drop_height", *h);
-    if (auto f = s->number("camera_fps")) spec_.experiment.camera_fps = positive(*s, "camera_fps", *f);
-    if (auto t = s->number("max_time")) spec_.experiment.max_time = positive(*s, "max_time", *t);
+    ex.method = s->choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
+    if (auto b = s->number("incline_angle")) {
+      if (!(*b > 0 && *b < 60)) s->fail("incline_angle", format_number(*b) + " must lie between 0 and 60 degrees");
+      ex.incline_deg = *b;
+    }
+    if (auto d = s->number("slope_distance")) ex.slope_distance = positive(*s, "slope_distance", *d);
+    if (auto v = s->number("stop_speed")) ex.stop_speed = positive(*s, "stop_speed", *v);
+    ex.lift_wall = s->text("lift_wall").value_or("");
+    if (type == "repose" && ex.lift_wall.empty())
+      s->missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
+    if (auto t = s->number("lift_end")) ex.lift_end = non_negative(*s, "lift_end", *t);
+    if (auto e = s->number("settle_energy")) ex.settle_energy = positive(*s, "settle_energy", *e);
+    ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
+    ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
+    ex.axisymmetric = s->boolean("axisymmetric").value_or(false);
+    if (auto z = s->number("floor_z")) ex.heap_floor_z = *z;
+  }
+
+  // [experiment] names walls; they must exist (checked once all walls are read).
+  void check_experiment_walls() {
+    const ExperimentSpec& ex = spec_.experiment;
+    auto exists = [&](const std::string& name) {
+      return std::any_of(spec_.walls.begin(), spec_.walls.end(), [&](const WallSpec& w) { return w.name == name; });
+    };
+    std::vector<std::string> names;
+    for (const WallSpec& w : spec_.walls) names.push_back(w.name);
+    for (const auto& [key, name] : {std::pair<std::string, std::string>{"plate", ex.plate}, {"lift_wall", ex.lift_wall}})
+      if (!name.empty() && !exists(name))
+        throw CaseError({file_, "experiment." + key, ex.where.line},
+                        "no [[wall]] is named '" + name + "'" + did_you_mean(name, names));
   }
 
   // Extension air_drag (docs/diagnosis.md).
@@ -507,30 +560,127 @@ class CaseReader {
     spec_.spheres.push_back(sphere);
   }
 
+  // A number, or [min, max] with 0 < min <= max.
+  void positive_range(const Section& s, std::string_view k, double& low, double& high) {
+    const toml::node* node = s.table().get(k);
+    if (!node) return;
+    if (node->is_array()) {
+      const toml::array& range = *node->as_array();
+      if (range.size() != 2 || !range.get(0)->is_number() || !range.get(1)->is_number())
+        s.fail(k, "expected a number or [min, max]");
+      low = range.get(0)->value<double>().value();
+      high = range.get(1)->value<double>().value();
+      if (!(low > 0)) s.fail(k, "the smallest value " + format_number(low) + " must be greater than 0");
+      if (high < low) s.fail(k, "[min, max] has max < min");
+    } else {
+      low = high = positive(s, k, s.required_number(k));
+    }
+  }
+
+  int template_of(const Section& s) const {
+    std::string name = s.required_text("template", " (a [[template]] name)");
+    std::vector<std::string> names;
+    for (size_t t = 0; t < spec_.templates.size(); ++t) {
+      if (spec_.templates[t].name == name) return int(t);
+      names.push_back(spec_.templates[t].name);
+    }
+    if (names.empty()) s.fail("template", "no [[template]] named '" + name + "': the case defines none");
+    s.fail("template", "no [[template]] named '" + name + "' (templates: " + quoted_list(names) + ")" +
+                           did_you_mean(name, names));
+  }
+
+  // [[template]]: name, and builtin = "cabbage" (the shipped templates) or file = "x.csv"
+  // (sphere centres and radii, relative to the case file), optional mass (kg).
+  void read_template(const Section& s) {
+    s.allow_only({"name", "builtin", "file", "mass"}, "a [[template]]");
+    TemplateSpec t;
+    t.where = s.where();
+    t.name = s.required_text("name");
+    for (const TemplateSpec& other : spec_.templates)
+      if (other.name == t.name)
+        s.fail("name", "duplicate template '" + t.name + "' (first at line " + std::to_string(other.where.line) + ")");
+    if (s.has("builtin") == s.has("file"))
+      s.fail(s.has("file") ? "file" : "name", "give exactly one of builtin = \"NAME\" and file = \"PATH.csv\"");
+    if (auto builtin = s.text("builtin")) {
+      try {
+        t.clump = make_shipped_template(*builtin);
+      } catch (const std::invalid_argument& error) {
+        s.fail("builtin", error.what());
+      }
+    } else {
+      std::string file = *s.text("file");
+      std::filesystem::path path = std::filesystem::path(file_).parent_path() / file;
+      try {
+        t.clump.spheres = read_sphere_csv(path.string());
+      } catch (const std::exception& error) {
+        s.fail("file", error.what());
+      }
+    }
+    t.clump.name = t.name;
+    if (auto mass = s.number("mass")) t.mass = positive(s, "mass", *mass);
+    spec_.templates.push_back(std::move(t));
+  }
+
+  // `orientation = [w, x, y, z]`, normalised; the identity when absent.
+  std::array<double, 4> orientation_of(const Section& s) const {
+    std::array<double, 4> q{1, 0, 0, 0};
+    const toml::node* node = s.table().get("orientation");
+    if (!node) return q;
+    const toml::array* a = node->as_array();
+    if (!a || a->size() != 4 || !std::all_of(a->begin(), a->end(), [](const toml::node& n) { return n.is_number(); }))
+      s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
+    double norm = 0;
+    for (size_t k = 0; k < 4; ++k) {
+      q[k] = a->get(k)->value<double>().value();
+      norm += q[k] * q[k];
+    }
+    if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
+    for (double& c : q) c /= std::sqrt(norm);
+    return q;
+  }
+
+  // [[clump]]: one body of a template at a given pose.
+  void read_clump(const Section& s) {
+    s.allow_only({"template", "material", "position", "orientation", "scale", "velocity", "angular_velocity"},
+                 "a [[clump]]");
+    BodySpec body;
+    body.where = s.where();
+    body.template_index = template_of(s);
+    body.material = material_of(s);
+    body.position = s.required_vector3("position");
+    if (auto scale = s.number("scale")) body.scale = positive(s, "scale", *scale);
+    body.orientation = orientation_of(s);
+    body.velocity = s.vector3("velocity").value_or(Vec3d{});
+    body.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
+    note_use(particle_users_, body.material, s);
+    spec_.bodies.push_back(body);
+  }
+
   void read_fill(const Section& s, int index) {
-    s.allow_only({"material", "count", "radius", "box", "cylinder", "seed", "velocity"}, "a [[fill]]");
+    s.allow_only({"material", "count", "radius", "template", "scale", "box", "cylinder", "seed", "velocity"},
+                 "a [[fill]]");
     FillSpec fill;
     fill.where = s.where();
     fill.material = material_of(s);
     auto count = s.integer("count");
-    if (!count) s.missing("count", " (number of spheres)");
+    if (!count) s.missing("count", " (number of spheres or bodies)");
     if (*count <= 0 || *count > 100000000) s.fail("count", "must be between 1 and 1e8");
     fill.count = int(*count);
 
-    const toml::node* radius = s.table().get("radius");
-    if (!radius) s.missing("radius", " (m, or [min, max] for sizes uniform between them)");
-    if (radius->is_array()) {
-      const toml::array& range = *radius->as_array();
-      if (range.size() != 2 || !range.get(0)->is_number() || !range.get(1)->is_number())
-        s.fail("radius", "expected a number or [min, max]");
-      fill.radius_min = range.get(0)->value<double>().value();
-      fill.radius_max = range.get(1)->value<double>().value();
-      if (!(fill.radius_min > 0)) s.fail("radius", "the smallest radius " + format_number(fill.radius_min) + " must be greater than 0");
-      if (fill.radius_max < fill.radius_min) s.fail("radius", "[min, max] has max < min");
+    // The radius that must fit in the region: a sphere's, or a body's bounding sphere.
+    double reach = 0;
+    if (s.has("template")) {
+      if (s.has("radius")) s.fail("radius", "a template fill sizes its bodies with scale, not radius");
+      fill.template_index = template_of(s);
+      positive_range(s, "scale", fill.scale_min, fill.scale_max);
+      reach = bounding_radius(spec_.templates[size_t(fill.template_index)].clump) * fill.scale_max;
     } else {
-      fill.radius_min = fill.radius_max = positive(s, "radius", s.required_number("radius"));
+      if (s.has("scale")) s.fail("scale", "scale applies to template fills (give template = \"NAME\")");
+      if (!s.has("radius")) s.missing("radius", " (m, or [min, max] for sizes uniform between them)");
+      positive_range(s, "radius", fill.radius_min, fill.radius_max);
+      reach = fill.radius_max;
     }
-    double diameter = 2 * fill.radius_max;
+    double diameter = 2 * reach;
 
     auto box = s.sub("box");
     auto cylinder = s.sub("cylinder");
@@ -553,9 +703,9 @@ class CaseReader {
       fill.cyl_axis = unit(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
       fill.cyl_radius = cylinder->required_number("radius", " (m)");
       fill.cyl_height = cylinder->required_number("height", " (m)");
-      if (!(fill.cyl_radius >= fill.radius_max))
-        cylinder->fail("radius", format_number(fill.cyl_radius) + " m is less than a sphere radius " +
-                                     format_number(fill.radius_max) + " m");
+      if (!(fill.cyl_radius >= reach))
+        cylinder->fail("radius", format_number(fill.cyl_radius) + " m is less than a particle radius " +
+                                     format_number(reach) + " m");
       if (!(fill.cyl_height >= diameter))
         cylinder->fail("height", format_number(fill.cyl_height) + " m is less than a sphere diameter " +
                                      format_number(diameter) + " m");
@@ -572,10 +722,18 @@ class CaseReader {
   }
 
   void read_lattice(const Section& s) {
-    s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity"}, "a [[lattice]]");
+    s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity", "template",
+                  "orientation", "scale"},
+                 "a [[lattice]]");
     LatticeSpec lattice;
     lattice.where = s.where();
     lattice.material = material_of(s);
+    if (s.has("template")) {
+      read_body_lattice(s, lattice);
+      return;
+    }
+    for (const char* k : {"orientation", "scale"})
+      if (s.has(k)) s.fail(k, "applies to template lattices (give template = \"NAME\")");
     if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
     lattice.kind = s.choice<LatticeSpec::Kind>(
         "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
@@ -603,27 +761,67 @@ class CaseReader {
     spec_.lattices.push_back(lattice);
   }
 
+  // [[lattice]] of bodies: template, spacing (one edge or [sx, sy, sz]), orientation, scale.
+  void read_body_lattice(const Section& s, LatticeSpec& lattice) {
+    if (s.has("radius")) s.fail("radius", "a template lattice sizes its bodies with scale, not radius");
+    lattice.template_index = template_of(s);
+    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
+    lattice.kind = s.choice<LatticeSpec::Kind>(
+        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
+        LatticeSpec::Kind::SimpleCubic);
+    lattice.box_min = s.required_vector3("min");
+    lattice.box_max = s.required_vector3("max");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
+        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+    const toml::node* spacing = s.table().get("spacing");
+    if (!spacing) s.missing("spacing", " (m: the cell edge, or [sx, sy, sz])");
+    if (spacing->is_array()) {
+      lattice.spacing_xyz = s.required_vector3("spacing");
+    } else {
+      double edge = s.required_number("spacing");
+      lattice.spacing_xyz = {edge, edge, edge};
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.spacing_xyz[axis] > 0)) s.fail("spacing", "every cell edge must be greater than 0");
+    if (auto scale = s.number("scale")) lattice.scale = positive(s, "scale", *scale);
+    lattice.orientation = orientation_of(s);
+    if (auto count = s.integer("count")) {
+      if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
+      lattice.max_count = int(*count);
+    }
+    lattice.velocity = s.vector3("velocity").value_or(Vec3d{});
+    note_use(particle_users_, lattice.material, s);
+    spec_.lattices.push_back(lattice);
+  }
+
   void read_wall(const Section& s, int index) {
     if (!s.has("type")) {
       // Without a type, a misspelt "type" is likelier than a missing one: suggest among all keys.
       s.allow_only({"name", "type", "material", "motion", "point", "normal", "min", "max", "base", "axis",
-                    "radius", "height"},
+                    "radius", "height", "open", "centre", "edge_axis", "size", "file", "scale", "offset"},
                    "a [[wall]]");
-      s.missing("type", " ('plane', 'box' or 'cylinder')");
+      s.missing("type", " ('plane', 'box', 'cylinder', 'rectangle' or 'mesh')");
     }
     WallSpec wall;
     wall.type = s.choice<WallSpec::Type>(
-        "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder}},
+        "type", {{"plane", WallSpec::Type::Plane}, {"box", WallSpec::Type::Box}, {"cylinder", WallSpec::Type::Cylinder},
+                 {"rectangle", WallSpec::Type::Rectangle}, {"mesh", WallSpec::Type::Mesh}},
         WallSpec::Type::Plane);
     std::vector<std::string> allowed{"name", "type", "material", "motion"};
     const char* kind = "";
     switch (wall.type) {
       case WallSpec::Type::Plane: allowed.insert(allowed.end(), {"point", "normal"}); kind = "a plane [[wall]]"; break;
-      case WallSpec::Type::Box: allowed.insert(allowed.end(), {"min", "max"}); kind = "a box [[wall]]"; break;
+      case WallSpec::Type::Box: allowed.insert(allowed.end(), {"min", "max", "open"}); kind = "a box [[wall]]"; break;
       case WallSpec::Type::Cylinder:
         allowed.insert(allowed.end(), {"base", "axis", "radius", "height"});
         kind = "a cylinder [[wall]]";
         break;
+      case WallSpec::Type::Rectangle:
+        allowed.insert(allowed.end(), {"centre", "normal", "edge_axis", "size"});
+        kind = "a rectangle [[wall]]";
+        break;
+      case WallSpec::Type::Mesh: allowed.insert(allowed.end(), {"file", "scale", "offset"}); kind = "a mesh [[wall]]"; break;
     }
     s.allow_only(allowed, kind);
     wall.where = s.where();
@@ -649,7 +847,10 @@ class CaseReader {
         for (int axis = 0; axis < 3; ++axis)
           if (!(wall.box_max[axis] > wall.box_min[axis]))
             s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+        wall.open_faces = box_open_faces(s);
         break;
+      case WallSpec::Type::Rectangle: read_rectangle(s, wall); break;
+      case WallSpec::Type::Mesh: read_mesh(s, wall); break;
       case WallSpec::Type::Cylinder:
         wall.base = s.required_vector3("base");
         wall.axis = unit(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
@@ -660,6 +861,66 @@ class CaseReader {
     if (auto motion = s.sub("motion")) read_motion(*motion, wall.motion);
     note_use(wall_users_, wall.material, s);
     spec_.walls.push_back(wall);
+  }
+
+  // `open = ["zmax"]`: faces of a box left out.
+  std::vector<std::string> box_open_faces(const Section& s) {
+    const toml::node* node = s.table().get("open");
+    if (!node) return {};
+    const std::vector<std::string> faces{"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+    const toml::array* array = node->as_array();
+    if (!array) s.wrong_type("open", "an array of face names such as [\"zmax\"]");
+    std::vector<std::string> open;
+    for (const toml::node& element : *array) {
+      if (!element.is_string()) s.fail("open", "expected face names (strings) such as \"zmax\"");
+      std::string face = element.as_string()->get();
+      if (std::find(faces.begin(), faces.end(), face) == faces.end())
+        s.fail("open", "'" + face + "' is not one of " + quoted_list(faces) + did_you_mean(face, faces));
+      open.push_back(face);
+    }
+    return open;
+  }
+
+  void read_rectangle(const Section& s, WallSpec& wall) {
+    wall.point = s.required_vector3("centre");
+    wall.normal = unit(s, "normal", s.required_vector3("normal"));
+    Vec3d u = unit(s, "edge_axis", s.required_vector3("edge_axis"));
+    double along = u[0] * wall.normal[0] + u[1] * wall.normal[1] + u[2] * wall.normal[2];
+    if (std::abs(along) > 1e-6)
+      s.fail("edge_axis", "must be perpendicular to the normal (their dot product is " + format_number(along) + ")");
+    wall.edge_axis = u;
+    const toml::node* node = s.table().get("size");
+    if (!node) s.missing("size", " ([length along edge_axis, length across], m)");
+    const toml::array* array = node->as_array();
+    if (!array || array->size() != 2 || !array->get(0)->is_number() || !array->get(1)->is_number())
+      s.fail("size", "expected [length along edge_axis, length across] in m");
+    for (size_t k = 0; k < 2; ++k) {
+      const toml::node& e = *array->get(k);
+      wall.size[k] = e.is_integer() ? double(e.as_integer()->get()) : e.as_floating_point()->get();
+      if (!(wall.size[k] > 0) || !std::isfinite(wall.size[k]))
+        s.fail("size", "side lengths must be positive, got " + format_number(wall.size[k]));
+    }
+  }
+
+  // The STL is read here, so that a missing, broken or empty file is reported as a case error.
+  void read_mesh(const Section& s, WallSpec& wall) {
+    std::string file = s.required_text("file", " (an STL file, relative to the case)");
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = std::filesystem::path(file_).parent_path() / path;
+    double scale = positive(s, "scale", s.number("scale").value_or(1.0));
+    Vec3d offset = s.vector3("offset").value_or(Vec3d{0, 0, 0});
+    StlFile stl;
+    try {
+      stl = read_stl(path.string());
+    } catch (const std::exception& e) {
+      s.fail("file", e.what());
+    }
+    auto mesh = std::make_shared<WallMesh>();
+    mesh->file = path.string();
+    for (const auto& v : stl.mesh.vertices)
+      mesh->vertices.push_back({v.x * scale + offset[0], v.y * scale + offset[1], v.z * scale + offset[2]});
+    mesh->triangles = stl.mesh.triangles;
+    wall.mesh = std::move(mesh);
   }
 
   void read_motion(const Section& s, WallMotion& motion) {
@@ -706,22 +967,25 @@ class CaseReader {
   size_t particles_of(int material) const {
     size_t count = 0;
     for (const SphereSpec& sphere : spec_.spheres) count += sphere.material == material;
+    for (const BodySpec& body : spec_.bodies) count += body.material == material;
     for (const FillSpec& fill : spec_.fills) count += fill.material == material ? size_t(fill.count) : 0;
     for (const LatticeSpec& lattice : spec_.lattices)
       if (lattice.material == material)
-        count += lattice.max_count > 0 ? size_t(lattice.max_count) : lattice_sites(lattice).size();
+        count += lattice.max_count > 0        ? size_t(lattice.max_count)
+                 : lattice.template_index >= 0 ? 2  // bodies: at least a pair can meet
+                                               : lattice_sites(lattice).size();
     return count;
   }
 
   void check_time_step() {
     RayleighLimit limit = rayleigh_limit(spec_);
     if (!spec_.time.dt || *spec_.time.dt <= limit.time) return;
-    const SphereSpec& sphere = spec_.spheres[size_t(limit.sphere)];
     throw CaseError(spec_.time.where,
                     format_number(*spec_.time.dt) + " s is above the Rayleigh time " + format_number(limit.time) +
-                        " s set by " + sphere.where.key + " (line " + std::to_string(sphere.where.line) +
-                        ", radius " + format_number(sphere.radius) + " m, material '" +
-                        spec_.materials[size_t(sphere.material)].name +
+                        " s set by " + limit.where.key + " (line " + std::to_string(limit.where.line) +
+                        ", " + (limit.body >= 0 ? "sub-sphere radius " : "radius ") +
+                        format_number(limit.radius) + " m, material '" +
+                        spec_.materials[size_t(limit.material)].name +
                         "'), where the contact law is unstable; lower dt or give rayleigh_fraction "
                         "(0.1 to 0.4 is usual)");
   }

@@ -4,9 +4,12 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "geometry/clump.h"
 
 namespace repose {
 
@@ -49,6 +52,28 @@ struct SphereSpec {
   SourceRef where;  // the [[sphere]], [[fill]] or [[lattice]] entry that made it
 };
 
+// A clump template ([[template]]): rigid sub-spheres in the template frame, from one of the
+// shipped templates or a sphere CSV. Mass properties come from the union volume and the body's
+// material density, or from an explicit mass (the union's centre and inertia scaled to it).
+struct TemplateSpec {
+  std::string name;
+  ClumpTemplate clump;
+  std::optional<double> mass;  // kg at scale 1
+  SourceRef where;
+};
+
+// One rigid body of a template, placed by a [[clump]] or by a template [[fill]].
+struct BodySpec {
+  int template_index = 0;
+  int material = 0;
+  double scale = 1;                               // lengths x scale (mass x scale^3)
+  Vec3d position{};                               // where the template's origin goes
+  std::array<double, 4> orientation{1, 0, 0, 0};  // unit quaternion (w, x, y, z), template -> world
+  Vec3d velocity{};                               // of the centre of mass
+  Vec3d angular_velocity{};
+  SourceRef where;
+};
+
 // A region filled at random without overlap (random sequential addition from a seed).
 struct FillSpec {
   enum class Shape { Box, Cylinder } shape = Shape::Box;
@@ -57,6 +82,8 @@ struct FillSpec {
   double cyl_radius = 0, cyl_height = 0;      //           radius and height
   int count = 0;
   double radius_min = 0, radius_max = 0;  // equal for one size; uniform in [min, max] otherwise
+  int template_index = -1;                // >= 0: bodies of this template at random orientations,
+  double scale_min = 1, scale_max = 1;    //        scaled uniformly in [min, max]
   int material = 0;
   uint64_t seed = 0;
   Vec3d velocity{};
@@ -72,6 +99,12 @@ struct LatticeSpec {
   int material = 0;
   int max_count = 0;   // 0: as many as fit
   Vec3d velocity{};
+  // Template lattices: bodies at the sites, all at one orientation, the cell edge per axis
+  // (elongated bodies pack aligned, as the cotton seed's 454 stalks in their bucket).
+  int template_index = -1;
+  Vec3d spacing_xyz{};
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  double scale = 1;
   SourceRef where;
 };
 
@@ -85,8 +118,15 @@ struct WallMotion {
   double angular_rate = 0;  // rad/s about rotation_axis through rotation_axis_point
 };
 
+// A triangle mesh wall as placed in the case (STL scaled, then offset), vertices shared.
+struct WallMesh {
+  std::string file;  // as resolved from the case's folder
+  std::vector<Vec3d> vertices;
+  std::vector<std::array<uint32_t, 3>> triangles;
+};
+
 struct WallSpec {
-  enum class Type { Plane, Box, Cylinder } type = Type::Plane;
+  enum class Type { Plane, Box, Cylinder, Rectangle, Mesh } type = Type::Plane;
   int material = 0;
   // Plane: contact on the side the normal points to.
   Vec3d point{}, normal{0, 0, 1};
@@ -95,6 +135,14 @@ struct WallSpec {
   // Cylinder: particles are inside the inner surface; finite along the axis.
   Vec3d base{}, axis{0, 0, 1};
   double radius = 0, height = 0;
+  // Box: faces left out ("zmax" for an open top), by the names xmin ... zmax.
+  std::vector<std::string> open_faces;
+  // Rectangle: centre `point`, unit `normal` (contact on that side), unit in-plane `edge_axis`
+  // (side `size[0]` along it, `size[1]` along normal x edge_axis).
+  Vec3d edge_axis{1, 0, 0};
+  std::array<double, 2> size{0, 0};
+  // Mesh: the triangles (shared between copies of the case).
+  std::shared_ptr<const WallMesh> mesh;
   WallMotion motion;
   std::string name;  // optional, used in summaries ("floor", "gate")
   SourceRef where;
@@ -134,10 +182,31 @@ struct OutputSpec {
 
 // The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]).
 struct ExperimentSpec {
-  std::string type;          // "drop"; empty: the case is a plain simulation
+  std::string type;          // "drop", "slide", "roll", "repose"; empty: a plain simulation
+  double max_time = 5.0;     // s: give up when the measurement has not ended by then
+  // drop
   double drop_height = 0.5;  // m: the body's lowest point above the plate at release
   double camera_fps = 1000;  // frames per second of the simulated high-speed camera
-  double max_time = 5.0;     // s: give up when the body has not rebounded by then
+  // slide, and roll with method "tilt": the plate wall tilts about `tilt_axis` through its centre
+  std::string plate;            // wall name; default the first wall
+  double tilt_rate_deg = 1.0;   // deg/s
+  Vec3d tilt_axis{0, 1, 0};
+  double settle_time = 0.5;     // s at rest before the tilt starts
+  double onset_distance = 1e-3; // m the body moves relative to the plate: it slides (or rolls)
+  double max_angle_deg = 60;    // give up beyond this tilt
+  // roll
+  std::string method = "incline";  // "incline" (release, roll onto the floor) or "tilt"
+  double incline_deg = 10;         // beta
+  double slope_distance = 0.26;    // S, m along the incline from the release point to the foot
+  double stop_speed = 0.005;       // m/s: the body has stopped
+  // repose
+  std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
+  double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
+  double settle_energy = 1e-4;     // J per particle: the heap has settled below this
+  std::string view = "y";          // camera looks along +y ("y") or +x ("x")
+  std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
+  bool axisymmetric = false;       // also the 3D sector fit (bottomless cylinder)
+  std::optional<double> heap_floor_z;  // default: the lowest sphere bottom
   SourceRef where;
 };
 
@@ -164,6 +233,8 @@ struct CaseSpec {
   std::vector<Material> materials;
   std::vector<Interaction> interactions;
   std::vector<SphereSpec> spheres;  // explicit [[sphere]] entries first, then expanded fills/lattices
+  std::vector<TemplateSpec> templates;
+  std::vector<BodySpec> bodies;     // explicit [[clump]] entries first, then template fills
   std::vector<FillSpec> fills;
   std::vector<LatticeSpec> lattices;
   std::vector<WallSpec> walls;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <random>
 
+#include "case/body_pose.h"
 #include "case/case_error.h"
 #include "case/sphere_grid.h"
 
@@ -58,6 +59,16 @@ void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
         axis[0] * e1[1] - axis[1] * e1[0]};
 }
 
+// Every sphere and body sub-sphere placed so far, in the world.
+std::vector<SphereSpec> occupied_spheres(const CaseSpec& spec) {
+  std::vector<SphereSpec> occupied = spec.spheres;
+  for (const BodySpec& body : spec.bodies) {
+    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
+    occupied.insert(occupied.end(), subs.begin(), subs.end());
+  }
+  return occupied;
+}
+
 }  // namespace
 
 void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
@@ -82,28 +93,33 @@ void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
   }
 }
 
-std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice) {
-  const double s = lattice.spacing, r = lattice.radius;
+// Sites with a margin per axis and a cell edge per axis (the sphere lattice has both equal).
+std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice, const Vec3d& margin, const Vec3d& s) {
   bool bcc = lattice.kind == LatticeSpec::Kind::BodyCentredCubic;
   int corners[3], centres[3];
   for (int axis = 0; axis < 3; ++axis) {
     double length = lattice.box_max[axis] - lattice.box_min[axis];
-    corners[axis] = sites_along(length, r, s, 0);
-    centres[axis] = bcc ? sites_along(length, r, s, s / 2) : 0;
+    corners[axis] = sites_along(length, margin[axis], s[axis], 0);
+    centres[axis] = bcc ? sites_along(length, margin[axis], s[axis], s[axis] / 2) : 0;
   }
   std::vector<Vec3d> sites;
   auto add_layer = [&](const int* counts, double offset, int k) {
-    double z = lattice.box_min[2] + r + offset + k * s;
+    double z = lattice.box_min[2] + margin[2] + offset * s[2] + k * s[2];
     for (int j = 0; j < counts[1]; ++j)
       for (int i = 0; i < counts[0]; ++i)
-        sites.push_back({lattice.box_min[0] + r + offset + i * s,
-                         lattice.box_min[1] + r + offset + j * s, z});
+        sites.push_back({lattice.box_min[0] + margin[0] + offset * s[0] + i * s[0],
+                         lattice.box_min[1] + margin[1] + offset * s[1] + j * s[1], z});
   };
   for (int k = 0; k < std::max(corners[2], centres[2]); ++k) {
     if (k < corners[2]) add_layer(corners, 0, k);
-    if (k < centres[2]) add_layer(centres, s / 2, k);
+    if (k < centres[2]) add_layer(centres, 0.5, k);
   }
   return sites;
+}
+
+std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice) {
+  const double s = lattice.spacing, r = lattice.radius;
+  return lattice_sites(lattice, {r, r, r}, {s, s, s});
 }
 
 void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres) {
@@ -137,25 +153,96 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
   }
 }
 
-void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
-  std::mt19937_64 engine(fill.seed);
-  auto uniform = [&engine] { return unit_interval(engine()); };
-
-  bool box = fill.shape == FillSpec::Shape::Box;
+// A fill's region and random points in it, keeping a margin from its boundary.
+struct FillRegion {
+  const FillSpec& fill;
+  bool box;
   Vec3d e1{}, e2{};
-  if (!box) perpendicular_basis(fill.cyl_axis, e1, e2);
+  Vec3d lo{}, hi{};  // bounding box, for choosing which existing spheres can interfere
 
-  // Bounding box of the region, for choosing which existing spheres can interfere.
-  Vec3d lo = fill.box_min, hi = fill.box_max;
-  if (!box) {
+  explicit FillRegion(const FillSpec& f) : fill(f), box(f.shape == FillSpec::Shape::Box) {
+    lo = fill.box_min;
+    hi = fill.box_max;
+    if (box) return;
+    perpendicular_basis(fill.cyl_axis, e1, e2);
     for (int axis = 0; axis < 3; ++axis) {
       double top = fill.cyl_base[axis] + fill.cyl_axis[axis] * fill.cyl_height;
       lo[axis] = std::min(fill.cyl_base[axis], top) - fill.cyl_radius;
       hi[axis] = std::max(fill.cyl_base[axis], top) + fill.cyl_radius;
     }
   }
+
+  template <class Uniform>
+  Vec3d random_point(double margin, Uniform& uniform) const {
+    Vec3d centre{};
+    if (box) {
+      for (int axis = 0; axis < 3; ++axis) {
+        double span = fill.box_max[axis] - fill.box_min[axis] - 2 * margin;
+        centre[axis] = fill.box_min[axis] + margin + span * uniform();
+      }
+      return centre;
+    }
+    double along = margin + (fill.cyl_height - 2 * margin) * uniform();
+    double a, b;  // uniform in the unit disc by rejection from the square
+    do {
+      a = 2 * uniform() - 1;
+      b = 2 * uniform() - 1;
+    } while (a * a + b * b > 1);
+    double reach = fill.cyl_radius - margin;
+    for (int axis = 0; axis < 3; ++axis)
+      centre[axis] = fill.cyl_base[axis] + fill.cyl_axis[axis] * along + e1[axis] * (reach * a) +
+                     e2[axis] * (reach * b);
+    return centre;
+  }
+};
+
+void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec) {
+  const TemplateSpec& templ = spec.templates.at(size_t(lattice.template_index));
+  // Margin per axis: the half-extent of the oriented, scaled body about its template origin.
+  BodySpec probe;
+  probe.template_index = lattice.template_index;
+  probe.orientation = lattice.orientation;
+  probe.scale = lattice.scale;
+  Vec3d margin{0, 0, 0};
+  for (const SphereSpec& s : body_spheres(probe, templ))
+    for (int axis = 0; axis < 3; ++axis)
+      margin[axis] = std::max(margin[axis], std::abs(s.position[axis]) + s.radius);
+  std::vector<Vec3d> sites = lattice_sites(lattice, margin, lattice.spacing_xyz);
+  if (sites.empty())
+    throw CaseError(lattice.where, "no site fits: the box is smaller than one '" + templ.name + "' body");
+  if (lattice.max_count > 0) {
+    if (size_t(lattice.max_count) > sites.size())
+      throw CaseError(lattice.where, "count = " + std::to_string(lattice.max_count) + " but only " +
+                                         std::to_string(sites.size()) + " sites fit in the box");
+    sites.resize(size_t(lattice.max_count));
+  }
+  std::vector<SphereSpec> occupied = occupied_spheres(spec);
+  double largest_sub = 0;
+  for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius * lattice.scale);
   std::vector<int> ids;
-  SphereGrid grid = grid_near(spheres, lo, hi, fill.radius_max, ids);
+  SphereGrid grid = grid_near(occupied, lattice.box_min, lattice.box_max, largest_sub, ids);
+  for (const Vec3d& site : sites) {
+    BodySpec body = probe;
+    body.material = lattice.material;
+    body.position = site;
+    body.velocity = lattice.velocity;
+    body.where = lattice.where;
+    auto subs = body_spheres(body, templ);
+    for (const SphereSpec& s : subs)
+      if (grid.find_overlap(s.position, s.radius) >= 0)
+        throw CaseError(lattice.where, "the body at site " + format_point(site) +
+                                           " overlaps a particle placed before it: widen spacing");
+    for (const SphereSpec& s : subs) grid.insert(s.position, s.radius);
+    spec.bodies.push_back(body);
+  }
+}
+
+void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
+  std::mt19937_64 engine(fill.seed);
+  auto uniform = [&engine] { return unit_interval(engine()); };
+  FillRegion region(fill);
+  std::vector<int> ids;
+  SphereGrid grid = grid_near(spheres, region.lo, region.hi, fill.radius_max, ids);
 
   for (int placed = 0; placed < fill.count; ++placed) {
     double radius = fill.radius_min;
@@ -164,23 +251,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     bool found = false;
     Vec3d centre{};
     for (int attempt = 0; attempt < kFillTriesPerSphere && !found; ++attempt) {
-      if (box) {
-        for (int axis = 0; axis < 3; ++axis) {
-          double span = fill.box_max[axis] - fill.box_min[axis] - 2 * radius;
-          centre[axis] = fill.box_min[axis] + radius + span * uniform();
-        }
-      } else {
-        double along = radius + (fill.cyl_height - 2 * radius) * uniform();
-        double a, b;  // uniform in the unit disc by rejection from the square
-        do {
-          a = 2 * uniform() - 1;
-          b = 2 * uniform() - 1;
-        } while (a * a + b * b > 1);
-        double reach = fill.cyl_radius - radius;
-        for (int axis = 0; axis < 3; ++axis)
-          centre[axis] = fill.cyl_base[axis] + fill.cyl_axis[axis] * along +
-                         e1[axis] * (reach * a) + e2[axis] * (reach * b);
-      }
+      centre = region.random_point(radius, uniform);
       found = grid.find_overlap(centre, radius) < 0;
     }
     if (!found)
@@ -201,10 +272,59 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
   }
 }
 
+void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
+  const TemplateSpec& templ = spec.templates.at(size_t(fill.template_index));
+  std::mt19937_64 engine(fill.seed);
+  auto uniform = [&engine] { return unit_interval(engine()); };
+  FillRegion region(fill);
+  double bound = bounding_radius(templ.clump);
+  double largest_sub = 0;
+  for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius);
+
+  std::vector<SphereSpec> occupied = occupied_spheres(spec);
+  std::vector<int> ids;
+  SphereGrid grid = grid_near(occupied, region.lo, region.hi, largest_sub * fill.scale_max, ids);
+
+  for (int placed = 0; placed < fill.count; ++placed) {
+    BodySpec body;
+    body.template_index = fill.template_index;
+    body.material = fill.material;
+    body.velocity = fill.velocity;
+    body.where = fill.where;
+    body.scale = fill.scale_min;
+    if (fill.scale_max > fill.scale_min) body.scale += (fill.scale_max - fill.scale_min) * uniform();
+    bool found = false;
+    std::vector<SphereSpec> subs;
+    for (int attempt = 0; attempt < kFillTriesPerBody && !found; ++attempt) {
+      body.orientation = random_orientation(uniform);
+      body.position = region.random_point(bound * body.scale, uniform);
+      subs = body_spheres(body, templ);
+      found = std::all_of(subs.begin(), subs.end(), [&](const SphereSpec& s) {
+        return grid.find_overlap(s.position, s.radius) < 0;
+      });
+    }
+    if (!found)
+      throw CaseError(fill.where,
+                      "only " + std::to_string(placed) + " of the " + std::to_string(fill.count) +
+                          " '" + templ.name + "' bodies (count) fit without overlap: body " +
+                          std::to_string(placed + 1) + " found no free place in " +
+                          std::to_string(kFillTriesPerBody) +
+                          " random poses; enlarge the region or lower count");
+    for (const SphereSpec& s : subs) grid.insert(s.position, s.radius);
+    spec.bodies.push_back(body);
+  }
+}
+
 void expand_particles(CaseSpec& spec) {
   check_no_overlaps(spec.spheres);
-  for (const LatticeSpec& lattice : spec.lattices) append_lattice(lattice, spec.spheres);
-  for (const FillSpec& fill : spec.fills) append_fill(fill, spec.spheres);
+  for (const LatticeSpec& lattice : spec.lattices)
+    if (lattice.template_index < 0) append_lattice(lattice, spec.spheres);
+  for (const FillSpec& fill : spec.fills)
+    if (fill.template_index < 0) append_fill(fill, spec.spheres);
+  for (const LatticeSpec& lattice : spec.lattices)
+    if (lattice.template_index >= 0) append_body_lattice(lattice, spec);
+  for (const FillSpec& fill : spec.fills)
+    if (fill.template_index >= 0) append_body_fill(fill, spec);
 }
 
 }  // namespace repose

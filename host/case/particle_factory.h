@@ -12,8 +12,8 @@ namespace repose {
 // A double uniform in [0, 1) from the top 53 bits of one raw 64-bit draw.
 inline double unit_interval(uint64_t raw) { return double(raw >> 11) * 0x1.0p-53; }
 
-// Checks the explicit spheres, then appends every [[lattice]] and then every [[fill]] (each in
-// file order) to spec.spheres. Lattices come first because their sites are fixed, and the random
+// Checks the explicit spheres, then appends every [[lattice]] and then every sphere [[fill]]
+// (each in file order) to spec.spheres, then every template fill to spec.bodies. Lattices come first because their sites are fixed, and the random
 // fills can then pack around them. Call once, on a spec whose spheres are the explicit ones.
 // Throws CaseError when explicit spheres overlap, a lattice site overlaps an earlier sphere, or
 // a fill cannot place its count.
@@ -36,5 +36,15 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
 // kFillTriesPerSphere tries. Throws CaseError saying how many fitted when one finds no place.
 constexpr int kFillTriesPerSphere = 20000;
 void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres);
+
+// The same for a template fill: bodies at random orientations and scales, none overlapping the
+// spheres or bodies already in spec (sub-sphere against sub-sphere), the body's bounding sphere
+// inside the region. Appends to spec.bodies.
+constexpr int kFillTriesPerBody = 5000;
+void append_body_fill(const FillSpec& fill, CaseSpec& spec);
+
+// Bodies of a template lattice at its sites (cell edge per axis, one orientation, margins the
+// oriented body's half-extents). Throws CaseError when a body overlaps a particle placed before.
+void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec);
 
 }  // namespace repose

@@ -8,12 +8,16 @@ namespace repose {
 double rayleigh_time(double radius, const Material& material);
 
 struct RayleighLimit {
-  double time = 0;   // the smallest Rayleigh time over all spheres; +inf without spheres
-  int sphere = -1;   // the first sphere that has it, -1 without spheres
+  double time = 0;   // the smallest Rayleigh time over all spheres and sub-spheres; +inf without
+  int sphere = -1;   // the first sphere that has it; -1 when it is a body's sub-sphere (or none)
+  int body = -1;     // the first body whose sub-sphere has it
+  double radius = 0;
+  int material = 0;
+  SourceRef where;   // the entry that made that sphere or body
 };
 RayleighLimit rayleigh_limit(const CaseSpec& spec);
 
-// Minimum over CaseSpec::spheres; +infinity when there are none.
+// Minimum over CaseSpec::spheres and the bodies' sub-spheres; +infinity when there are none.
 double rayleigh_time(const CaseSpec& spec);
 
 // dt when the case gives it, else rayleigh_fraction x rayleigh_time(spec). Throws CaseError

@@ -19,8 +19,16 @@ struct Layout {
   uint32_t n_materials = 0;
   uint32_t table_size = 0;
   uint32_t capacity = 0;     // contact list entries
+  uint32_t n_bodies = 0;     // rigid bodies; 0: every particle is a free sphere
   uint32_t batch_steps = 1;  // wall states per upload
   bool lean_contacts = false;  // no torque_j buffer (KernelVariant::lean)
+};
+
+// Inputs that stay constant during a run, uploaded with every allocation.
+struct ConstantData {
+  std::vector<uint32_t> material;
+  std::vector<gpu::PairParams> pairs;
+  std::vector<gpu::SubSphere> subs;  // one per particle with bodies, else empty
 };
 
 // Device bytes per contact-list entry: partner, owner and transposed index, history, and the
@@ -47,6 +55,7 @@ struct HostState {
   std::vector<uint32_t> control;
   std::vector<uint32_t> row_start, partner, owner, trans_start, trans_list;
   std::vector<gpu::vec4> history;
+  std::vector<gpu::Body> bodies;  // empty without bodies
 };
 
 // Seconds spent per kernel, summed over the dispatches timed.
@@ -57,8 +66,7 @@ class Backend {
   virtual ~Backend() = default;
   virtual std::string describe() const = 0;
   // Creates every buffer for `layout` (dropping the previous ones) and uploads constants.
-  virtual void allocate(const Layout& layout, const std::vector<uint32_t>& material,
-                        const std::vector<gpu::PairParams>& pairs) = 0;
+  virtual void allocate(const Layout& layout, const ConstantData& constants) = 0;
   virtual void upload_state(const HostState& s) = 0;
   virtual void download_state(HostState& s) = 0;
   // layout.batch_steps * n_walls states, step-major.

@@ -12,8 +12,7 @@ std::string CpuBackend::describe() const {
          (pool_.size() == 1 ? "" : "s") + ")";
 }
 
-void CpuBackend::allocate(const Layout& l, const std::vector<uint32_t>& material,
-                          const std::vector<gpu::PairParams>& pairs) {
+void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
   layout_ = l;
   size_t n = l.n_particles, c = l.capacity, t = l.table_size;
   auto v4 = [](std::vector<gpu::vec4>& v, size_t k) { v.assign(std::max<size_t>(k, 1), gpu::vec4(0.0f)); };
@@ -22,11 +21,14 @@ void CpuBackend::allocate(const Layout& l, const std::vector<uint32_t>& material
   // old_history and old_partner share contact_force and trans_list (shaders/repose_shared.h).
   v4(history_, c); v4(contact_force_, c); v4(torque_i_, c); v4(torque_j_, l.lean_contacts ? 0 : c);
   v4(wall_force_, l.n_walls);
-  u(control_, gpu::kControlWords); u(cell_of_, n); u(cell_start_, t + 1); u(cell_fill_, t);
+  u(control_, gpu::kControlWords); u(cell_of_, n); u(cell_start_, t + 2); u(cell_fill_, t + 1);
   u(sorted_, n); u(row_start_, n + 1); u(partner_, c); u(owner_, c); u(old_row_start_, n + 1);
   u(trans_start_, n + 1); u(trans_fill_, n); u(trans_list_, c);
-  material_ = material;
-  pairs_ = pairs;
+  material_ = constants.material;
+  pairs_ = constants.pairs;
+  subs_ = constants.subs;
+  if (subs_.empty()) subs_.resize(1);
+  bodies_.assign(std::max<size_t>(l.n_bodies, 1), gpu::Body{});
   walls_.assign(std::max<size_t>(size_t(l.batch_steps) * l.n_walls, 1), gpu::WallState{});
   point_buffers();
 }
@@ -43,6 +45,7 @@ void CpuBackend::point_buffers() {
   buf_.torque_i = torque_i_.data(); buf_.torque_j = torque_j_.data();
   buf_.trans_start = trans_start_.data(); buf_.trans_fill = trans_fill_.data();
   buf_.trans_list = trans_list_.data(); buf_.wall_force = wall_force_.data();
+  buf_.bodies = bodies_.data(); buf_.subs = subs_.data();
 }
 
 template <class T>
@@ -55,6 +58,7 @@ void CpuBackend::upload_state(const HostState& s) {
   put(torque_, s.torque); put(pos_at_build_, s.pos_at_build); put(control_, s.control);
   put(row_start_, s.row_start); put(partner_, s.partner); put(owner_, s.owner);
   put(trans_start_, s.trans_start); put(trans_list_, s.trans_list); put(history_, s.history);
+  put(bodies_, s.bodies);
 }
 
 void CpuBackend::download_state(HostState& s) {
@@ -68,6 +72,7 @@ void CpuBackend::download_state(HostState& s) {
   take(s.partner, partner_, used); take(s.owner, owner_, used); take(s.history, history_, used);
   size_t trans_used = std::min<size_t>(trans_start_[n], layout_.capacity);
   take(s.trans_list, trans_list_, trans_used);
+  take(s.bodies, bodies_, layout_.n_bodies);
 }
 
 void CpuBackend::upload_walls(const std::vector<gpu::WallState>& walls) { put(walls_, walls); }
@@ -105,7 +110,8 @@ size_t CpuBackend::memory_bytes() const {
                   &partner_, &owner_, &old_row_start_, &trans_start_, &trans_fill_,
                   &trans_list_})
     b += v->size() * sizeof(uint32_t);
-  return b + pairs_.size() * sizeof(gpu::PairParams) + walls_.size() * sizeof(gpu::WallState);
+  return b + pairs_.size() * sizeof(gpu::PairParams) + walls_.size() * sizeof(gpu::WallState) +
+         bodies_.size() * sizeof(gpu::Body) + subs_.size() * sizeof(gpu::SubSphere);
 }
 
 }  // namespace repose

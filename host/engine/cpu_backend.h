@@ -13,8 +13,7 @@ class CpuBackend : public Backend {
  public:
   explicit CpuBackend(unsigned threads);
   std::string describe() const override;
-  void allocate(const Layout& layout, const std::vector<uint32_t>& material,
-                const std::vector<gpu::PairParams>& pairs) override;
+  void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
   void download_state(HostState& s) override;
   void upload_walls(const std::vector<gpu::WallState>& walls) override;
@@ -37,6 +36,8 @@ class CpuBackend : public Backend {
       row_start_, partner_, owner_, old_row_start_, trans_start_, trans_fill_, trans_list_;
   std::vector<gpu::PairParams> pairs_;
   std::vector<gpu::WallState> walls_;
+  std::vector<gpu::Body> bodies_;
+  std::vector<gpu::SubSphere> subs_;
   gpu::Buffers buf_;
 };
 

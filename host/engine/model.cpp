@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
+#include "case/body_pose.h"
 #include "case/time_step.h"
+#include "geometry/clump.h"
 
 namespace repose {
 
@@ -22,7 +25,7 @@ Vec3d cross(Vec3d a, Vec3d b) {
 Vec3d unit(Vec3d a) { return mul(a, 1.0 / std::sqrt(dot(a, a))); }
 
 // Rodrigues rotation of v about the unit axis k by angle a.
-Vec3d rotate(Vec3d v, Vec3d k, double a) {
+Vec3d rotate_about(Vec3d v, Vec3d k, double a) {
   double c = std::cos(a), s = std::sin(a);
   return add(add(mul(v, c), mul(cross(k, v), s)), mul(k, dot(k, v) * (1 - c)));
 }
@@ -31,10 +34,116 @@ gpu::vec4 v4(Vec3d a, double w) {
   return gpu::vec4(float(a[0]), float(a[1]), float(a[2]), float(w));
 }
 
+gpu::vec4 v4(const Quat& q) {  // (w, x, y, z) -> the kernels' (x, y, z, w)
+  return gpu::vec4(float(q[1]), float(q[2]), float(q[3]), float(q[0]));
+}
+
 uint32_t next_pow2(uint32_t v) {
   uint32_t p = 1;
   while (p < v) p <<= 1;
   return p;
+}
+
+// Particles above half the largest radius skip the hash grid when they are few (at most
+// max(64, N/32)): the cell then fits the small ones (a cabbage's veins, not its core).
+void choose_large_radius(Model& m, double& r_cell) {
+  double r_max = 0;
+  for (const auto& p : m.pos) r_max = std::max(r_max, double(p.w));
+  double split = 0;
+  size_t large = 0;
+  for (const auto& p : m.pos) {
+    if (double(p.w) <= 0.5 * r_max) split = std::max(split, double(p.w));
+    else ++large;
+  }
+  if (large == 0 || split == 0 || large > std::max<size_t>(64, m.pos.size() / 32)) return;
+  m.large_radius = split;
+  r_cell = split;
+}
+
+// Mass properties of a template at density 1 and scale 1, in its principal frame.
+struct TemplateFrame {
+  MassProperties unit;      // density 1: mass = volume
+  Quat principal;           // principal frame -> template frame
+  std::vector<Vec3d> local; // sub-sphere centres in the principal frame, about the centre of mass
+};
+
+TemplateFrame template_frame(const TemplateSpec& t) {
+  TemplateFrame f;
+  f.unit = compute_mass_properties(t.clump, 1.0);
+  const glm::dmat3& a = f.unit.principal_axes;
+  f.principal = quat_from_columns({a[0][0], a[0][1], a[0][2]}, {a[1][0], a[1][1], a[1][2]},
+                                  {a[2][0], a[2][1], a[2][2]});
+  for (const Sphere& s : t.clump.spheres) {
+    glm::dvec3 d = s.centre - f.unit.centre_of_mass;
+    f.local.push_back({glm::dot(a[0], d), glm::dot(a[1], d), glm::dot(a[2], d)});
+  }
+  return f;
+}
+
+// Every particle becomes a sub-sphere of a body: lone spheres first (one-sphere bodies), then
+// the case's bodies in order, each body's sub-spheres contiguous.
+void add_bodies(const CaseSpec& spec, Model& m) {
+  auto push_body = [&](Vec3d centre, double mass, Quat q, Vec3d moments, Vec3d v, Vec3d w,
+                       const std::vector<Vec3d>& local, const std::vector<double>& radii,
+                       uint32_t material) {
+    gpu::Body b{};
+    uint32_t first = static_cast<uint32_t>(m.subs.size());
+    b.pos = v4(centre, 1.0 / mass);
+    b.vel = v4(v, 0);
+    b.quat = v4(q);
+    Quat conj{q[0], -q[1], -q[2], -q[3]};
+    Vec3d wb = rotate(conj, w);
+    Vec3d lb{moments[0] * wb[0], moments[1] * wb[1], moments[2] * wb[2]};
+    b.ang_mom = v4(rotate(q, lb), 0);
+    b.omega = v4(w, 0);
+    b.inv_inertia = v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
+    b.spheres = gpu::uvec4(first, uint32_t(local.size()), 0u, 0u);
+    for (size_t k = 0; k < local.size(); ++k) {
+      gpu::SubSphere s{};
+      s.local = v4(local[k], radii[k]);
+      s.info = gpu::uvec4(uint32_t(m.bodies.size()), 0u, 0u, 0u);
+      m.subs.push_back(s);
+      Vec3d r = rotate(q, local[k]);
+      m.pos.push_back(v4(add(centre, r), radii[k]));
+      m.vel.push_back(v4(add(v, cross(w, r)), 1.0 / mass));
+      m.omega.push_back(v4(w, 0));
+      m.material.push_back(material);
+    }
+    m.total_mass += mass;
+    m.bodies.push_back(b);
+  };
+  for (const SphereSpec& s : spec.spheres) {
+    const Material& mat = spec.materials.at(size_t(s.material));
+    double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
+    double inertia = 0.4 * mass * s.radius * s.radius;
+    push_body(s.position, mass, {1, 0, 0, 0}, {inertia, inertia, inertia}, s.velocity,
+              s.angular_velocity, {{0, 0, 0}}, {s.radius}, uint32_t(s.material));
+  }
+  std::vector<std::optional<TemplateFrame>> frames(spec.templates.size());
+  for (const BodySpec& body : spec.bodies) {
+    const TemplateSpec& t = spec.templates.at(size_t(body.template_index));
+    auto& frame = frames[size_t(body.template_index)];
+    if (!frame) frame = template_frame(t);
+    double s = body.scale;
+    double density = t.mass ? *t.mass / frame->unit.volume
+                            : spec.materials.at(size_t(body.material)).density;
+    double mass = density * frame->unit.volume * s * s * s;
+    double s5 = density * s * s * s * s * s;
+    Vec3d moments = mul({frame->unit.principal_moments.x, frame->unit.principal_moments.y,
+                         frame->unit.principal_moments.z}, s5);
+    glm::dvec3 com = frame->unit.centre_of_mass * s;
+    Vec3d centre = add(body.position, rotate(body.orientation, {com.x, com.y, com.z}));
+    Quat q = multiply(body.orientation, frame->principal);
+    std::vector<Vec3d> local;
+    std::vector<double> radii;
+    for (size_t k = 0; k < frame->local.size(); ++k) {
+      local.push_back(mul(frame->local[k], s));
+      radii.push_back(t.clump.spheres[k].radius * s);
+    }
+    push_body(centre, mass, q, moments, body.velocity, body.angular_velocity, local, radii,
+              uint32_t(body.material));
+  }
+  m.n_particles = static_cast<uint32_t>(m.subs.size());
 }
 
 }  // namespace
@@ -66,16 +175,43 @@ gpu::WallState Model::wall_state(size_t w, double t) const {
   Vec3d axis = dot(m.rotation_axis, m.rotation_axis) > 0 ? unit(m.rotation_axis) : Vec3d{0, 0, 1};
   double angle = m.angular_rate * active;
   Vec3d centre = add(m.rotation_axis_point, shift);
-  Vec3d p0 = add(centre, rotate(sub(mw.p0, m.rotation_axis_point), axis, angle));
-  Vec3d p1 = rotate(mw.p1, axis, angle);
+  auto point = [&](Vec3d p) { return add(centre, rotate_about(sub(p, m.rotation_axis_point), axis, angle)); };
+  auto direction = [&](Vec3d d) { return rotate_about(d, axis, angle); };
+  bool triangle = mw.kind == gpu::kWallTriangle;
   gpu::WallState s;
-  s.p0 = v4(p0, 0);
-  s.p1 = v4(p1, mw.kind == gpu::kWallCylinder ? mw.radius : 0.0);
+  s.p0 = v4(point(mw.p0), 0);
+  s.p1 = v4(triangle ? point(mw.p1) : direction(mw.p1), mw.kind == gpu::kWallCylinder ? mw.radius : 0.0);
   s.vel = v4(moving ? m.velocity : Vec3d{0, 0, 0}, mw.height);
   s.omega = v4(moving ? mul(axis, m.angular_rate) : Vec3d{0, 0, 0}, 0);
   s.centre = v4(centre, 0);
-  s.info = gpu::uvec4(mw.kind, mw.material, 0u, 0u);
+  s.info = gpu::uvec4(mw.kind, mw.material, mw.mesh_id, 0u);
+  s.p2 = v4(triangle ? point(mw.p2) : direction(mw.p2), mw.half_u);
+  s.p3 = v4(direction(mw.p3), mw.half_v);
+  s.topo = gpu::uvec4(mw.vertex_ids[0], mw.vertex_ids[1], mw.vertex_ids[2], 0u);
   return s;
+}
+
+std::vector<size_t> Model::wall_groups() const {
+  std::vector<size_t> group;
+  std::vector<std::string> names;
+  for (const auto& w : walls) {
+    // Mesh triangles share their wall's name; box faces keep their own (base.xmin ...).
+    auto it = std::find(names.begin(), names.end(), w.name);
+    if (it == names.end()) {
+      names.push_back(w.name);
+      group.push_back(names.size() - 1);
+    } else {
+      group.push_back(size_t(it - names.begin()));
+    }
+  }
+  return group;
+}
+
+std::vector<std::string> Model::wall_group_names() const {
+  std::vector<std::string> names;
+  for (const auto& w : walls)
+    if (std::find(names.begin(), names.end(), w.name) == names.end()) names.push_back(w.name);
+  return names;
 }
 
 Model build_model(const CaseSpec& spec) {
@@ -83,10 +219,19 @@ Model build_model(const CaseSpec& spec) {
   m.case_path = spec.path;
   m.n_particles = static_cast<uint32_t>(spec.spheres.size());
   m.n_materials = static_cast<uint32_t>(spec.materials.size());
-  if (m.n_particles == 0) throw std::runtime_error(spec.path + ": the case has no particles");
+  if (spec.spheres.empty() && spec.bodies.empty())
+    throw std::runtime_error(spec.path + ": the case has no particles");
 
   double r_min = 1e300, r_max = 0;
+  if (!spec.bodies.empty()) {
+    add_bodies(spec, m);
+    for (const auto& p : m.pos) {
+      r_min = std::min(r_min, double(p.w));
+      r_max = std::max(r_max, double(p.w));
+    }
+  }
   for (const auto& s : spec.spheres) {
+    if (!spec.bodies.empty()) break;  // already added as one-sphere bodies
     const Material& mat = spec.materials.at(s.material);
     double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
     double inertia = 0.4 * mass * s.radius * s.radius;
@@ -122,16 +267,55 @@ Model build_model(const CaseSpec& spec) {
       mw.spec_index = static_cast<int>(wi);
       m.walls.push_back(mw);
     };
+    auto face = [&](Vec3d point, Vec3d normal, const std::string& suffix) {
+      if (std::find(w.open_faces.begin(), w.open_faces.end(), suffix) == w.open_faces.end())
+        plane(point, normal, base + "." + suffix);
+    };
     switch (w.type) {
       case WallSpec::Type::Plane: plane(w.point, w.normal, base); break;
       case WallSpec::Type::Box: {
-        // Six inward-facing planes; particles live inside.
-        plane(w.box_min, {1, 0, 0}, base + ".xmin");
-        plane(w.box_max, {-1, 0, 0}, base + ".xmax");
-        plane(w.box_min, {0, 1, 0}, base + ".ymin");
-        plane(w.box_max, {0, -1, 0}, base + ".ymax");
-        plane(w.box_min, {0, 0, 1}, base + ".zmin");
-        plane(w.box_max, {0, 0, -1}, base + ".zmax");
+        // Six inward-facing planes (less the open ones); particles live inside.
+        face(w.box_min, {1, 0, 0}, "xmin");
+        face(w.box_max, {-1, 0, 0}, "xmax");
+        face(w.box_min, {0, 1, 0}, "ymin");
+        face(w.box_max, {0, -1, 0}, "ymax");
+        face(w.box_min, {0, 0, 1}, "zmin");
+        face(w.box_max, {0, 0, -1}, "zmax");
+        break;
+      }
+      case WallSpec::Type::Rectangle: {
+        ModelWall mw;
+        mw.kind = gpu::kWallRectangle;
+        mw.material = static_cast<uint32_t>(w.material);
+        mw.p0 = w.point;
+        mw.p1 = unit(w.normal);
+        mw.p2 = unit(sub(w.edge_axis, mul(mw.p1, dot(w.edge_axis, mw.p1))));
+        mw.p3 = cross(mw.p1, mw.p2);
+        mw.half_u = 0.5 * w.size[0];
+        mw.half_v = 0.5 * w.size[1];
+        mw.motion = w.motion;
+        mw.name = base;
+        mw.spec_index = static_cast<int>(wi);
+        m.walls.push_back(mw);
+        break;
+      }
+      case WallSpec::Type::Mesh: {
+        // One wall row per triangle; vertex ids let the kernels find shared corners.
+        for (const auto& tri : w.mesh->triangles) {
+          ModelWall mw;
+          mw.kind = gpu::kWallTriangle;
+          mw.material = static_cast<uint32_t>(w.material);
+          mw.p0 = w.mesh->vertices[tri[0]];
+          mw.p1 = w.mesh->vertices[tri[1]];
+          mw.p2 = w.mesh->vertices[tri[2]];
+          mw.p3 = unit(cross(sub(mw.p1, mw.p0), sub(mw.p2, mw.p0)));
+          mw.mesh_id = static_cast<uint32_t>(wi);
+          mw.vertex_ids = tri;
+          mw.motion = w.motion;
+          mw.name = base;
+          mw.spec_index = static_cast<int>(wi);
+          m.walls.push_back(mw);
+        }
         break;
       }
       case WallSpec::Type::Cylinder: {
@@ -168,7 +352,9 @@ Model build_model(const CaseSpec& spec) {
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius.
   m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : 0.5 * r_min;
-  m.cell = 2 * r_max + m.skin;
+  double r_cell = r_max;
+  choose_large_radius(m, r_cell);
+  m.cell = 2 * r_cell + m.skin;
   m.table_size = next_pow2(std::max<uint32_t>(1024, 2 * m.n_particles));
   m.max_interval = spec.neighbour.rebuild_interval > 0 ? spec.neighbour.rebuild_interval : 0;
 
@@ -178,8 +364,10 @@ Model build_model(const CaseSpec& spec) {
     extent = std::max(extent, std::sqrt(double(p.x) * p.x + double(p.y) * p.y + double(p.z) * p.z));
   double wall_speed = 0;
   for (const auto& w : m.walls) {
-    double lever = extent + std::sqrt(dot(w.motion.rotation_axis_point, w.motion.rotation_axis_point)) +
-                   w.radius + w.height;
+    double reach = w.radius + w.height + std::hypot(w.half_u, w.half_v);
+    for (const Vec3d& p : {w.p0, w.p1, w.p2})
+      reach = std::max(reach, std::sqrt(dot(p, p)));
+    double lever = extent + std::sqrt(dot(w.motion.rotation_axis_point, w.motion.rotation_axis_point)) + reach;
     wall_speed = std::max(wall_speed, std::sqrt(dot(w.motion.velocity, w.motion.velocity)) +
                                           std::abs(w.motion.angular_rate) * lever);
   }

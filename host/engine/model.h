@@ -2,6 +2,7 @@
 // with EDEM's derived constants, walls expanded to planes and cylinders with their motion, and
 // the resolved numerical settings (dt, skin, grid).
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,8 +15,13 @@ namespace repose {
 struct ModelWall {
   uint32_t kind = gpu::kWallPlane;
   uint32_t material = 0;
-  Vec3d p0{}, p1{};        // plane: point, normal; cylinder: base, axis
+  // plane: point, normal; cylinder: base, axis; rectangle: centre, normal, edge axes u and v;
+  // triangle: vertices p0 p1 p2, unit normal p3 (gpu::WallState describes the same slots).
+  Vec3d p0{}, p1{}, p2{}, p3{};
   double radius = 0, height = 0;
+  double half_u = 0, half_v = 0;          // rectangle half extents along p2, p3
+  uint32_t mesh_id = 0;                   // triangle: which [[wall]] mesh
+  std::array<uint32_t, 3> vertex_ids{};   // triangle: the mesh's shared vertex ids
   WallMotion motion;
   std::string name;        // the case's wall name, with a face suffix for boxes
   int spec_index = 0;      // which [[wall]] it came from
@@ -28,6 +34,11 @@ struct Model {
   std::vector<gpu::vec4> pos, vel, omega;  // w: radius, 1/mass, 1/inertia
   std::vector<uint32_t> material;
   std::vector<gpu::PairParams> pairs;      // [M*M]
+  // Rigid bodies (clumps). Empty when every particle is a free sphere; otherwise every particle
+  // is a sub-sphere of exactly one body (a lone sphere is a one-sphere body), bodies' spheres
+  // contiguous and in body order, and pos/vel/omega above are derived by body_place.
+  std::vector<gpu::Body> bodies;
+  std::vector<gpu::SubSphere> subs;
   std::vector<ModelWall> walls;
   double dt = 0;
   double rayleigh_time = 0;
@@ -37,6 +48,7 @@ struct Model {
   Vec3d gravity{};
   Integrator integrator = Integrator::VelocityVerlet;
   uint32_t flags = 0;            // contact options (gpu::kFlag...)
+  double large_radius = 3.0e38;  // particles above it use the large bucket (neighbour.h)
   double skin = 0;
   double cell = 0;               // hash cell edge
   uint32_t table_size = 0;       // hash buckets
@@ -46,6 +58,10 @@ struct Model {
 
   // A wall's state at time t (prescribed motion evaluated on the host, in double).
   gpu::WallState wall_state(size_t w, double t) const;
+  // The case's walls by name (a mesh's triangles and a box's faces are separate model walls):
+  // for each model wall, the index of its group; group_names()[k] names group k.
+  std::vector<std::string> wall_group_names() const;
+  std::vector<size_t> wall_groups() const;
 };
 
 // Throws CaseError-style messages naming the case file when the case cannot be simulated.

@@ -15,6 +15,8 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   layout_.table_size = model_.table_size;
   layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
   layout_.lean_contacts = variant_.lean;
+  layout_.n_bodies = static_cast<uint32_t>(model_.bodies.size());
+  constants_ = {model_.material, model_.pairs, model_.subs};
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
   state_.pos = model_.pos;
@@ -26,8 +28,15 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   state_.control.assign(gpu::kControlWords, 0u);
   state_.row_start.assign(model_.n_particles + 1, 0u);
   state_.trans_start.assign(model_.n_particles + 1, 0u);
+  state_.bodies = model_.bodies;
   // Room for ~6 contacts per particle plus walls; grown on overflow.
   allocate(6 * model_.n_particles + 4 * layout_.n_walls + 64);
+  if (layout_.n_bodies) {
+    backend_->execute(body_place_program(model_, layout_, variant_));
+    backend_->download_state(state_);
+    state_.pos_at_build = state_.pos;
+    backend_->upload_state(state_);
+  }
 
   // Velocity Verlet needs F(0) before its first half kick.
   if (model_.integrator == Integrator::VelocityVerlet) {
@@ -48,7 +57,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
 
 void Simulation::allocate(uint32_t capacity) {
   layout_.capacity = capacity;
-  backend_->allocate(layout_, model_.material, model_.pairs);
+  backend_->allocate(layout_, constants_);
   backend_->upload_state(state_);
 }
 
@@ -115,6 +124,15 @@ void Simulation::set_state(const HostState& s) {
 
 EnergySummary Simulation::kinetic_energy() const {
   EnergySummary e;
+  if (!state_.bodies.empty()) {
+    for (const gpu::Body& b : state_.bodies) {
+      const auto& v = b.vel;
+      e.translational += 0.5 / b.pos.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
+      e.rotational += 0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y +
+                             double(b.omega.z) * b.ang_mom.z);
+    }
+    return e;
+  }
   for (size_t i = 0; i < state_.vel.size(); ++i) {
     const auto& v = state_.vel[i];
     const auto& w = state_.omega[i];
@@ -127,9 +145,15 @@ EnergySummary Simulation::kinetic_energy() const {
 std::vector<WallForce> Simulation::wall_forces() {
   gpu::SimPush push = base_push(model_, layout_, variant_);
   auto f = backend_->wall_forces(push);
+  // One entry per named wall: a mesh's triangles are summed in wall order (fixed, so repeatable).
   std::vector<WallForce> out;
-  for (size_t w = 0; w < f.size(); ++w)
-    out.push_back({model_.walls[w].name, f[w].x, f[w].y, f[w].z});
+  for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0});
+  auto group = model_.wall_groups();
+  for (size_t w = 0; w < f.size(); ++w) {
+    out[group[w]].fx += f[w].x;
+    out[group[w]].fy += f[w].y;
+    out[group[w]].fz += f[w].z;
+  }
   return out;
 }
 

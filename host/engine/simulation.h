@@ -46,7 +46,8 @@ class Simulation {
   Backend& backend() { return *backend_; }
   const Backend& backend() const { return *backend_; }
   EnergySummary kinetic_energy() const;
-  // Force of the particles on each wall, from the last step's contacts.
+  // Force of the particles on each named wall (a mesh's triangles summed), from the last step's
+  // contacts; names as Model::wall_group_names().
   std::vector<WallForce> wall_forces();
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
@@ -58,6 +59,7 @@ class Simulation {
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
   Model model_;
+  ConstantData constants_;
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;

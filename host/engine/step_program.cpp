@@ -40,7 +40,9 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.capacity = l.capacity;
   p.table_size = l.table_size;
   p.n_materials = l.n_materials;
-  p.flags = m.flags | (v.lean ? gpu::kFlagLeanContacts : 0u);
+  p.flags = m.flags | (v.lean ? gpu::kFlagLeanContacts : 0u) |
+            (l.n_bodies ? gpu::kFlagBodies : 0u);
+  p.n_bodies = l.n_bodies;
   p.wall_slot = 0;
   uint32_t interval = m.max_interval;
   if (v.rebuild_interval && (!interval || v.rebuild_interval < interval)) interval = v.rebuild_interval;
@@ -54,6 +56,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.inv_cell = float(1.0 / m.cell);
   p.skin = float(m.skin);
   p.half_skin_sq = float(0.25 * m.skin * m.skin);
+  p.large_radius = float(m.large_radius);
   p.air_drag = float(m.air_drag);
   return p;
 }
@@ -93,7 +96,7 @@ struct ProgramBuilder {
     indirect(KernelId::SaveOldContacts, gpu::kCtlArgsOldContacts);
     indirect(KernelId::ClearBuckets, gpu::kCtlArgsBuckets);
     indirect(KernelId::BucketCount, gpu::kCtlArgsParticles);
-    scan(gpu::kScanCells, l.table_size);
+    scan(gpu::kScanCells, l.table_size + 1);  // the hashed buckets and the large one
     indirect(KernelId::BucketScatter, gpu::kCtlArgsParticles);
     indirect(KernelId::BucketSort, gpu::kCtlArgsBuckets);
     indirect(KernelId::ContactCount, gpu::kCtlArgsParticles);
@@ -113,10 +116,18 @@ struct ProgramBuilder {
   }
   // Sums the contacts into F, T and applies `kick` (with the push's drift flag). The lean
   // gather with the relative rolling torque reads other particles' spins, so there the kick
-  // is a pass of its own (the same arithmetic, F and T read back as stored).
+  // is a pass of its own (the same arithmetic, F and T read back as stored). With bodies the
+  // particles only sum; their bodies sum them and move, and a drift re-places the particles.
   void gather(const Layout& l, const KernelVariant& v, const gpu::SimPush& p) {
     uint32_t g = groups(l.n_particles, v.workgroup);
-    if (!v.lean) {
+    if (l.n_bodies) {
+      gpu::SimPush sum_only = p;
+      sum_only.kick = 0.0f;
+      sum_only.flags &= ~gpu::kFlagDrift;
+      direct(v.lean ? KernelId::GatherLean : KernelId::GatherKick, g, sum_only);
+      direct(KernelId::BodyGatherKick, groups(l.n_bodies, v.workgroup), p);
+      if (p.flags & gpu::kFlagDrift) direct(KernelId::BodyPlace, g, p);
+    } else if (!v.lean) {
       direct(KernelId::GatherKick, g, p);
     } else if ((p.flags & gpu::kFlagRollingRelativeOmega) && p.kick > 0.0f) {
       gpu::SimPush only = p;
@@ -130,6 +141,13 @@ struct ProgramBuilder {
 };
 
 }  // namespace
+
+std::vector<Dispatch> body_place_program(const Model& m, const Layout& l, const KernelVariant& v) {
+  ProgramBuilder b;
+  b.push = base_push(m, l, v);
+  if (l.n_bodies) b.direct(KernelId::BodyPlace, groups(l.n_particles, v.workgroup), b.push);
+  return b.out;
+}
 
 std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
                                              const KernelVariant& v, uint32_t wall_slot) {
@@ -157,7 +175,12 @@ std::vector<Dispatch> step_program(const Model& m, const Layout& l, const Kernel
     gpu::SimPush first = b.push;
     first.kick = 0.5f;
     first.flags |= gpu::kFlagDrift;
-    b.direct(KernelId::KickDrift, g, first);
+    if (l.n_bodies) {
+      b.direct(KernelId::BodyKickDrift, groups(l.n_bodies, v.workgroup), first);
+      b.direct(KernelId::BodyPlace, g, first);
+    } else {
+      b.direct(KernelId::KickDrift, g, first);
+    }
     b.rebuild(l);
     b.forces(l, v);
     gpu::SimPush second = b.push;

@@ -24,6 +24,8 @@ struct KernelVariant {
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);
 
+// Places every sub-sphere from its body (empty without bodies): run once before the first step.
+std::vector<Dispatch> body_place_program(const Model& m, const Layout& l, const KernelVariant& v);
 // Neighbour list, forces and F(0) without moving anything (kick 0).
 std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
                                              const KernelVariant& v, uint32_t wall_slot);

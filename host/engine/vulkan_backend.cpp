@@ -19,8 +19,9 @@ std::string VulkanBackend::describe() const {
   return "vulkan (" + ctx_.info().name + ", " + ctx_.info().driver + ")";
 }
 
-void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& material,
-                             const std::vector<PairParams>& pairs) {
+void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
+  const auto& material = constants.material;
+  const auto& pairs = constants.pairs;
   layout_ = l;
   size_t n = l.n_particles, c = std::max<uint32_t>(l.capacity, 1), t = l.table_size;
   size_t v4 = sizeof(vec4), u = sizeof(uint32_t);
@@ -32,8 +33,8 @@ void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& mater
   sizes[kBindWalls] = std::max<size_t>(size_t(l.batch_steps) * l.n_walls, 1) * sizeof(WallState);
   sizes[kBindControl] = kControlWords * u;
   sizes[kBindCellOf] = n * u;
-  sizes[kBindCellStart] = (t + 1) * u;
-  sizes[kBindCellFill] = t * u;
+  sizes[kBindCellStart] = (t + 2) * u;
+  sizes[kBindCellFill] = (t + 1) * u;
   sizes[kBindSorted] = n * u;
   sizes[kBindRowStart] = sizes[kBindOldRowStart] = sizes[kBindTransStart] = (n + 1) * u;
   sizes[kBindTransFill] = n * u;
@@ -41,6 +42,8 @@ void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& mater
   sizes[kBindHistory] = sizes[kBindContactForce] = sizes[kBindTorqueI] = c * v4;
   sizes[kBindTorqueJ] = l.lean_contacts ? 0 : c * v4;
   sizes[kBindWallForce] = std::max<size_t>(l.n_walls, 1) * v4;
+  sizes[kBindBodies] = l.n_bodies * sizeof(Body);
+  sizes[kBindSubSpheres] = constants.subs.size() * sizeof(SubSphere);
   std::array<const vk::Buffer*, kBindingCount> bound{};
   for (uint32_t i = 0; i < kBindingCount; ++i) {
     if (i == kBindOldPartner || i == kBindOldHistory) {
@@ -63,6 +66,8 @@ void VulkanBackend::allocate(const Layout& l, const std::vector<uint32_t>& mater
   });
   b(kBindMaterial).upload(material.data(), material.size() * u);
   b(kBindPairs).upload(pairs.data(), pairs.size() * sizeof(PairParams));
+  if (!constants.subs.empty())
+    b(kBindSubSpheres).upload(constants.subs.data(), constants.subs.size() * sizeof(SubSphere));
   kernels_.bind(bound);
 }
 
@@ -77,6 +82,7 @@ void VulkanBackend::upload_state(const HostState& s) {
   up(b(kBindControl), s.control); up(b(kBindRowStart), s.row_start); up(b(kBindPartner), s.partner);
   up(b(kBindOwner), s.owner); up(b(kBindTransStart), s.trans_start);
   up(b(kBindTransList), s.trans_list); up(b(kBindHistory), s.history);
+  if (layout_.n_bodies) up(b(kBindBodies), s.bodies);
 }
 
 template <class T>
@@ -97,6 +103,7 @@ void VulkanBackend::download_state(HostState& s) {
   down(b(kBindHistory), s.history, used);
   size_t trans_used = std::min<size_t>(s.trans_start[n], layout_.capacity);
   down(b(kBindTransList), s.trans_list, trans_used);
+  if (layout_.n_bodies) down(b(kBindBodies), s.bodies, layout_.n_bodies);
 }
 
 void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBindWalls), walls); }

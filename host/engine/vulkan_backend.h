@@ -17,8 +17,7 @@ class VulkanBackend : public Backend {
   VulkanBackend(int device_index, uint32_t workgroup);
   ~VulkanBackend() override;
   std::string describe() const override;
-  void allocate(const Layout& layout, const std::vector<uint32_t>& material,
-                const std::vector<gpu::PairParams>& pairs) override;
+  void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
   void download_state(HostState& s) override;
   void upload_walls(const std::vector<gpu::WallState>& walls) override;

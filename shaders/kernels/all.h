@@ -3,5 +3,6 @@
 #include "kernels/contact_law.h"
 #include "kernels/walls.h"
 #include "kernels/integrate.h"
+#include "kernels/bodies.h"
 #include "kernels/neighbour.h"
 #include "kernels/contacts.h"

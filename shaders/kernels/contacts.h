@@ -52,7 +52,10 @@ KFN(void, process_contact) uint i, uint c) {
   } else {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
     mj = ws.info.y;
-    touching = wall_contact(ws, xi, rad_i, 0.0f, n, overlap) && overlap > 0.0f;
+    uint feature = kFeatureFace;
+    touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
+    if (touching && ws.info.x == kWallTriangle)
+      touching = !mesh_contact_shadowed(KB i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
     if (touching) {
       radius_star = rad_i;
       mass_star = 1.0f / vi.w;

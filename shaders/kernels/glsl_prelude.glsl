@@ -40,6 +40,8 @@ layout(std430, set = 0, binding = kBindTransStart) buffer TransStartBuf { uint B
 layout(std430, set = 0, binding = kBindTransFill) buffer TransFillBuf { uint B_trans_fill[]; };
 layout(std430, set = 0, binding = kBindTransList) buffer TransListBuf { uint B_trans_list[]; };
 layout(std430, set = 0, binding = kBindWallForce) buffer WallForceBuf { vec4 B_wall_force[]; };
+layout(std430, set = 0, binding = kBindBodies) buffer BodyBuf { Body B_bodies[]; };
+layout(std430, set = 0, binding = kBindSubSpheres) buffer SubSphereBuf { SubSphere B_subs[]; };
 
 #ifndef REPOSE_SCAN_PUSH
 layout(push_constant) uniform PushBlock { SimPush PC; };

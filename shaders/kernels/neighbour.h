@@ -4,6 +4,10 @@
 // dispatch sizes of every rebuild kernel, zero when there is nothing to do, so the host records
 // the same command stream every step. Atomics only count integers; every order that reaches a
 // float result is fixed by sorting (buckets by particle id, transposed rows by contact index).
+// Sizes spanning 10:1 (a clump's 160 mm core among 5 mm veins) would make cells as big as the
+// largest sphere and full of small ones, so particles above PC.large_radius skip the grid: they
+// share one extra bucket (index T) that every walk scans. A pair of a small and a large particle
+// belongs to the small one's row, a pair of two large ones to the lower index.
 #ifndef REPOSE_KERNELS_NEIGHBOUR_H
 #define REPOSE_KERNELS_NEIGHBOUR_H
 
@@ -25,7 +29,7 @@ KERNEL(k_rebuild_args) uint unused) {
     B_control[kCtlRebuildCount] = B_control[kCtlRebuildCount] + 1u;
     B_control[kCtlOldContacts] = B_control[kCtlContacts];
     set_groups(KB kCtlArgsParticles, groups_for(PC.n_particles + 1u, wg));
-    set_groups(KB kCtlArgsBuckets, groups_for(PC.table_size + 1u, wg));
+    set_groups(KB kCtlArgsBuckets, groups_for(PC.table_size + 2u, wg));
     set_groups(KB kCtlArgsOne, 1u);
     set_groups(KB kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
   } else {
@@ -50,9 +54,9 @@ KERNEL(k_save_old_contacts) uint c) {
 }
 
 KERNEL(k_clear_buckets) uint b) {
-  if (b > PC.table_size) return;
+  if (b > PC.table_size + 1u) return;
   B_cell_start[b] = 0u;
-  if (b < PC.table_size) B_cell_fill[b] = 0u;
+  if (b <= PC.table_size) B_cell_fill[b] = 0u;
 }
 
 FN ivec3 cell_of_position(vec3 x, float inv_cell) {
@@ -64,7 +68,7 @@ KERNEL(k_bucket_count) uint i) {
   vec4 p = B_pos[i];
   B_pos_at_build[i] = p;
   ivec3 c = cell_of_position(xyz(p), PC.inv_cell);
-  uint h = cell_hash(c.x, c.y, c.z, PC.table_size);
+  uint h = p.w > PC.large_radius ? PC.table_size : cell_hash(c.x, c.y, c.z, PC.table_size);
   B_cell_of[i] = h;
   atomicAdd(B_cell_start[h], 1u);
 }
@@ -78,7 +82,7 @@ KERNEL(k_bucket_scatter) uint i) {
 
 // Insertion sort of one bucket by particle id: the scatter's order depends on thread timing.
 KERNEL(k_bucket_sort) uint b) {
-  if (b >= PC.table_size) return;
+  if (b > PC.table_size) return;
   uint begin = B_cell_start[b];
   uint end = B_cell_start[b + 1u];
   for (uint k = begin + 1u; k < end; ++k) {
@@ -111,10 +115,17 @@ KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint
   B_history[slot] = carried;
 }
 
-// Walks the 27 cells around i in a fixed order, then the walls. With `fill`, writes partners,
-// owners and carried histories from `base`; returns the number of candidates.
+// True when particles i and j are sub-spheres of one body (no contact inside a clump).
+KFN(bool, same_body) uint i, uint j) {
+  return (PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x;
+}
+
+// Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
+// then the walls. With `fill`, writes partners, owners and carried histories from `base`;
+// returns the number of candidates.
 KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
   vec4 pi = B_pos[i];
+  bool large = pi.w > PC.large_radius;
   ivec3 ci = cell_of_position(xyz(pi), PC.inv_cell);
   uint k = 0u;
   uint old_begin = 0u;
@@ -123,7 +134,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     old_begin = B_old_row_start[i];
     old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
   }
-  for (int dz = -1; dz <= 1; ++dz) {
+  for (int dz = large ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         ivec3 cc = ivec3(ci.x + dx, ci.y + dy, ci.z + dz);
@@ -131,7 +142,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
         uint end = B_cell_start[h + 1u];
         for (uint s = B_cell_start[h]; s < end; ++s) {
           uint j = B_sorted[s];
-          if (j <= i) continue;
+          if (j <= i || same_body(KB i, j)) continue;
           vec4 pj = B_pos[j];
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
@@ -141,6 +152,14 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
         }
       }
     }
+  }
+  uint large_end = B_cell_start[PC.table_size + 1u];
+  for (uint s = B_cell_start[PC.table_size]; s < large_end; ++s) {
+    uint j = B_sorted[s];
+    if (j == i || (large && j < i) || same_body(KB i, j)) continue;
+    if (!near_pair(pi, B_pos[j], PC.skin)) continue;
+    if (fill) write_candidate(KB base + k, i, j, old_begin, old_end);
+    k = k + 1u;
   }
   for (uint w = 0u; w < PC.n_walls; ++w) {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + w];

@@ -54,6 +54,26 @@ struct CaseBuilder {
     spec.spheres.push_back(s);
     return int(spec.spheres.size()) - 1;
   }
+  int clump_template(const std::string& name, const std::vector<Sphere>& spheres) {
+    TemplateSpec t;
+    t.name = name;
+    t.clump.name = name;
+    t.clump.spheres = spheres;
+    spec.templates.push_back(t);
+    return int(spec.templates.size()) - 1;
+  }
+  int clump(int templ, Vec3d pos, int mat, std::array<double, 4> q = {1, 0, 0, 0},
+            Vec3d vel = {0, 0, 0}, Vec3d omega = {0, 0, 0}) {
+    BodySpec b;
+    b.template_index = templ;
+    b.material = mat;
+    b.position = pos;
+    b.orientation = q;
+    b.velocity = vel;
+    b.angular_velocity = omega;
+    spec.bodies.push_back(b);
+    return int(spec.bodies.size()) - 1;
+  }
   void plane(Vec3d point, Vec3d normal, int mat) {
     WallSpec w;
     w.type = WallSpec::Type::Plane;
@@ -123,6 +143,7 @@ inline bool same_state(const HostState& a, const HostState& b, std::string* whic
   ok &= check(same_bytes(a.partner, b.partner), "partner");
   ok &= check(same_bytes(a.history, b.history), "history");
   ok &= check(same_bytes(a.trans_list, b.trans_list), "trans_list");
+  ok &= check(same_bytes(a.bodies, b.bodies), "bodies");
   return ok;
 }
 

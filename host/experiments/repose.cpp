@@ -1,0 +1,87 @@
+#include "experiments/repose.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "engine/backend_factory.h"
+#include "engine/model.h"
+#include "engine/simulation.h"
+#include "experiments/body_frame.h"
+#include "util/progress.h"
+
+namespace repose {
+
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options) {
+  const ExperimentSpec& ex = spec.experiment;
+  const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
+  double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
+  if (!(lift_end < 1e29))
+    throw std::runtime_error(spec.path + ": [experiment] lift_end is needed: the wall '" + lift.name +
+                             "' moves without a stop time");
+  if (lift_end >= ex.max_time)
+    throw std::runtime_error(spec.path + ": [experiment] max_time must exceed the end of the lift (" +
+                             std::to_string(lift_end) + " s)");
+
+  Model model = build_model(spec);
+  auto sample_steps = std::max<uint64_t>(1, uint64_t(std::llround(0.05 / model.dt)));
+  uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
+  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
+                 {}, uint32_t(std::min<uint64_t>(sample_steps, 200)));
+  Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
+
+  ReposeResult r;
+  double n = double(model.n_particles);
+  while (true) {
+    sim.advance(sample_steps);
+    double e = sim.kinetic_energy().total() / n;
+    r.energy.push_back({sim.time(), e});
+    r.wall_forces.sample(sim);
+    progress.update(sim.step(), "E/particle " + std::to_string(e).substr(0, 8) + " J");
+    if (sim.time() >= lift_end && e < ex.settle_energy) {
+      r.settle_time = sim.time();
+      r.kinetic_energy = e;
+      break;
+    }
+    if (sim.time() >= ex.max_time)
+      throw std::runtime_error(spec.path + ": the heap had not settled (kinetic energy " + std::to_string(e) +
+                               " J per particle, settle_energy " + std::to_string(ex.settle_energy) +
+                               ") by max_time = " + std::to_string(ex.max_time) + " s");
+  }
+  progress.finish();
+
+  // The heap: particles whose bottom is not below the heap floor (those that fell off a plate or
+  // out of a bucket are not in the picture).
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const auto& p : sim.state().pos) lowest = std::min(lowest, double(p.z) - p.w);
+  double floor_z = ex.heap_floor_z.value_or(lowest);
+  for (const auto& p : sim.state().pos)
+    if (double(p.z) - p.w >= floor_z - 0.5 * p.w) r.spheres.push_back({{p.x, p.y, p.z}, p.w});
+  r.particles_measured = r.spheres.size();
+  if (r.spheres.empty()) throw std::runtime_error(spec.path + ": no particle is left above the heap floor");
+
+  HeapAngleOptions opts;
+  opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
+  opts.floor_z = floor_z;
+  r.heap = measure_heap_angle(r.spheres, opts);
+  if (ex.heap_side == "left") {
+    if (!r.heap.left.valid) throw std::runtime_error(spec.path + ": no left slope: " + r.heap.left.problem);
+    r.angle_deg = r.heap.left.angle_deg;
+  } else if (ex.heap_side == "right") {
+    if (!r.heap.right.valid) throw std::runtime_error(spec.path + ": no right slope: " + r.heap.right.problem);
+    r.angle_deg = r.heap.right.angle_deg;
+  } else {
+    if (!r.heap.left.valid && !r.heap.right.valid)
+      throw std::runtime_error(spec.path + ": the heap has no measurable slope (" + r.heap.left.problem + ")");
+    r.angle_deg = r.heap.mean_deg;
+  }
+  if (ex.axisymmetric) {
+    AxisymmetricOptions a;
+    a.floor_z = floor_z;
+    r.heap_3d = measure_axisymmetric_heap_angle(r.spheres, a);
+  }
+  return r;
+}
+
+}  // namespace repose

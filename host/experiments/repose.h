@@ -1,0 +1,33 @@
+// Angle-of-repose rigs of the seeds: the particles settle in a container, one wall of it lifts
+// or is pulled (drawing-plate baffle, bottomless cylinder, bucket gate: the case's [[wall]]
+// motion), the heap settles, and its angle is measured from a front-view picture as the seeds
+// did (host/measure): both slopes, their mean, and for axisymmetric heaps a 3D sector fit.
+#pragma once
+#include <optional>
+#include <vector>
+
+#include "case/case_spec.h"
+#include "experiments/run_options.h"
+#include "experiments/wall_force_series.h"
+#include "measure/heap_angle.h"
+
+namespace repose {
+
+struct ReposeResult {
+  double angle_deg = 0;           // per [experiment] heap_side: left, right or their mean
+  HeapAngle heap;                 // the 2D measurement (with its picture)
+  std::optional<AxisymmetricHeapAngle> heap_3d;
+  double settle_time = 0;         // s when the heap was judged settled
+  double kinetic_energy = 0;      // J per particle then
+  size_t particles_measured = 0;  // above the heap floor
+  std::vector<std::pair<double, double>> energy;  // (t, kinetic energy per particle)
+  std::vector<Sphere> spheres;    // the settled heap
+  WallForceSeries wall_forces;
+};
+
+// Runs until the lift is over (lift_end, default the lift wall's motion stop) and the kinetic
+// energy per particle is below settle_energy, then measures. Throws std::runtime_error naming
+// the case when the heap has not settled by max_time or the measurement finds no slope.
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options = {});
+
+}  // namespace repose

@@ -1,0 +1,14 @@
+// How an experiment runs (not what it measures): backend, threads, progress on stderr.
+#pragma once
+#include <string>
+
+namespace repose {
+
+struct ExperimentRunOptions {
+  std::string backend = "cpu";
+  int device = -1;
+  unsigned threads = 1;
+  bool progress = false;  // progress with ETA on stderr (host/util/progress.h)
+};
+
+}  // namespace repose

@@ -1,0 +1,21 @@
+// Wall forces sampled over an experiment: one row per sample, per named wall fx fy fz
+// (Simulation::wall_forces), written as wall_forces.csv like `repose run` does.
+#pragma once
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "engine/simulation.h"
+
+namespace repose {
+
+struct WallForceSeries {
+  std::vector<std::string> names;
+  std::vector<double> times;
+  std::vector<std::vector<WallForce>> rows;
+
+  void sample(Simulation& sim);
+  void write_csv(std::ostream& out) const;
+};
+
+}  // namespace repose

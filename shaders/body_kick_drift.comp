@@ -1,0 +1,6 @@
+#version 450
+// Kernel body: k_body_kick_drift in shaders/kernels/ (shared with the CPU twin).
+#include "kernels/glsl_prelude.glsl"
+#include "kernels/all.h"
+
+void main() { k_body_kick_drift(gl_GlobalInvocationID.x); }
