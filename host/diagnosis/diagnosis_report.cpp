@@ -75,6 +75,11 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
       p.y_label = m + " residual";
       p.zero_line = true;
       PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+      // The extended model's points sit a little to the right, so both error bars show.
+      double lo = 1e300, hi = -1e300;
+      for (const auto& c : obs.conditions)
+        if (c.variables.count(v)) { lo = std::min(lo, c.variables.at(v)); hi = std::max(hi, c.variables.at(v)); }
+      double shift = 0.015 * (hi - lo);
       for (size_t g = 0; g < obs.groups.size(); ++g) {
         const auto& grp = obs.groups[g];
         if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
@@ -84,7 +89,7 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
         b.y.push_back(grp.mean - d.baseline.predicted[g]);
         b.error.push_back(se);
         if (w) {
-          e.x.push_back(x + 0.0);
+          e.x.push_back(x + shift);
           e.y.push_back(grp.mean - w->predicted[g]);
           e.error.push_back(se);
         }

@@ -21,6 +21,10 @@ Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, b
     if (spec.experiment.type != "drop")
       throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + spec.experiment.type +
                       "': diagnose simulates drop tests (slide, roll and repose rigs are not in the engine yet)");
+    if (!spec.bodies.empty() || spec.spheres.size() != 1)
+      throw DataError(obs.path + ": case " + c.case_path +
+                      ": diagnose drops one sphere (clump bodies are not diagnosed yet: the extensions' "
+                      "drop physics, air drag and the impact-time alignment, are written for spheres)");
     drop_interaction(spec);  // the body-plate contact must exist
     specs_.push_back(std::move(spec));
   }
