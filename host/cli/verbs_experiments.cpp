@@ -138,7 +138,7 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   j["floor_z"] = r.heap.floor_z;
   j["particles_measured"] = r.particles_measured;
   j["settle_time"] = r.settle_time;
-  j["kinetic_energy_per_particle"] = r.kinetic_energy;
+  j["largest_kinetic_energy"] = r.kinetic_energy;
   if (r.heap_3d) {
     Json a;
     a["mean_deg"] = r.heap_3d->mean_deg;
@@ -159,7 +159,7 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   }
   write_json(out_dir + "/repose.json", j);
   write_file_atomically(out_dir + "/energy.csv", [&](std::ostream& o) {
-    o << "t,kinetic_energy_per_particle\n";
+    o << "t,largest_kinetic_energy\n";
     for (const auto& [t, e] : r.energy) o << t << "," << e << "\n";
   });
   write_file_atomically(out_dir + "/heap.csv", [&](std::ostream& o) {
