@@ -697,10 +697,18 @@ class CaseReader {
   }
 
   void read_lattice(const Section& s) {
-    s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity"}, "a [[lattice]]");
+    s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity", "template",
+                  "orientation", "scale"},
+                 "a [[lattice]]");
     LatticeSpec lattice;
     lattice.where = s.where();
     lattice.material = material_of(s);
+    if (s.has("template")) {
+      read_body_lattice(s, lattice);
+      return;
+    }
+    for (const char* k : {"orientation", "scale"})
+      if (s.has(k)) s.fail(k, "applies to template lattices (give template = \"NAME\")");
     if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
     lattice.kind = s.choice<LatticeSpec::Kind>(
         "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
@@ -719,6 +727,51 @@ class CaseReader {
     if (nearest < 2 * lattice.radius * (1 - 1e-9))
       s.fail("spacing", format_number(lattice.spacing) + " m puts neighbours " + format_number(nearest) +
                             " m apart, closer than a diameter " + format_number(2 * lattice.radius) + " m");
+    if (auto count = s.integer("count")) {
+      if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
+      lattice.max_count = int(*count);
+    }
+    lattice.velocity = s.vector3("velocity").value_or(Vec3d{});
+    note_use(particle_users_, lattice.material, s);
+    spec_.lattices.push_back(lattice);
+  }
+
+  // [[lattice]] of bodies: template, spacing (one edge or [sx, sy, sz]), orientation, scale.
+  void read_body_lattice(const Section& s, LatticeSpec& lattice) {
+    if (s.has("radius")) s.fail("radius", "a template lattice sizes its bodies with scale, not radius");
+    lattice.template_index = template_of(s);
+    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
+    lattice.kind = s.choice<LatticeSpec::Kind>(
+        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
+        LatticeSpec::Kind::SimpleCubic);
+    lattice.box_min = s.required_vector3("min");
+    lattice.box_max = s.required_vector3("max");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
+        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+    const toml::node* spacing = s.table().get("spacing");
+    if (!spacing) s.missing("spacing", " (m: the cell edge, or [sx, sy, sz])");
+    if (spacing->is_array()) {
+      lattice.spacing_xyz = s.required_vector3("spacing");
+    } else {
+      double edge = s.required_number("spacing");
+      lattice.spacing_xyz = {edge, edge, edge};
+    }
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.spacing_xyz[axis] > 0)) s.fail("spacing", "every cell edge must be greater than 0");
+    if (auto scale = s.number("scale")) lattice.scale = positive(s, "scale", *scale);
+    if (const toml::node* node = s.table().get("orientation")) {
+      const toml::array* q = node->as_array();
+      if (!q || q->size() != 4 || !std::all_of(q->begin(), q->end(), [](const toml::node& n) { return n.is_number(); }))
+        s.fail("orientation", "expected a unit quaternion [w, x, y, z]");
+      double norm = 0;
+      for (size_t k = 0; k < 4; ++k) {
+        lattice.orientation[k] = q->get(k)->value<double>().value();
+        norm += lattice.orientation[k] * lattice.orientation[k];
+      }
+      if (!(norm > 0)) s.fail("orientation", "must not be the zero quaternion");
+      for (double& c : lattice.orientation) c /= std::sqrt(norm);
+    }
     if (auto count = s.integer("count")) {
       if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
       lattice.max_count = int(*count);
@@ -904,7 +957,9 @@ class CaseReader {
     for (const FillSpec& fill : spec_.fills) count += fill.material == material ? size_t(fill.count) : 0;
     for (const LatticeSpec& lattice : spec_.lattices)
       if (lattice.material == material)
-        count += lattice.max_count > 0 ? size_t(lattice.max_count) : lattice_sites(lattice).size();
+        count += lattice.max_count > 0        ? size_t(lattice.max_count)
+                 : lattice.template_index >= 0 ? 2  // bodies: at least a pair can meet
+                                               : lattice_sites(lattice).size();
     return count;
   }
 

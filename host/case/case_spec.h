@@ -96,6 +96,12 @@ struct LatticeSpec {
   int material = 0;
   int max_count = 0;   // 0: as many as fit
   Vec3d velocity{};
+  // Template lattices: bodies at the sites, all at one orientation, the cell edge per axis
+  // (elongated bodies pack aligned, as the cotton seed's 454 stalks in their bucket).
+  int template_index = -1;
+  Vec3d spacing_xyz{};
+  std::array<double, 4> orientation{1, 0, 0, 0};
+  double scale = 1;
   SourceRef where;
 };
 

@@ -83,28 +83,33 @@ void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
   }
 }
 
-std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice) {
-  const double s = lattice.spacing, r = lattice.radius;
+// Sites with a margin per axis and a cell edge per axis (the sphere lattice has both equal).
+std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice, const Vec3d& margin, const Vec3d& s) {
   bool bcc = lattice.kind == LatticeSpec::Kind::BodyCentredCubic;
   int corners[3], centres[3];
   for (int axis = 0; axis < 3; ++axis) {
     double length = lattice.box_max[axis] - lattice.box_min[axis];
-    corners[axis] = sites_along(length, r, s, 0);
-    centres[axis] = bcc ? sites_along(length, r, s, s / 2) : 0;
+    corners[axis] = sites_along(length, margin[axis], s[axis], 0);
+    centres[axis] = bcc ? sites_along(length, margin[axis], s[axis], s[axis] / 2) : 0;
   }
   std::vector<Vec3d> sites;
   auto add_layer = [&](const int* counts, double offset, int k) {
-    double z = lattice.box_min[2] + r + offset + k * s;
+    double z = lattice.box_min[2] + margin[2] + offset * s[2] + k * s[2];
     for (int j = 0; j < counts[1]; ++j)
       for (int i = 0; i < counts[0]; ++i)
-        sites.push_back({lattice.box_min[0] + r + offset + i * s,
-                         lattice.box_min[1] + r + offset + j * s, z});
+        sites.push_back({lattice.box_min[0] + margin[0] + offset * s[0] + i * s[0],
+                         lattice.box_min[1] + margin[1] + offset * s[1] + j * s[1], z});
   };
   for (int k = 0; k < std::max(corners[2], centres[2]); ++k) {
     if (k < corners[2]) add_layer(corners, 0, k);
-    if (k < centres[2]) add_layer(centres, s / 2, k);
+    if (k < centres[2]) add_layer(centres, 0.5, k);
   }
   return sites;
+}
+
+std::vector<Vec3d> lattice_sites(const LatticeSpec& lattice) {
+  const double s = lattice.spacing, r = lattice.radius;
+  return lattice_sites(lattice, {r, r, r}, {s, s, s});
 }
 
 void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres) {
@@ -180,6 +185,51 @@ struct FillRegion {
     return centre;
   }
 };
+
+void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec) {
+  const TemplateSpec& templ = spec.templates.at(size_t(lattice.template_index));
+  // Margin per axis: the half-extent of the oriented, scaled body about its template origin.
+  BodySpec probe;
+  probe.template_index = lattice.template_index;
+  probe.orientation = lattice.orientation;
+  probe.scale = lattice.scale;
+  Vec3d margin{0, 0, 0};
+  for (const SphereSpec& s : body_spheres(probe, templ))
+    for (int axis = 0; axis < 3; ++axis)
+      margin[axis] = std::max(margin[axis], std::abs(s.position[axis]) + s.radius);
+  std::vector<Vec3d> sites = lattice_sites(lattice, margin, lattice.spacing_xyz);
+  if (sites.empty())
+    throw CaseError(lattice.where, "no site fits: the box is smaller than one '" + templ.name + "' body");
+  if (lattice.max_count > 0) {
+    if (size_t(lattice.max_count) > sites.size())
+      throw CaseError(lattice.where, "count = " + std::to_string(lattice.max_count) + " but only " +
+                                         std::to_string(sites.size()) + " sites fit in the box");
+    sites.resize(size_t(lattice.max_count));
+  }
+  std::vector<SphereSpec> occupied = spec.spheres;
+  for (const BodySpec& body : spec.bodies) {
+    auto subs = body_spheres(body, spec.templates[size_t(body.template_index)]);
+    occupied.insert(occupied.end(), subs.begin(), subs.end());
+  }
+  double largest_sub = 0;
+  for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius * lattice.scale);
+  std::vector<int> ids;
+  SphereGrid grid = grid_near(occupied, lattice.box_min, lattice.box_max, largest_sub, ids);
+  for (const Vec3d& site : sites) {
+    BodySpec body = probe;
+    body.material = lattice.material;
+    body.position = site;
+    body.velocity = lattice.velocity;
+    body.where = lattice.where;
+    auto subs = body_spheres(body, templ);
+    for (const SphereSpec& s : subs)
+      if (grid.find_overlap(s.position, s.radius) >= 0)
+        throw CaseError(lattice.where, "the body at site " + format_point(site) +
+                                           " overlaps a particle placed before it: widen spacing");
+    for (const SphereSpec& s : subs) grid.insert(s.position, s.radius);
+    spec.bodies.push_back(body);
+  }
+}
 
 void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
   std::mt19937_64 engine(fill.seed);
@@ -265,9 +315,12 @@ void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
 
 void expand_particles(CaseSpec& spec) {
   check_no_overlaps(spec.spheres);
-  for (const LatticeSpec& lattice : spec.lattices) append_lattice(lattice, spec.spheres);
+  for (const LatticeSpec& lattice : spec.lattices)
+    if (lattice.template_index < 0) append_lattice(lattice, spec.spheres);
   for (const FillSpec& fill : spec.fills)
     if (fill.template_index < 0) append_fill(fill, spec.spheres);
+  for (const LatticeSpec& lattice : spec.lattices)
+    if (lattice.template_index >= 0) append_body_lattice(lattice, spec);
   for (const FillSpec& fill : spec.fills)
     if (fill.template_index >= 0) append_body_fill(fill, spec);
 }

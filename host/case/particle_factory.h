@@ -43,4 +43,8 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres);
 constexpr int kFillTriesPerBody = 5000;
 void append_body_fill(const FillSpec& fill, CaseSpec& spec);
 
+// Bodies of a template lattice at its sites (cell edge per axis, one orientation, margins the
+// oriented body's half-extents). Throws CaseError when a body overlaps a particle placed before.
+void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec);
+
 }  // namespace repose

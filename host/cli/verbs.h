@@ -18,5 +18,6 @@ std::vector<Verb> engine_verbs();    // verbs_engine.cpp: devices, run, bench
 std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, optimize, curve
 std::vector<Verb> geometry_verbs();  // verbs_geometry.cpp: clump, stl, heap-angle
 std::vector<Verb> experiment_verbs();  // verbs_experiments.cpp: experiment
+std::vector<Verb> calibrate_verbs();   // verbs_calibrate.cpp: calibrate
 
 }  // namespace repose::cli

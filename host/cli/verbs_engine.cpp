@@ -163,18 +163,32 @@ int run_bench(int argc, char** argv) {
   app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
   app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.6)");
   app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
+  std::string case_path;
+  app.add_option("--case", case_path,
+                 "benchmark this case instead of the bed, after --settle simulated seconds of it");
   CLI11_PARSE(app, argc, argv);
 
-  CaseSpec bed = bench_bed_case(n);
+  bool own_case = !case_path.empty();
+  CaseSpec bed;
+  if (own_case) {
+    auto loaded = load_case_or_report(case_path, {});
+    if (!loaded) return 2;
+    bed = *loaded;
+  } else {
+    bed = bench_bed_case(n);
+  }
   Model model = build_model(bed);
+  n = model.n_particles;
   fs::create_directories(cache_dir);
-  std::string cache = cache_dir + "/bed_" + std::to_string(n) + ".state";
+  std::string cache = cache_dir + "/" + (own_case ? fs::path(case_path).stem().string() : "bed") + "_" +
+                      std::to_string(n) + (own_case ? "_" + std::to_string(settle) : "") + ".state";
   if (fs::exists(cache)) {
     HostState s = read_state_file(cache);
     model.pos = s.pos;
     model.vel = s.vel;
     model.omega = s.omega;
-    std::fprintf(stderr, "bench: settled bed of %u spheres from %s\n", n, cache.c_str());
+    if (!s.bodies.empty()) model.bodies = s.bodies;
+    std::fprintf(stderr, "bench: settled state of %u particles from %s\n", n, cache.c_str());
   } else {
     std::fprintf(stderr, "bench: settling %u spheres for %.2f s (once; cached in %s)\n", n, settle, cache.c_str());
     Simulation s(model, make_backend("cpu", -1, threads, gpu::kDefaultWorkgroup));
@@ -186,10 +200,15 @@ int run_bench(int argc, char** argv) {
     model.pos = s.state().pos;
     model.vel = s.state().vel;
     model.omega = s.state().omega;
+    if (!s.state().bodies.empty()) model.bodies = s.state().bodies;
   }
 
-  std::printf("settled bed: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), %u timed steps\n",
-              n, model.dt, steps);
+  if (own_case)
+    std::printf("%s after %.3g s: %u particles, %zu bodies, dt = %.3g s, %u timed steps\n",
+                case_path.c_str(), settle, n, model.bodies.size(), model.dt, steps);
+  else
+    std::printf("settled bed: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), %u timed steps\n",
+                n, model.dt, steps);
   std::printf("%-8s %-20s %14s %14s %10s %10s %10s %9s\n", "backend", "variant", "particle-st/s",
               "contacts/s", "contacts", "B/particle", "B/contact", "rebuilds");
   for (const auto& b : backends) {

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <stdexcept>
 
+#include "case/body_pose.h"
+#include "case/particle_factory.h"
 #include "engine/backend_factory.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
@@ -27,9 +30,11 @@ double parabola_peak(double a, double b, double c) {
 DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
   CaseSpec spec = input;
   const ExperimentSpec& ex = spec.experiment;
-  if (spec.spheres.size() != 1)
-    throw std::runtime_error(spec.path + ": a drop test needs exactly one body; the case has " +
-                             std::to_string(spec.spheres.size()) + " particles");
+  bool clump = spec.spheres.empty() && spec.bodies.size() == 1;
+  if (!clump && !(spec.spheres.size() == 1 && spec.bodies.empty()))
+    throw std::runtime_error(spec.path + ": a drop test needs exactly one body (a [[sphere]] or a [[clump]]); the case has " +
+                             std::to_string(spec.spheres.size()) + " spheres and " +
+                             std::to_string(spec.bodies.size()) + " clumps");
   auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
                             [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
   if (plate == spec.walls.end())
@@ -39,26 +44,45 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
   double g_down = -dot(spec.gravity, up);
   if (!(g_down > 0)) throw std::runtime_error(spec.path + ": a drop test needs gravity towards the plate");
 
-  // Release at rest, lowest point H above the plate, above where the case put the body.
-  SphereSpec& body = spec.spheres[0];
-  double R = body.radius, H = ex.drop_height;
-  double lateral = dot(body.position, up) - dot(plate->point, up);
-  for (int k = 0; k < 3; ++k)
-    body.position[k] = body.position[k] - lateral * up[k] + (H + R) * up[k];
-  body.velocity = {0, 0, 0};
-  body.angular_velocity = {0, 0, 0};
+  // Release at rest, lowest point H above the plate, above where the case put the body; a
+  // clump at a random orientation drawn from the case's seed (one replicate per seed).
+  double H = ex.drop_height;
+  double plate_level = dot(plate->point, up);
+  Vec3d* position = nullptr;
+  double lowest = 0;  // of the body as placed, along `up`
+  if (clump) {
+    BodySpec& body = spec.bodies[0];
+    if (options.random_orientation) {
+      std::mt19937_64 engine(spec.seed);
+      body.orientation = random_orientation([&engine] { return unit_interval(engine()); });
+    }
+    body.velocity = body.angular_velocity = {0, 0, 0};
+    lowest = 1e300;
+    for (const SphereSpec& s : body_spheres(body, spec.templates[size_t(body.template_index)]))
+      lowest = std::min(lowest, dot(s.position, up) - s.radius);
+    position = &body.position;
+  } else {
+    SphereSpec& body = spec.spheres[0];
+    body.velocity = body.angular_velocity = {0, 0, 0};
+    lowest = dot(body.position, up) - body.radius;
+    position = &body.position;
+  }
+  for (int k = 0; k < 3; ++k) (*position)[k] += (plate_level + H - lowest) * up[k];
 
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
   Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
                  {}, frame_steps);
+  // The camera tracks the body's lowest point; the lift-off test uses its centre's speed.
   auto height = [&](const HostState& s) {
-    Vec3d x = {s.pos[0].x, s.pos[0].y, s.pos[0].z};
-    return dot(x, up) - dot(plate->point, up) - R;
+    double low = 1e300;
+    for (const auto& p : s.pos) low = std::min(low, dot({p.x, p.y, p.z}, up) - p.w);
+    return low - plate_level;
   };
   auto normal_speed = [&](const HostState& s) {
-    return double(s.vel[0].x) * up[0] + double(s.vel[0].y) * up[1] + double(s.vel[0].z) * up[2];
+    const gpu::vec4& v = s.bodies.empty() ? s.vel[0] : s.bodies[0].vel;
+    return double(v.x) * up[0] + double(v.y) * up[1] + double(v.z) * up[2];
   };
 
   DropResult r;

@@ -15,6 +15,7 @@ struct DropOptions {
   std::string backend = "cpu";
   int device = -1;
   unsigned threads = 1;
+  bool random_orientation = true;  // a clump falls at a random orientation drawn from the seed
 };
 
 struct DropResult {
@@ -27,7 +28,8 @@ struct DropResult {
   std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
 };
 
-// The case's first sphere is the body, its first plane wall the plate; [experiment]
+// The case's one sphere or one clump is the body (a clump at a random orientation from
+// simulation.seed unless options say otherwise), its first plane wall the plate; [experiment]
 // drop_height, camera_fps and max_time apply. Throws std::runtime_error naming the case when
 // the case is not a drop test or the body never rebounds.
 DropResult run_drop(const CaseSpec& spec, const DropOptions& options = {});

@@ -25,6 +25,7 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
     out.write(kStateMagic, 8);
     put(out, uint32_t(s.pos.size()));
     put(out, uint32_t(s.partner.size()));
+    put(out, uint32_t(s.bodies.size()));
     put(out, step);
     put(out, time);
     put_array(out, s.pos);
@@ -35,6 +36,7 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
     put_array(out, s.row_start);
     put_array(out, s.partner);
     put_array(out, s.history);
+    put_array(out, s.bodies);
   }, true);
 }
 
@@ -45,11 +47,12 @@ HostState read_state_file(const std::string& path, uint64_t* step, double* time)
   in.read(magic, 8);
   if (!in || std::memcmp(magic, kStateMagic, 8) != 0)
     throw std::runtime_error("'" + path + "' is not a Repose state file (bad magic)");
-  uint32_t n = 0, c = 0;
+  uint32_t n = 0, c = 0, b = 0;
   uint64_t st = 0;
   double t = 0;
   in.read(reinterpret_cast<char*>(&n), 4);
   in.read(reinterpret_cast<char*>(&c), 4);
+  in.read(reinterpret_cast<char*>(&b), 4);
   in.read(reinterpret_cast<char*>(&st), 8);
   in.read(reinterpret_cast<char*>(&t), 8);
   HostState s;
@@ -58,7 +61,7 @@ HostState read_state_file(const std::string& path, uint64_t* step, double* time)
     in.read(reinterpret_cast<char*>(v.data()), std::streamsize(k * sizeof(v[0])));
   };
   get(s.pos, n); get(s.vel, n); get(s.omega, n); get(s.force, n); get(s.torque, n);
-  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c);
+  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c); get(s.bodies, b);
   if (!in) throw std::runtime_error("state file '" + path + "' is truncated");
   if (step) *step = st;
   if (time) *time = t;

@@ -8,7 +8,7 @@
 
 namespace repose {
 
-constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '1'};
+constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
 
 void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time);
 // Reads a file written by write_state_file; throws naming the file when it is not one.

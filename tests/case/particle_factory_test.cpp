@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "case/case_error.h"
+#include "case/case_loader.h"
 #include "case/particle_factory.h"
 #include "case/sphere_grid.h"
 
@@ -195,4 +196,31 @@ TEST_CASE("200,000 spheres fill in seconds, overlap-free") {
     grid.insert(s.position, s.radius);
   }
   CHECK(overlaps == 0);
+}
+
+TEST_CASE("a template lattice packs aligned stalks with per-axis spacing", "[case][lattice][clump]") {
+  std::string text =
+      "[simulation]\nend_time = 1\nrayleigh_fraction = 0.35\n"
+      "[[material]]\npreset = \"cotton_stalk\"\n"
+      "[[interaction]]\nmaterials = [\"cotton_stalk\", \"cotton_stalk\"]\npreset = [\"cotton_stalk\", \"cotton_stalk\"]\n"
+      "[[template]]\nname = \"stalk\"\nbuiltin = \"cotton_stalk_coarse\"\n"
+      // stalk axis z -> x: a quarter turn about y
+      "[[lattice]]\ntemplate = \"stalk\"\nmaterial = \"cotton_stalk\"\ntype = \"sc\"\n"
+      "min = [0, 0, 0]\nmax = [0.4, 0.1, 0.2]\nspacing = [0.082, 0.0105, 0.0105]\n"
+      "orientation = [0.7071067811865476, 0, 0.7071067811865476, 0]\n";
+  CaseSpec spec = load_case_from_string(text, "stalks.toml");
+  // Along x: floor((0.4 - 0.08) / 0.082) + 1 = 4; y: floor((0.1 - 0.01) / 0.0105) + 1 = 9;
+  // z: floor((0.2 - 0.01) / 0.0105) + 1 = 19 (hull 80 x 10 mm).
+  CHECK(spec.bodies.size() == 4 * 9 * 19);
+  CHECK(spec.spheres.empty());
+  for (const BodySpec& b : spec.bodies) {
+    CHECK(b.position[0] >= 0.04 - 1e-9);
+    CHECK(b.position[0] <= 0.36 + 1e-9);
+    CHECK(b.position[2] >= 0.005 - 1e-9);
+  }
+  // Too tight a spacing overlaps bodies and is refused, naming the lattice.
+  std::string tight = text;
+  tight.replace(tight.find("0.0105, 0.0105"), 14, "0.008, 0.0105");
+  CHECK_THROWS_WITH(load_case_from_string(tight, "stalks.toml"),
+                    Catch::Contains("stalks.toml:") && Catch::Contains("overlaps"));
 }

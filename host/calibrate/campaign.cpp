@@ -1,0 +1,101 @@
+#include "calibrate/campaign.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "calibrate/adaptive_loop.h"
+#include "calibrate/campaign_report.h"
+#include "calibrate/design_analysis.h"
+#include "calibrate/design_runs.h"
+#include "calibrate/executor.h"
+#include "calibrate/report_figures.h"
+#include "calibrate/run_store.h"
+
+namespace repose::calibrate {
+
+namespace {
+
+std::vector<RunRecord> stored(const RunStore& store, const std::vector<RunSpec>& specs) {
+  std::vector<RunRecord> out;
+  for (const auto& s : specs)
+    if (const RunRecord* r = store.find(s.id)) out.push_back(*r);
+  return out;
+}
+
+}  // namespace
+
+CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi) {
+  namespace fs = std::filesystem;
+  const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
+  const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
+  fs::create_directories(out_dir);
+  RunStore store(db_path, plan, options.fresh);
+  Executor executor(plan, store, mpi, options.jobs, options.quiet);
+
+  CampaignRecord record;
+  record.plan = &plan;
+  record.db_path = db_path;
+  AdaptiveOutcome loop;
+  std::vector<RunSpec> verify;
+  if (plan.mode == CampaignMode::design) {
+    std::vector<RunSpec> design = design_runs(plan);
+    executor.run(design, "design");
+    record.result = analyse_design(plan, store);
+    record.model_runs = stored(store, design);
+    verify = replicate_runs(plan, "verify", record.result.chosen, 0, plan.verification_runs);
+    executor.run(verify, "verify");
+    add_verification(plan, stored(store, verify), design_replicate_groups(plan, store), record.result);
+  } else {
+    loop = run_adaptive(plan, store, executor, options.quiet);
+    record.result = loop.result;
+    record.loop = &loop;
+    for (const auto& s : loop.steps) record.model_runs.push_back(s.run);
+    verify = replicate_runs(plan, "verify", record.result.chosen, 1, plan.verification_runs);
+    executor.run(verify, "verify");
+    // The loop's run at the chosen point is replicate 0 of the verification.
+    std::vector<RunRecord> at_chosen;
+    for (const auto& s : loop.steps)
+      if (s.run.spec.x == record.result.chosen) {
+        at_chosen.push_back(s.run);
+        break;
+      }
+    for (const auto& r : stored(store, verify)) at_chosen.push_back(r);
+    add_verification(plan, at_chosen, {}, record.result);
+  }
+  mpi.stop_workers();
+
+  std::set<std::string> hosts;
+  auto count = [&](const RunRecord& r) {
+    ++record.simulations;
+    record.simulated_seconds += r.wall_s;
+    hosts.insert(r.host + ":" + std::to_string(r.rank));
+  };
+  for (const auto& r : record.model_runs) count(r);
+  for (const auto& r : stored(store, verify)) count(r);
+  record.hosts.assign(hosts.begin(), hosts.end());
+  record.figures = write_figures(plan, record.result, record.model_runs, out_dir);
+  if (record.loop) record.figures.push_back(write_convergence_figure(plan, loop, out_dir));
+  write_campaign_report(record, out_dir);
+
+  CampaignSummary summary;
+  summary.target_reached = record.result.target_reached;
+  summary.verification_error = record.result.verification_error;
+  summary.simulations = record.simulations;
+  summary.simulated_now = executor.simulated();
+  summary.report_path = out_dir + "/report.md";
+  const auto& res = record.result;
+  std::printf("calibrate %s: %s, %d simulations (%d run now)\n", plan.name.c_str(), res.method.c_str(), record.simulations,
+              executor.simulated());
+  for (const auto& p : res.parameters)
+    std::printf("  %s = %.6g +- %.3g  (target met for %.6g .. %.6g)\n", p.name.c_str(), p.value, p.uncertainty, p.set_low, p.set_high);
+  if (record.loop)
+    std::printf("  target met by simulation %d of the loop (budget %d)\n", loop.simulations_to_target, plan.adaptive.budget);
+  std::printf("  verification: %s = %.6g +- %.3g over %zu runs, measured %.6g, error %+.2f %%%s\n", plan.response.c_str(),
+              res.verification_mean, res.verification_sd, res.verification.size(), plan.measured, 100 * res.verification_error,
+              res.target_reached ? "" : " (target NOT reached)");
+  std::printf("  report: %s, database: %s\n", summary.report_path.c_str(), db_path.c_str());
+  return summary;
+}
+
+}  // namespace repose::calibrate

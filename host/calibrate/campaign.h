@@ -1,0 +1,29 @@
+// A whole campaign on rank 0: every simulation of the plan (skipping those already in the
+// database), the analysis, the verification at the chosen parameters, and the report.
+#pragma once
+#include <string>
+
+#include "calibrate/mpi_session.h"
+#include "calibrate/plan.h"
+
+namespace repose::calibrate {
+
+struct CampaignOptions {
+  std::string db_path;  // default: OUT/campaign.sqlite
+  std::string out_dir;  // default: out/calibrate/PLAN_NAME
+  bool fresh = false;   // --new: replace an existing database
+  int jobs = 1;         // local simulations at a time
+  bool quiet = false;
+};
+
+struct CampaignSummary {
+  bool target_reached = false;
+  double verification_error = 0;  // relative
+  int simulations = 0;
+  int simulated_now = 0;          // runs this invocation ran (0 on a complete resume)
+  std::string report_path;
+};
+
+CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi);
+
+}  // namespace repose::calibrate

@@ -1,0 +1,36 @@
+// Runs a batch of campaign simulations on local worker threads and, under MPI, on the other
+// ranks, and stores each result in the database the moment it arrives (rank 0 only). Runs
+// already in the database are skipped, which is all that resuming a killed campaign needs.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "calibrate/mpi_session.h"
+#include "calibrate/plan.h"
+#include "calibrate/run_store.h"
+
+namespace repose::calibrate {
+
+class Executor {
+ public:
+  // `jobs` local simulations at a time on this rank (0 allowed under MPI: rank 0 coordinates
+  // only). `mpi` may be inactive. `quiet` silences the per-run progress lines.
+  Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, int jobs, bool quiet);
+
+  // Runs every spec not yet stored. When a run fails, the others in flight finish and are
+  // stored, then std::runtime_error names the failed run.
+  void run(const std::vector<RunSpec>& specs, const std::string& label);
+
+  int simulated() const { return simulated_; }  // runs this process ran or received
+
+ private:
+  const CampaignPlan& plan_;
+  RunStore& store_;
+  MpiSession& mpi_;
+  int jobs_;
+  bool quiet_;
+  int simulated_ = 0;
+};
+
+}  // namespace repose::calibrate

@@ -1,0 +1,34 @@
+// A Gaussian-process surrogate of one response over coded factors (squared-exponential kernel,
+// one length scale per factor, a nugget for replicate noise). Hyperparameters maximise the
+// marginal likelihood over a fixed grid (the signal variance profiled out), so a fit is
+// deterministic and needs no random start.
+#pragma once
+#include <Eigen/Dense>
+
+namespace repose::calibrate {
+
+struct GaussianProcess {
+  Eigen::MatrixXd x;              // training inputs (runs x factors, coded)
+  Eigen::VectorXd length_scale;   // per factor (coded units)
+  double noise_ratio = 1e-8;      // nugget / signal variance
+  double signal_variance = 1;     // of the standardised response
+  double y_mean = 0, y_scale = 1;  // standardisation of the training response
+  Eigen::VectorXd alpha;          // (K + nugget)^-1 y (standardised)
+  Eigen::LLT<Eigen::MatrixXd> chol;
+  double log_likelihood = 0;
+
+  // Posterior mean and standard deviation of the latent response at a coded point.
+  double mean(const Eigen::VectorXd& at) const;
+  double sd(const Eigen::VectorXd& at) const;
+  // d mean / d x (coded), by central differences of the mean.
+  Eigen::VectorXd gradient(const Eigen::VectorXd& at) const;
+};
+
+// Throws std::runtime_error with fewer than two runs.
+GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y);
+
+// Expected improvement for hitting a target: E[max(0, best - |Y - target|)] with
+// Y ~ N(mean, sd^2) and `best` the smallest |y - target| seen so far (closed form).
+double expected_improvement_to_target(double mean, double sd, double target, double best);
+
+}  // namespace repose::calibrate

@@ -1,0 +1,502 @@
+#include "calibrate/plan.h"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "calibrate/design_runs.h"
+#include "calibrate/experiment_runner.h"
+#include "stats/csv_table.h"
+#include "stats/errors.h"
+#include "stats/model_terms.h"
+#include "stats/regression.h"
+
+namespace repose::calibrate {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// One table of the plan with the plan's file name, so every problem is located.
+class PlanTable {
+ public:
+  PlanTable(const toml::table& table, std::string file, std::string prefix, int line)
+      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)), line_(line) {}
+
+  std::string key(std::string_view k) const { return prefix_.empty() ? std::string(k) : prefix_ + "." + std::string(k); }
+  int line_of(std::string_view k) const {
+    const toml::node* n = table_.get(k);
+    return n ? int(n->source().begin.line) : line_;
+  }
+  SourceRef where(std::string_view k) const { return {file_, key(k), line_of(k)}; }
+  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
+    throw CaseError(where(k), problem);
+  }
+  [[noreturn]] void fail_table(const std::string& problem) const {
+    throw CaseError({file_, prefix_, line_}, problem);
+  }
+
+  void allow_only(const std::vector<std::string>& allowed) const {
+    for (auto&& [k, node] : table_) {
+      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw CaseError({file_, key(k.str()), int(k.source().begin.line)},
+                      "unknown key" + (prefix_.empty() ? std::string() : " in [" + prefix_ + "]") +
+                          " (allowed: " + list + ")");
+    }
+  }
+
+  std::optional<std::string> text(std::string_view k) const {
+    const toml::node* n = table_.get(k);
+    if (!n) return std::nullopt;
+    if (!n->is_string()) fail(k, "expected a string");
+    return n->value<std::string>();
+  }
+  std::string required_text(std::string_view k) const {
+    auto v = text(k);
+    if (!v) fail(k, "missing required value");
+    if (v->empty()) fail(k, "must not be empty");
+    return *v;
+  }
+  std::optional<double> number(std::string_view k) const {
+    const toml::node* n = table_.get(k);
+    if (!n) return std::nullopt;
+    if (!n->is_number()) fail(k, "expected a number");
+    double v = *n->value<double>();
+    if (!std::isfinite(v)) fail(k, "must be finite");
+    return v;
+  }
+  double required_number(std::string_view k) const {
+    auto v = number(k);
+    if (!v) fail(k, "missing required value");
+    return *v;
+  }
+  std::optional<int64_t> integer(std::string_view k) const {
+    const toml::node* n = table_.get(k);
+    if (!n) return std::nullopt;
+    if (!n->is_integer()) fail(k, "expected an integer");
+    return *n->value<int64_t>();
+  }
+  int integer_at_least(std::string_view k, int fallback, int least) const {
+    auto v = integer(k);
+    if (!v) return fallback;
+    if (*v < least) fail(k, "must be at least " + std::to_string(least));
+    if (*v > 100000) fail(k, "is unreasonably large");
+    return int(*v);
+  }
+  const toml::table* sub(std::string_view k) const {
+    const toml::node* n = table_.get(k);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail(k, "expected a table [" + key(k) + "]");
+    return n->as_table();
+  }
+  const toml::table& table() const { return table_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  std::string file_, prefix_;
+  int line_;
+};
+
+// A TOML value as override text: strings bare, everything else as TOML writes it.
+std::string value_text(const toml::node& node) {
+  if (auto s = node.value<std::string>(); s && node.is_string()) return *s;
+  if (node.is_floating_point()) return exact_number(*node.value<double>());
+  std::ostringstream out;
+  node.visit([&](auto&& v) { out << v; });
+  return out.str();
+}
+
+bool valid_name(const std::string& n) {
+  if (n.empty() || !(std::isalpha((unsigned char)n[0]) || n[0] == '_')) return false;
+  for (char c : n)
+    if (!(std::isalnum((unsigned char)c) || c == '_')) return false;
+  return true;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return {};
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void read_campaign(const PlanTable& t, CampaignPlan& plan) {
+  t.allow_only({"name", "experiment", "case", "mode", "backend", "seed_key", "base_seed"});
+  plan.experiment = t.required_text("experiment");
+  try {
+    find_experiment(plan.experiment);
+  } catch (const std::exception& e) {
+    t.fail("experiment", e.what());
+  }
+  std::string case_rel = t.required_text("case");
+  fs::path case_path = fs::path(case_rel).is_absolute() ? fs::path(case_rel)
+                                                        : fs::path(plan.path).parent_path() / case_rel;
+  plan.case_path = case_path.lexically_normal().string();
+  if (!fs::is_regular_file(case_path)) t.fail("case", "no case file " + plan.case_path);
+  plan.case_text = read_text(plan.case_path);
+  plan.name = t.text("name").value_or(fs::path(plan.path).stem().string());
+  if (auto mode = t.text("mode")) {
+    if (*mode == "design") plan.mode = CampaignMode::design;
+    else if (*mode == "adaptive") plan.mode = CampaignMode::adaptive;
+    else t.fail("mode", "expected \"design\" or \"adaptive\", got \"" + *mode + "\"");
+  }
+  plan.backend = t.text("backend").value_or("cpu");
+  if (plan.backend != "cpu" && plan.backend != "vulkan") t.fail("backend", "expected \"cpu\" or \"vulkan\"");
+  plan.seed_key = t.text("seed_key").value_or("simulation.seed");
+  if (auto s = t.integer("base_seed")) {
+    if (*s < 0) t.fail("base_seed", "must not be negative");
+    plan.base_seed = uint64_t(*s);
+  }
+}
+
+void read_response(const PlanTable& t, CampaignPlan& plan) {
+  t.allow_only({"name", "measured", "measured_sd", "tolerance"});
+  plan.response = t.required_text("name");
+  const auto& names = find_experiment(plan.experiment).responses;
+  if (std::find(names.begin(), names.end(), plan.response) == names.end()) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    t.fail("name", "experiment '" + plan.experiment + "' has no response '" + plan.response + "' (it gives " + list + ")");
+  }
+  plan.measured = t.required_number("measured");
+  plan.measured_sd = t.number("measured_sd").value_or(0.0);
+  if (plan.measured_sd < 0) t.fail("measured_sd", "must not be negative");
+  plan.tolerance = t.number("tolerance").value_or(0.01);
+  if (!(plan.tolerance > 0 && plan.tolerance < 1)) t.fail("tolerance", "must be a fraction in (0, 1), e.g. 0.01 for 1 %");
+  if (plan.measured == 0) t.fail("measured", "must not be zero (the tolerance is relative to it)");
+}
+
+void read_factors(const toml::node& node, const std::string& file, CampaignPlan& plan) {
+  const toml::array* list = node.as_array();
+  if (!list || !list->is_array_of_tables())
+    throw CaseError({file, "factor", int(node.source().begin.line)}, "expected [[factor]] tables");
+  std::set<std::string> names, keys;
+  for (size_t i = 0; i < list->size(); ++i) {
+    const toml::table& ft = *list->get(i)->as_table();
+    PlanTable t(ft, file, "factor." + std::to_string(i), int(ft.source().begin.line));
+    t.allow_only({"name", "key", "low", "high"});
+    PlanFactor f;
+    f.key = t.required_text("key");
+    f.name = t.text("name").value_or(f.key.substr(f.key.rfind('.') + 1));
+    PlanTable named(ft, file, "factor." + f.name, int(ft.source().begin.line));
+    if (!valid_name(f.name)) named.fail("name", "'" + f.name + "': use letters, digits and _, starting with a letter");
+    if (!names.insert(f.name).second) named.fail("name", "a factor named '" + f.name + "' is listed twice");
+    if (!keys.insert(f.key).second) named.fail("key", "'" + f.key + "' is already a factor");
+    f.low = named.required_number("low");
+    f.high = named.required_number("high");
+    if (!(f.low < f.high))
+      named.fail("high", "range reversed or empty: low = " + format_number(f.low) + " must be below high = " + format_number(f.high));
+    f.where = named.where("key");
+    plan.factors.push_back(f);
+  }
+  if (plan.factors.empty()) throw CaseError({file, "factor", int(node.source().begin.line)}, "no factor");
+}
+
+void read_design(const PlanTable& t, CampaignPlan& plan) {
+  t.allow_only({"type", "alpha", "centre", "replicates", "model", "reduce", "generators", "levels", "degree", "order_seed", "table"});
+  DesignPlan& d = plan.design;
+  d.type = t.text("type").value_or("ccd");
+  const std::set<std::string> types = {"ccd", "bbd", "factorial", "fractional", "sweep", "table"};
+  if (!types.count(d.type)) t.fail("type", "unknown design '" + d.type + "' (ccd, bbd, factorial, fractional, sweep, table)");
+  if (d.type == "table") {
+    std::string rel = t.required_text("table");
+    fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(plan.path).parent_path() / rel;
+    d.table = p.lexically_normal().string();
+    try {
+      stats::Table table = stats::read_csv(d.table);
+      std::vector<std::vector<double>> columns;
+      for (const auto& f : plan.factors) columns.push_back(table.numeric_column(f.name));
+      for (int r = 0; r < table.rows(); ++r) {
+        std::vector<double> row;
+        for (const auto& c : columns) row.push_back(c[size_t(r)]);
+        d.table_rows.push_back(row);
+      }
+      if (d.table_rows.empty()) throw stats::TableError(d.table, 0, 0, "no runs in the table");
+    } catch (const stats::StatsError& e) {
+      t.fail("table", std::string("design table: ") + e.what());
+    }
+  } else if (t.table().get("table")) {
+    t.fail("table", "a design table needs type = \"table\"");
+  }
+  d.alpha = t.text("alpha").value_or("rotatable");
+  d.centre = t.integer_at_least("centre", d.type == "sweep" ? 0 : 3, 0);
+  d.replicates = t.integer_at_least("replicates", 1, 1);
+  d.model = t.text("model").value_or(d.type == "ccd" || d.type == "bbd" ? "quadratic" : "linear");
+  d.levels = t.integer_at_least("levels", 5, 2);
+  d.degree = t.integer_at_least("degree", 3, 1);
+  d.order_seed = uint64_t(t.integer_at_least("order_seed", 0, 0));
+  if (auto r = t.number("reduce")) {
+    if (!(*r > 0 && *r < 1)) t.fail("reduce", "a p-value threshold in (0, 1), e.g. 0.1");
+    d.reduce = *r;
+  }
+  if (const toml::node* g = t.table().get("generators")) {
+    const toml::array* a = g->as_array();
+    if (!a) t.fail("generators", "expected an array of strings like [\"C=AB\"]");
+    for (const auto& e : *a) {
+      if (!e.is_string()) t.fail("generators", "expected strings like \"C=AB\"");
+      d.generators.push_back(*e.value<std::string>());
+    }
+  }
+  const int k = int(plan.factors.size());
+  if (d.type == "sweep") {
+    if (k != 1) t.fail("type", "a sweep (calibration curve) takes exactly one factor; the plan has " + std::to_string(k));
+    if (d.levels < d.degree + 1)
+      t.fail("levels", std::to_string(d.levels) + " levels cannot fit a degree-" + std::to_string(d.degree) +
+                           " calibration curve (fewer runs than model terms: needs at least " + std::to_string(d.degree + 1) + ")");
+    return;
+  }
+  if (d.type == "ccd" && k < 2) t.fail("type", "a central composite design needs at least 2 factors (use type = \"sweep\" for one)");
+  if (d.type == "bbd" && (k < 3 || k > 7)) t.fail("type", "a Box-Behnken design takes 3 to 7 factors");
+  stats::ModelKind kind;
+  try {
+    kind = stats::parse_model_kind(d.model);
+  } catch (const std::exception& e) {
+    t.fail("model", e.what());
+  }
+  std::vector<stats::Term> terms = stats::build_model(kind, k);
+  stats::Design design;
+  try {
+    design = build_design(plan);
+  } catch (const std::exception& e) {
+    t.fail_table(e.what());
+  }
+  // The model must be estimable from the design's distinct points (replicates add no rank).
+  std::vector<int> first = first_identical_rows(design, k);
+  int distinct = 0;
+  for (int i = 0; i < design.runs(); ++i) distinct += first[i] == i;
+  if (distinct < int(terms.size()))
+    t.fail("model", "fewer runs than model terms: a " + d.model + " model in " + std::to_string(k) + " factors has " +
+                        std::to_string(terms.size()) + " terms, the " + d.type + " design gives " +
+                        std::to_string(distinct) + " distinct points");
+  try {
+    Eigen::MatrixXd x = design.coded.leftCols(k);
+    std::vector<std::string> term_names;
+    for (const auto& term : terms) term_names.push_back(stats::term_name(term));
+    stats::least_squares(stats::model_matrix(terms, x), Eigen::VectorXd::Zero(x.rows()), term_names);
+  } catch (const stats::StatsError& e) {
+    t.fail("model", std::string("the ") + d.type + " design cannot estimate this model: " + e.what());
+  }
+}
+
+void read_adaptive(const PlanTable& t, CampaignPlan& plan) {
+  t.allow_only({"initial", "budget"});
+  const int k = int(plan.factors.size());
+  plan.adaptive.initial = t.integer_at_least("initial", 2 * k + 1, 2);
+  plan.adaptive.budget = t.integer_at_least("budget", 20, 2);
+  if (plan.adaptive.budget < plan.adaptive.initial)
+    t.fail("budget", "budget " + std::to_string(plan.adaptive.budget) + " is below the " +
+                         std::to_string(plan.adaptive.initial) + " initial runs");
+}
+
+// Tries the settings and every factor's extremes on the base case, so an unknown key or a value
+// the case refuses is reported at the plan line that asks for it, before anything runs.
+void check_against_case(const CampaignPlan& plan, const SourceRef& set_where) {
+  std::vector<CaseOverride> base;
+  for (const auto& s : plan.settings) base.push_back({s.key, s.value});
+  CaseSpec spec;
+  try {
+    spec = load_case_from_string(plan.case_text, plan.case_path, base);
+  } catch (const CaseError& e) {
+    throw CaseError(set_where, std::string("the base case refuses the settings: ") + e.what());
+  }
+  if (!spec.experiment.type.empty() && spec.experiment.type != plan.experiment)
+    throw CaseError({plan.path, "campaign.experiment", 0},
+                    "the base case " + plan.case_path + " is a '" + spec.experiment.type + "' experiment, not '" + plan.experiment + "'");
+  for (const auto& f : plan.factors)
+    for (double v : {f.low, f.high}) {
+      std::vector<CaseOverride> o = base;
+      o.push_back({f.key, exact_number(v)});
+      try {
+        load_case_from_string(plan.case_text, plan.case_path, o);
+      } catch (const CaseError& e) {
+        throw CaseError(f.where, "not a key the base case accepts at " + format_number(v) + ": " + e.what());
+      }
+    }
+}
+
+}  // namespace
+
+double CampaignPlan::absolute_tolerance() const { return tolerance * std::abs(measured); }
+
+std::vector<std::string> CampaignPlan::factor_names() const {
+  std::vector<std::string> n;
+  for (const auto& f : factors) n.push_back(f.name);
+  return n;
+}
+
+std::string exact_number(double value) {
+  // The shortest of %.15g .. %.17g that reads back as the same double: exact, yet "0.3".
+  char text[40];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+CampaignPlan load_plan(const std::string& path) {
+  CampaignPlan plan;
+  plan.path = path;
+  if (!fs::is_regular_file(path)) throw CaseError({path, "", 0}, "no such plan file");
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw CaseError({path, "", int(e.source().begin.line)}, std::string(e.description()), int(e.source().begin.column));
+  }
+  PlanTable top(root, path, "", 1);
+  top.allow_only({"campaign", "response", "set", "factor", "design", "verification", "adaptive"});
+  auto section = [&](const char* name, bool required) -> std::optional<PlanTable> {
+    const toml::node* n = root.get(name);
+    if (!n) {
+      if (required) throw CaseError({path, name, 0}, std::string("missing [") + name + "] table");
+      return std::nullopt;
+    }
+    if (!n->is_table()) top.fail(name, std::string("expected a table [") + name + "]");
+    return PlanTable(*n->as_table(), path, name, int(n->source().begin.line));
+  };
+  read_campaign(*section("campaign", true), plan);
+  read_response(*section("response", true), plan);
+  SourceRef set_where{path, "set", 0};
+  if (auto set = section("set", false)) {
+    set_where.line = set->line_of("");
+    for (auto&& [k, node] : set->table())
+      plan.settings.push_back({std::string(k.str()), value_text(node), {path, "set." + std::string(k.str()), int(k.source().begin.line)}});
+    if (const toml::node* n = root.get("set")) set_where.line = int(n->source().begin.line);
+  }
+  if (const toml::node* f = root.get("factor")) read_factors(*f, path, plan);
+  else throw CaseError({path, "factor", 0}, "missing [[factor]] tables (the parameters to calibrate)");
+  if (auto s = plan.seed_key; s == "simulation.seed" && !root["campaign"]["base_seed"]) {
+    std::vector<CaseOverride> base;
+    for (const auto& st : plan.settings) base.push_back({st.key, st.value});
+    try {
+      plan.base_seed = load_case_from_string(plan.case_text, plan.case_path, base).seed;
+    } catch (const CaseError& e) {
+      throw CaseError(set_where, std::string("the base case refuses the settings: ") + e.what());
+    }
+  }
+  auto design = section("design", false);
+  auto adaptive = section("adaptive", false);
+  if (plan.mode == CampaignMode::design) {
+    if (adaptive) adaptive->fail_table("an [adaptive] table needs campaign.mode = \"adaptive\"");
+    read_design(design ? *design : PlanTable(toml::table{}, path, "design", 0), plan);
+  } else {
+    if (design) design->fail_table("a [design] table belongs to campaign.mode = \"design\"");
+    static const toml::table empty;
+    read_adaptive(adaptive ? *adaptive : PlanTable(empty, path, "adaptive", 0), plan);
+  }
+  if (auto v = section("verification", false)) {
+    v->allow_only({"runs"});
+    plan.verification_runs = v->integer_at_least("runs", 3, 0);
+  }
+  check_against_case(plan, set_where);
+  return plan;
+}
+
+std::vector<CaseOverride> run_overrides(const CampaignPlan& plan, const std::vector<double>& x, std::uint64_t seed) {
+  std::vector<CaseOverride> o;
+  for (const auto& s : plan.settings) o.push_back({s.key, s.value});
+  for (size_t i = 0; i < plan.factors.size(); ++i) o.push_back({plan.factors[i].key, exact_number(x[i])});
+  o.push_back({plan.seed_key, std::to_string(seed)});
+  return o;
+}
+
+std::string canonical_plan_text(const CampaignPlan& p) {
+  std::map<std::string, std::string> kv;
+  kv["campaign.experiment"] = p.experiment;
+  kv["campaign.mode"] = p.mode == CampaignMode::design ? "design" : "adaptive";
+  kv["campaign.backend"] = p.backend;
+  kv["campaign.seed_key"] = p.seed_key;
+  kv["campaign.base_seed"] = std::to_string(p.base_seed);
+  kv["campaign.case"] = fs::path(p.case_path).filename().string();
+  kv["campaign.case_content_hash"] = plan_hash(p.case_text);
+  kv["response.name"] = p.response;
+  kv["response.measured"] = exact_number(p.measured);
+  kv["response.measured_sd"] = exact_number(p.measured_sd);
+  kv["response.tolerance"] = exact_number(p.tolerance);
+  for (const auto& s : p.settings) kv["set." + s.key] = s.value;
+  for (size_t i = 0; i < p.factors.size(); ++i) {
+    const auto& f = p.factors[i];
+    std::string pre = "factor." + std::to_string(i) + ".";
+    kv[pre + "name"] = f.name;
+    kv[pre + "key"] = f.key;
+    kv[pre + "low"] = exact_number(f.low);
+    kv[pre + "high"] = exact_number(f.high);
+  }
+  if (p.mode == CampaignMode::design) {
+    const auto& d = p.design;
+    kv["design.type"] = d.type;
+    kv["design.alpha"] = d.alpha;
+    kv["design.centre"] = std::to_string(d.centre);
+    kv["design.replicates"] = std::to_string(d.replicates);
+    kv["design.model"] = d.model;
+    kv["design.reduce"] = exact_number(d.reduce);
+    std::string g;
+    for (const auto& s : d.generators) g += (g.empty() ? "" : ",") + s;
+    kv["design.generators"] = g;
+    kv["design.levels"] = std::to_string(d.levels);
+    kv["design.degree"] = std::to_string(d.degree);
+    kv["design.order_seed"] = std::to_string(d.order_seed);
+    std::string rows;
+    for (const auto& row : d.table_rows) {
+      rows += rows.empty() ? "" : ";";
+      for (size_t j = 0; j < row.size(); ++j) rows.append(j ? "," : "").append(exact_number(row[j]));
+    }
+    kv["design.table_rows"] = rows;
+  } else {
+    kv["adaptive.initial"] = std::to_string(p.adaptive.initial);
+    kv["adaptive.budget"] = std::to_string(p.adaptive.budget);
+  }
+  kv["verification.runs"] = std::to_string(p.verification_runs);
+  std::string text;
+  for (const auto& [k, v] : kv) text += k + " = " + v + "\n";
+  return text;
+}
+
+std::string plan_hash(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a offset basis
+  for (unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
+  return hex;
+}
+
+std::string describe_plan_change(const std::string& stored, const std::string& current) {
+  auto parse = [](const std::string& text) {
+    std::map<std::string, std::string> kv;
+    std::istringstream in(text);
+    std::string line;
+    while (std::getline(in, line)) {
+      auto eq = line.find(" = ");
+      if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
+    }
+    return kv;
+  };
+  auto a = parse(stored), b = parse(current);
+  std::string out;
+  auto add = [&](const std::string& s) { out += (out.empty() ? "" : "; ") + s; };
+  for (const auto& [k, v] : a) {
+    auto it = b.find(k);
+    if (it == b.end()) add(k + ": " + v + " -> (removed)");
+    else if (it->second != v) add(k + ": " + v + " -> " + it->second);
+  }
+  for (const auto& [k, v] : b)
+    if (!a.count(k)) add(k + ": (new) " + v);
+  return out.empty() ? "no difference" : out;
+}
+
+}  // namespace repose::calibrate

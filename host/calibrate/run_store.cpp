@@ -1,0 +1,156 @@
+#include "calibrate/run_store.h"
+
+#include <sqlite3.h>
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+
+namespace repose::calibrate {
+
+namespace {
+
+// A prepared statement that finalises itself.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK)
+      throw std::runtime_error(std::string("database: ") + sqlite3_errmsg(db) + " in: " + sql);
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  void bind(int i, const std::string& s) { sqlite3_bind_text(stmt_, i, s.c_str(), int(s.size()), SQLITE_TRANSIENT); }
+  void bind(int i, double v) { sqlite3_bind_double(stmt_, i, v); }
+  void bind(int i, sqlite3_int64 v) { sqlite3_bind_int64(stmt_, i, v); }
+  bool step() {
+    int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(std::string("database: ") + sqlite3_errmsg(db_));
+  }
+  std::string text(int col) const {
+    auto p = sqlite3_column_text(stmt_, col);
+    return p ? reinterpret_cast<const char*>(p) : "";
+  }
+  double real(int col) const { return sqlite3_column_double(stmt_, col); }
+  sqlite3_int64 integer(int col) const { return sqlite3_column_int64(stmt_, col); }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+std::string utc_now() {
+  std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+}  // namespace
+
+RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh)
+    : path_(path), factor_names_(plan.factor_names()) {
+  namespace fs = std::filesystem;
+  if (fresh)
+    for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(path + suffix);
+  if (fs::path(path).has_parent_path()) fs::create_directories(fs::path(path).parent_path());
+  if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
+    std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw std::runtime_error(path + ": cannot open the campaign database: " + msg);
+  }
+  sqlite3_busy_timeout(db_, 10000);
+  // Rollback journal with full sync: a committed run survives a kill (and a power cut).
+  exec("PRAGMA journal_mode=DELETE; PRAGMA synchronous=FULL;");
+  exec("CREATE TABLE IF NOT EXISTS plan(id INTEGER PRIMARY KEY CHECK (id = 1), hash TEXT NOT NULL, "
+       "canonical TEXT NOT NULL, plan_file TEXT, created TEXT);"
+       "CREATE TABLE IF NOT EXISTS runs(run_id TEXT PRIMARY KEY, plan_hash TEXT NOT NULL, phase TEXT NOT NULL, "
+       "point INTEGER NOT NULL, replicate INTEGER NOT NULL, seed INTEGER NOT NULL, factors TEXT NOT NULL, "
+       "responses TEXT NOT NULL, wall_s REAL, host TEXT, rank INTEGER, finished_at TEXT);");
+  const std::string canonical = canonical_plan_text(plan);
+  hash_ = plan_hash(canonical);
+  {
+    Statement q(db_, "SELECT hash, canonical, plan_file FROM plan WHERE id = 1");
+    if (q.step()) {
+      if (q.text(0) != hash_)
+        throw std::runtime_error(path + ": this database belongs to another version of the plan (" + q.text(2) +
+                                 "); changed since: " + describe_plan_change(q.text(1), canonical) +
+                                 ". Restore the plan, or start over with --new (discards the " +
+                                 "finished runs) or another --db.");
+    } else {
+      Statement ins(db_, "INSERT INTO plan(id, hash, canonical, plan_file, created) VALUES (1, ?, ?, ?, ?)");
+      ins.bind(1, hash_);
+      ins.bind(2, canonical);
+      ins.bind(3, plan.path);
+      ins.bind(4, utc_now());
+      ins.step();
+    }
+  }
+  load_runs();
+}
+
+RunStore::~RunStore() { sqlite3_close(db_); }
+
+void RunStore::exec(const std::string& sql) {
+  char* err = nullptr;
+  if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &err) != SQLITE_OK) {
+    std::string msg = err ? err : "unknown error";
+    sqlite3_free(err);
+    throw std::runtime_error(path_ + ": database: " + msg);
+  }
+}
+
+void RunStore::load_runs() {
+  Statement q(db_, "SELECT run_id, phase, point, replicate, seed, factors, responses, wall_s, host, rank FROM runs");
+  while (q.step()) {
+    RunRecord r;
+    r.spec.id = q.text(0);
+    r.spec.phase = q.text(1);
+    r.spec.point = int(q.integer(2));
+    r.spec.replicate = int(q.integer(3));
+    r.spec.seed = uint64_t(q.integer(4));
+    auto factors = nlohmann::json::parse(q.text(5));
+    for (const auto& name : factor_names_) r.spec.x.push_back(factors.at(name).get<double>());
+    const auto responses = nlohmann::json::parse(q.text(6));  // named: items() does not extend its life
+    for (auto& [k, v] : responses.items())
+      r.responses[k] = v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();  // NaN is stored as null
+    r.wall_s = q.real(7);
+    r.host = q.text(8);
+    r.rank = int(q.integer(9));
+    runs_[r.spec.id] = r;
+  }
+}
+
+bool RunStore::has(const std::string& id) const { return runs_.count(id) > 0; }
+
+const RunRecord* RunStore::find(const std::string& id) const {
+  auto it = runs_.find(id);
+  return it == runs_.end() ? nullptr : &it->second;
+}
+
+void RunStore::insert(const RunRecord& r) {
+  nlohmann::ordered_json factors = nlohmann::ordered_json::object(), responses = nlohmann::ordered_json::object();
+  for (size_t i = 0; i < factor_names_.size(); ++i) factors[factor_names_[i]] = r.spec.x[i];
+  for (const auto& [k, v] : r.responses) responses[k] = v;
+  Statement ins(db_, "INSERT INTO runs(run_id, plan_hash, phase, point, replicate, seed, factors, responses, wall_s, "
+                     "host, rank, finished_at) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  ins.bind(1, r.spec.id);
+  ins.bind(2, hash_);
+  ins.bind(3, r.spec.phase);
+  ins.bind(4, sqlite3_int64(r.spec.point));
+  ins.bind(5, sqlite3_int64(r.spec.replicate));
+  ins.bind(6, sqlite3_int64(r.spec.seed));
+  ins.bind(7, factors.dump());
+  ins.bind(8, responses.dump());
+  ins.bind(9, r.wall_s);
+  ins.bind(10, r.host);
+  ins.bind(11, sqlite3_int64(r.rank));
+  ins.bind(12, utc_now());
+  ins.step();  // autocommit: this row is its own transaction
+  runs_[r.spec.id] = r;
+}
+
+}  // namespace repose::calibrate

@@ -1,0 +1,44 @@
+// The campaign database (SQLite): the plan it belongs to and one row per finished run, each
+// inserted in its own transaction, so a campaign killed at any moment keeps every finished run
+// and no half row. A database made for another plan is refused with what changed.
+#pragma once
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibrate/plan.h"
+#include "calibrate/run_spec.h"
+
+struct sqlite3;
+
+namespace repose::calibrate {
+
+class RunStore {
+ public:
+  // Opens (creating if needed) the database at `path` for `plan`. With `fresh`, an existing
+  // database is replaced. Throws std::runtime_error when the stored plan differs.
+  RunStore(const std::string& path, const CampaignPlan& plan, bool fresh);
+  ~RunStore();
+  RunStore(const RunStore&) = delete;
+  RunStore& operator=(const RunStore&) = delete;
+
+  bool has(const std::string& run_id) const;
+  const RunRecord* find(const std::string& run_id) const;
+  // Commits one run (its own transaction); throws on a duplicate id or a write failure.
+  void insert(const RunRecord& record);
+  std::size_t size() const { return runs_.size(); }
+  const std::string& path() const { return path_; }
+
+ private:
+  void exec(const std::string& sql);
+  void load_runs();
+
+  std::string path_;
+  std::string hash_;
+  std::vector<std::string> factor_names_;
+  sqlite3* db_ = nullptr;
+  std::map<std::string, RunRecord> runs_;
+};
+
+}  // namespace repose::calibrate

@@ -1,0 +1,66 @@
+// `repose calibrate PLAN.toml`: a calibration campaign run end to end (docs/calibration.md).
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <thread>
+
+#include "calibrate/campaign.h"
+#include "calibrate/mpi_session.h"
+#include "calibrate/plan.h"
+#include "cli/verbs.h"
+
+namespace repose::cli {
+
+namespace {
+
+int run_calibrate(int argc, char** argv) {
+  using namespace repose::calibrate;
+  // Under mpirun every rank but 0 only simulates what rank 0 hands out.
+  MpiSession mpi;
+  if (mpi.active() && mpi.rank() != 0) {
+    mpi_worker_loop(mpi.rank());
+    return 0;
+  }
+  CLI::App app{"Run a calibration campaign: every simulation of the plan, the analysis, the verification and a report.\n"
+               "Resumable: finished runs are kept in the database and never run again."};
+  std::string plan_path;
+  CampaignOptions options;
+  int jobs = -1;
+  bool check_only = false;
+  app.add_option("plan", plan_path, "campaign plan (TOML, docs/calibration.md)")->required();
+  app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)");
+  app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)");
+  app.add_flag("--new", options.fresh, "discard an existing database and start over");
+  app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun)");
+  app.add_flag("--quiet", options.quiet, "no per-run progress lines");
+  app.add_flag("--check", check_only, "load and check the plan, print the runs it asks for, run nothing");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    mpi.stop_workers();
+    return app.exit(e);
+  }
+  CampaignPlan plan;
+  try {
+    plan = load_plan(plan_path);
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
+  if (check_only) {
+    std::printf("%s: plan is valid (%s mode, %zu factors); canonical form:\n%s", plan_path.c_str(),
+                plan.mode == CampaignMode::design ? "design" : "adaptive", plan.factors.size(), canonical_plan_text(plan).c_str());
+    return 0;
+  }
+  if (jobs < 0) jobs = mpi.active() ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
+  options.jobs = jobs;
+  CampaignSummary s = run_campaign(plan, options, mpi);
+  return s.target_reached ? 0 : 3;
+}
+
+}  // namespace
+
+std::vector<Verb> calibrate_verbs() {
+  return {{"calibrate", "calibration campaign: runs a plan's simulations (resumable, MPI), fits, verifies, reports", run_calibrate}};
+}
+
+}  // namespace repose::cli

@@ -1,0 +1,132 @@
+// Bad plans are refused when loaded, before anything runs, with the plan file, line and key.
+#include <catch2/catch.hpp>
+
+#include "calibrate/plan.h"
+#include "calibrate_support.h"
+
+using namespace repose;
+using namespace repose::calibrate;
+
+namespace {
+
+// Loads `text` as a plan and returns the error message ("" when it loads).
+std::string plan_error(const std::string& text, const std::string& name) {
+  std::string dir = test::scratch_dir("plan_" + name);
+  std::string path = dir + "/plan.toml";
+  test::write_text(path, text);
+  try {
+    load_plan(path);
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  auto at = s.find(from);
+  REQUIRE(at != std::string::npos);
+  return s.replace(at, from.size(), to);
+}
+
+}  // namespace
+
+TEST_CASE("a good plan loads and its hash ignores layout and comments") {
+  std::string plan = test::small_ccd_plan();
+  CHECK(plan_error(plan, "good").empty());
+  std::string dir = test::scratch_dir("plan_hash");
+  test::write_text(dir + "/a.toml", plan);
+  test::write_text(dir + "/b.toml", "# a comment\n" + replace(plan, "measured = 0.44\n", "measured   =   0.44   # lab\n"));
+  CampaignPlan a = load_plan(dir + "/a.toml"), b = load_plan(dir + "/b.toml");
+  CHECK(plan_hash(canonical_plan_text(a)) == plan_hash(canonical_plan_text(b)));
+  CHECK(a.base_seed == 1);  // the case's simulation.seed
+  test::write_text(dir + "/c.toml", test::small_ccd_plan("0.6"));
+  CampaignPlan c = load_plan(dir + "/c.toml");
+  CHECK(describe_plan_change(canonical_plan_text(a), canonical_plan_text(c)) == "factor.0.high: 0.55 -> 0.6");
+}
+
+TEST_CASE("an unknown factor key is refused at its plan line") {
+  std::string msg = plan_error(replace(test::small_ccd_plan(), "stalk/steel.restitution", "stalk/steel.restitutio"), "key");
+  CHECK(msg.find("plan.toml:17: factor.e.key") != std::string::npos);
+  CHECK(msg.find("restitutio") != std::string::npos);
+  CHECK(msg.find("unknown key") != std::string::npos);
+  // A material the case does not have.
+  msg = plan_error(replace(test::small_ccd_plan(), "material.stalk.shear_modulus", "material.straw.shear_modulus"), "material");
+  CHECK(msg.find("factor.G.key") != std::string::npos);
+  CHECK(msg.find("straw") != std::string::npos);
+}
+
+TEST_CASE("a reversed range is refused") {
+  std::string msg = plan_error(replace(test::small_ccd_plan(), "low = 0.35\nhigh = 0.55", "low = 0.55\nhigh = 0.35"), "range");
+  CHECK(msg.find("plan.toml:19: factor.e.high: range reversed") != std::string::npos);
+}
+
+TEST_CASE("a design with fewer runs than model terms is refused") {
+  // 2^2 factorial + 1 centre point = 5 distinct points for the 6 terms of a quadratic model.
+  std::string plan = replace(test::small_ccd_plan(), "type = \"ccd\"\ncentre = 3", "type = \"factorial\"\ncentre = 1");
+  std::string msg = plan_error(plan, "terms");
+  CHECK(msg.find("design.model: fewer runs than model terms") != std::string::npos);
+  CHECK(msg.find("6 terms") != std::string::npos);
+  // A sweep with fewer levels than the curve's coefficients.
+  std::string sweep = "[campaign]\nexperiment = \"drop\"\ncase = \"" + test::drop_case_path() +
+                      "\"\n[response]\nname = \"restitution\"\nmeasured = 0.44\n"
+                      "[[factor]]\nname = \"e\"\nkey = \"interaction.stalk/steel.restitution\"\nlow = 0.3\nhigh = 0.6\n"
+                      "[design]\ntype = \"sweep\"\nlevels = 3\ndegree = 3\n";
+  msg = plan_error(sweep, "sweep");
+  CHECK(msg.find("plan.toml:14: design.levels") != std::string::npos);
+  CHECK(msg.find("fewer runs than model terms") != std::string::npos);
+}
+
+TEST_CASE("a missing response, column or table is named") {
+  std::string msg = plan_error(replace(test::small_ccd_plan(), "name = \"restitution\"", "name = \"bounce\""), "response");
+  CHECK(msg.find("plan.toml:6: response.name") != std::string::npos);
+  CHECK(msg.find("restitution") != std::string::npos);  // lists what the experiment gives
+
+  msg = plan_error(replace(test::small_ccd_plan(), "measured = 0.44\n", ""), "measured");
+  CHECK(msg.find("response.measured: missing required value") != std::string::npos);
+
+  // A design table without the column of factor G.
+  std::string dir = test::scratch_dir("plan_table");
+  test::write_text(dir + "/runs.csv", "e,g\n0.4,1e6\n0.5,1e6\n");
+  std::string plan = replace(test::small_ccd_plan(), "type = \"ccd\"\ncentre = 3\nmodel = \"quadratic\"",
+                             "type = \"table\"\ntable = \"runs.csv\"\nmodel = \"linear\"");
+  test::write_text(dir + "/plan.toml", plan);
+  try {
+    load_plan(dir + "/plan.toml");
+    FAIL("a table without column G loaded");
+  } catch (const CaseError& e) {
+    std::string m = e.what();
+    CHECK(m.find("design.table") != std::string::npos);
+    CHECK(m.find("runs.csv:1") != std::string::npos);
+    CHECK(m.find("'G'") != std::string::npos);
+  }
+}
+
+TEST_CASE("bad TOML, an unknown experiment and unknown plan keys are located") {
+  std::string msg = plan_error("[campaign]\nexperiment = \"drop\n", "toml");
+  CHECK(msg.find("plan.toml:2:") != std::string::npos);
+  msg = plan_error(replace(test::small_ccd_plan(), "experiment = \"drop\"", "experiment = \"shear_box\""), "experiment");
+  CHECK(msg.find("plan.toml:2: campaign.experiment: unknown experiment 'shear_box'") != std::string::npos);
+  msg = plan_error(replace(test::small_ccd_plan(), "centre = 3", "center = 3"), "unknown");
+  CHECK(msg.find("design.center: unknown key") != std::string::npos);
+}
+
+TEST_CASE("the calibrate verb reports a bad plan with exit code 2 and writes nothing") {
+  std::string dir = test::scratch_dir("verb_bad");
+  test::write_text(dir + "/plan.toml", replace(test::small_ccd_plan(), "low = 0.35\nhigh = 0.55", "low = 0.55\nhigh = 0.35"));
+  auto run = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out");
+  CHECK(run.status == 2);
+  CHECK(run.output.find("factor.e.high: range reversed") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir + "/out"));
+}
+
+TEST_CASE("the shipped plans load (the cabbage plan waits for the repose experiment)") {
+  const std::string cases = std::string(REPOSE_SOURCE_DIR) + "/cases/calibrate/";
+  CHECK_NOTHROW(load_plan(cases + "drop_restitution.toml"));
+  CHECK_NOTHROW(load_plan(cases + "drop_restitution_adaptive.toml"));
+  try {
+    load_plan(cases + "cabbage_repose_adaptive.toml");
+    WARN("the repose experiment is registered now: give cabbage_repose_adaptive.toml its heap case");
+  } catch (const CaseError& e) {
+    CHECK(std::string(e.what()).find("unknown experiment 'repose'") != std::string::npos);
+  }
+}
