@@ -10,7 +10,7 @@
 int main(int argc, char** argv) {
   using namespace repose::cli;
   std::vector<Verb> verbs;
-  for (auto group : {engine_verbs, experiment_verbs, stats_verbs, geometry_verbs, calibrate_verbs})
+  for (auto group : {engine_verbs, experiment_verbs, stats_verbs, geometry_verbs, calibrate_verbs, diagnose_verbs})
     for (auto& v : group()) verbs.push_back(std::move(v));
 
   auto usage = [&](FILE* out) {

@@ -103,7 +103,8 @@ REPOSE_CONST kWallReduceWorkgroup = 256;
 // Contact parameters of a material pair, precomputed on the host (no transcendentals in kernels).
 struct PairParams {
   vec4 a;  // x E*, y G*, z damping factor -2 sqrt(5/6) beta (>= 0), w static friction
-  vec4 b;  // x rolling friction, y restitution, zw unused
+  vec4 b;  // x rolling friction, y restitution, z viscoelastic time A (s, extension
+           // restitution_velocity, 0: off), w pi x cohesion energy density (extension cohesion, 0: off)
 };
 
 // One wall at one step of a batch; the host evaluates prescribed motion.
@@ -162,6 +163,7 @@ struct SimPush {
   float half_skin_sq;  // (skin/2)^2: a particle moved this far (squared) forces a rebuild
   uint n_bodies;       // rigid bodies (0 without kFlagBodies)
   float large_radius;  // particles above this radius go to the large bucket (neighbour.h)
+  float air_drag;      // extension air_drag: 0.5 rho_air C_d pi (x r^2 = drag per v^2), 0: off
 };
 
 struct ScanPush {

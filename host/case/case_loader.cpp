@@ -207,7 +207,7 @@ class CaseReader {
 
   CaseSpec read() {
     Section top(root_, "", file_);
-    top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "material",
+    top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "air_drag", "material",
                     "interaction", "template", "sphere", "clump", "fill", "lattice", "wall"},
                    "the case file");
     spec_.path = file_;
@@ -216,6 +216,7 @@ class CaseReader {
     read_neighbour();
     read_output();
     read_experiment();
+    read_air_drag();
     for (const Section& s : entries("material")) read_material(s);
     if (spec_.materials.empty())
       throw CaseError({file_, "material", 0}, "the case has no [[material]]");
@@ -403,6 +404,17 @@ class CaseReader {
                         "no [[wall]] is named '" + name + "'" + did_you_mean(name, names));
   }
 
+  // Extension air_drag (docs/diagnosis.md).
+  void read_air_drag() {
+    auto s = table("air_drag");
+    if (!s) return;
+    s->allow_only({"drag_coefficient", "air_density"}, "[air_drag]");
+    spec_.air_drag.where = s->where();
+    if (auto cd = s->number("drag_coefficient"))
+      spec_.air_drag.drag_coefficient = non_negative(*s, "drag_coefficient", *cd);
+    if (auto rho = s->number("air_density")) spec_.air_drag.air_density = positive(*s, "air_density", *rho);
+  }
+
   void read_material(const Section& s) {
     s.allow_only({"name", "preset", "density", "shear_modulus", "youngs_modulus", "poisson"}, "a [[material]]");
     Material m;
@@ -481,7 +493,9 @@ class CaseReader {
   }
 
   void read_interaction(const Section& s) {
-    s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction"}, "an [[interaction]]");
+    s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction", "viscoelastic_time",
+                  "cohesion_energy_density"},
+                 "an [[interaction]]");
     Interaction in;
     in.where = s.where();
     if (!s.has("materials")) s.missing("materials", " (two material names, as [\"a\", \"b\"])");
@@ -520,6 +534,10 @@ class CaseReader {
     in.rolling_friction = parameter("rolling_friction", preset ? preset->rolling_friction : 0);
     if (in.rolling_friction < 0)
       s.fail("rolling_friction", format_number(in.rolling_friction) + " must not be negative");
+    // Extensions restitution_velocity and cohesion (docs/diagnosis.md), off unless given.
+    if (auto a = s.number("viscoelastic_time")) in.viscoelastic_time = non_negative(s, "viscoelastic_time", *a);
+    if (auto k = s.number("cohesion_energy_density"))
+      in.cohesion_energy_density = non_negative(s, "cohesion_energy_density", *k);
     spec_.interactions.push_back(in);
   }
 

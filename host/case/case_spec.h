@@ -37,6 +37,9 @@ struct Interaction {
   double restitution = 0;              // (0, 1]
   double static_friction = 0;          // >= 0
   double rolling_friction = 0;         // >= 0
+  // Model extensions (docs/diagnosis.md), 0 = off:
+  double viscoelastic_time = 0;        // s, restitution_velocity: damping A Sn vn on top of EDEM's
+  double cohesion_energy_density = 0;  // J/m^3, cohesion: EDEM linear cohesion F = k pi R* dn
   SourceRef where;
 };
 
@@ -207,6 +210,14 @@ struct ExperimentSpec {
   SourceRef where;
 };
 
+// Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2). Off when
+// drag_coefficient is 0.
+struct AirDragSpec {
+  double drag_coefficient = 0;  // C_d (a smooth sphere: ~0.47)
+  double air_density = 1.2;     // kg/m^3
+  SourceRef where;
+};
+
 struct CaseSpec {
   std::string path;  // the case file
   std::string name;  // [simulation] name, else the file's stem
@@ -218,6 +229,7 @@ struct CaseSpec {
   NeighbourSpec neighbour;
   OutputSpec output;
   ExperimentSpec experiment;
+  AirDragSpec air_drag;
   std::vector<Material> materials;
   std::vector<Interaction> interactions;
   std::vector<SphereSpec> spheres;  // explicit [[sphere]] entries first, then expanded fills/lattices

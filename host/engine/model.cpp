@@ -160,7 +160,9 @@ gpu::PairParams pair_params(const Material& a, const Material& b, const Interact
   double damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
   gpu::PairParams p;
   p.a = gpu::vec4(float(e_star), float(g_star), float(damping), float(in.static_friction));
-  p.b = gpu::vec4(float(in.rolling_friction), float(in.restitution), 0.0f, 0.0f);
+  // Extensions (docs/diagnosis.md), zero when off: viscoelastic time, pi x cohesion energy density.
+  p.b = gpu::vec4(float(in.rolling_friction), float(in.restitution), float(in.viscoelastic_time),
+                  float(kPi * in.cohesion_energy_density));
   return p;
 }
 
@@ -344,6 +346,8 @@ Model build_model(const CaseSpec& spec) {
   if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+  if (spec.air_drag.drag_coefficient > 0)
+    m.air_drag = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi;
 
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius.

@@ -57,6 +57,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.skin = float(m.skin);
   p.half_skin_sq = float(0.25 * m.skin * m.skin);
   p.large_radius = float(m.large_radius);
+  p.air_drag = float(m.air_drag);
   return p;
 }
 

@@ -43,6 +43,24 @@ FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float radius_star, 
   return true;
 }
 
+// Extension restitution_velocity (docs/diagnosis.md): the viscoelastic damping of Brilliantov et
+// al. / Kuwabara-Kono, F = -A Sn vn with A a material time (s), added to EDEM's damping. Its
+// damping grows with the overlap faster than EDEM's, so restitution falls with impact speed
+// (1 - e ~ v^(1/5)). Returns 0 when off, leaving EDEM's bytes unchanged.
+FN float viscoelastic_damping(float time_a, float sn, float vn) {
+  if (!(time_a > 0.0f)) return 0.0f;
+  precise float f = (time_a * sn) * vn;
+  return f;
+}
+
+// Extension cohesion: EDEM's linear cohesion F = k A on the Hertz contact area A = pi R* dn,
+// attractive; pi_k = pi k with k the cohesion energy density (J/m^3). 0 when off.
+FN float linear_cohesion(float pi_k, float radius_star, float overlap) {
+  if (!(pi_k > 0.0f)) return 0.0f;
+  precise float f = (pi_k * radius_star) * overlap;
+  return f;
+}
+
 FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
                             float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
                             PairParams pp, float dt, uint flags, INOUT(vec3) shear) {
@@ -65,7 +83,9 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   precise vec3 v_t = v_rel - scale3(n, vn);
 
   precise float fn = fn_elastic - gamma_n * vn;
+  fn = fn - viscoelastic_damping(pp.b.z, sn, vn);
   if ((flags & kFlagClipAttraction) != 0u) fn = max(fn, 0.0f);
+  fn = fn - linear_cohesion(pp.b.w, radius_star, overlap);
 
   // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.
   precise float s_old_sq = dot3(shear, shear);

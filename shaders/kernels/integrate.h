@@ -4,12 +4,26 @@
 #ifndef REPOSE_KERNELS_INTEGRATE_H
 #define REPOSE_KERNELS_INTEGRATE_H
 
-// v += kick dt (F/m + g); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
+// Extension air_drag (docs/diagnosis.md): quadratic drag -(0.5 rho C_d A) |v| v / m, with
+// drag_area = 0.5 rho C_d A for the body (a sphere: PC.air_drag r^2) and inv_mass = 1/m. Clump
+// bodies call it with their own projected area.
+FN vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
+  precise float speed = length3(v);
+  precise float k = -((drag_area * inv_mass) * speed);
+  return scale3(v, k);
+}
+
+// v += kick dt (F/m + g [+ drag]); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
 KFN(void, kick_and_drift) uint i, vec3 force, vec3 torque) {
   vec4 v4 = B_vel[i];
   vec4 w4 = B_omega[i];
   precise float h = PC.kick * PC.dt;
   precise vec3 accel = scale3(force, v4.w) + vec3(PC.gx, PC.gy, PC.gz);
+  if (PC.air_drag > 0.0f) {
+    float r = B_pos[i].w;
+    precise float drag_area = PC.air_drag * (r * r);
+    accel = accel + air_drag_acceleration(xyz(v4), drag_area, v4.w);
+  }
   precise vec3 v = xyz(v4) + scale3(accel, h);
   precise vec3 w = xyz(w4) + scale3(torque, h * w4.w);
   B_vel[i] = vec4(v, v4.w);

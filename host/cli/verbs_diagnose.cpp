@@ -1,0 +1,145 @@
+// `repose diagnose DATA.csv`: what the calibrated model still gets wrong, its cause, and the gain
+// of the extended model (host/diagnosis/). `repose synth-data CASE.toml`: measured-data CSV
+// simulated with a known hidden effect, to check the diagnosis.
+#include <CLI/CLI.hpp>
+#include <toml++/toml.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "case/case_error.h"
+#include "cli/verbs.h"
+#include "diagnosis/diagnose.h"
+#include "diagnosis/diagnosis_report.h"
+#include "diagnosis/synthetic_data.h"
+
+namespace repose::cli {
+
+namespace {
+
+// --params: a TOML file of case keys, e.g. "interaction.cabbage/steel.restitution" = 0.43 or
+// nested tables; each becomes a case override applied to every row's case.
+std::vector<CaseOverride> read_params(const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw DataError(path + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+  }
+  std::vector<CaseOverride> out;
+  std::function<void(const toml::table&, const std::string&)> walk = [&](const toml::table& t, const std::string& prefix) {
+    for (auto&& [k, node] : t) {
+      std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+      if (node.is_table()) {
+        walk(*node.as_table(), key);
+      } else if (node.is_number()) {
+        std::ostringstream v;
+        v.precision(17);
+        v << (node.is_integer() ? double(node.as_integer()->get()) : node.as_floating_point()->get());
+        out.push_back({key, v.str()});
+      } else if (node.is_string()) {
+        out.push_back({key, "\"" + node.as_string()->get() + "\""});
+      } else {
+        throw DataError(path + ":" + std::to_string(node.source().begin.line) + ": " + key +
+                        ": expected a number or a string");
+      }
+    }
+  };
+  walk(root, "");
+  if (out.empty()) throw DataError(path + ": no parameters in the file");
+  return out;
+}
+
+int run_diagnose(int argc, char** argv) {
+  CLI::App app{"Diagnose a calibrated model against measured data: lack of fit, residual trends, the "
+               "candidate extension that explains them, and its held-out gain."};
+  std::string data_path, params_path, out_dir, candidates;
+  unsigned threads = 2;
+  bool quiet = false;
+  app.add_option("data", data_path, "measured data CSV (README, 'Measured data')")->required();
+  app.add_option("--params", params_path, "calibrated parameters (TOML of case keys); the baseline is then not refitted");
+  app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)");
+  app.add_option("--threads", threads, "simulations run in parallel (default 2)");
+  app.add_option("--candidates", candidates, "comma-separated extension ids to test (default: all that apply)");
+  app.add_flag("--quiet", quiet, "no progress lines");
+  CLI11_PARSE(app, argc, argv);
+  if (out_dir.empty()) out_dir = "out/diagnose_" + std::filesystem::path(data_path).stem().string();
+  try {
+    DiagnoseOptions options;
+    options.threads = threads;
+    options.progress = !quiet;
+    if (!params_path.empty()) {
+      options.given = read_params(params_path);
+      options.fit_restitution = false;
+    }
+    std::stringstream list(candidates);
+    for (std::string id; std::getline(list, id, ',');)
+      if (!id.empty()) options.candidates.push_back(id);
+    Observations obs = group_observations(read_measured_data(data_path));
+    Diagnosis d = diagnose(obs, options);
+    write_diagnosis(obs, d, out_dir);
+    std::printf("verdict: %s", d.verdict.c_str());
+    for (size_t k = 0; k < d.cause.size(); ++k) std::printf("%s%s", k ? ", " : " (", d.cause[k].c_str());
+    std::printf("%s\n", d.cause.empty() ? "" : ")");
+    for (const auto& s : d.statements) std::printf("  %s\n", s.c_str());
+    std::printf("wrote %s/diagnosis.json and %s/report.md (%zu simulations, %.1f s)\n", out_dir.c_str(),
+                out_dir.c_str(), d.simulations, d.seconds);
+  } catch (const DataError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "diagnose: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
+
+int run_synth_data(int argc, char** argv) {
+  CLI::App app{"Simulate measured drop data with a known (hidden) model extension and replicate noise."};
+  SyntheticTruth truth;
+  std::string out, extension;
+  double restitution = -1;
+  app.add_option("case", truth.case_path, "drop case (TOML)")->required();
+  app.add_option("--extension", extension, "hidden effect ID=VALUE[,VALUE] (e.g. air_drag=0.8); none by default");
+  app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)");
+  app.add_option("--heights", truth.heights, "drop heights, m")->delimiter(',')->required();
+  app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
+  app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
+  app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
+  app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
+  app.add_option("--seed", truth.seed, "noise seed (default 1)");
+  app.add_option("--out", out, "CSV to write")->required();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (restitution > 0) truth.restitution = restitution;
+    if (!extension.empty()) {
+      auto eq = extension.find('=');
+      if (eq == std::string::npos) throw std::runtime_error("--extension: write ID=VALUE");
+      truth.extension = extension.substr(0, eq);
+      std::stringstream values(extension.substr(eq + 1));
+      for (std::string v; std::getline(values, v, ',');) truth.extension_params.push_back(std::stod(v));
+    }
+    write_synthetic_data(truth, out);
+    std::printf("wrote %s\n", out.c_str());
+  } catch (const CaseError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "synth-data: %s\n", e.what());
+    return 2;
+  }
+  return 0;
+}
+
+}  // namespace
+
+std::vector<Verb> diagnose_verbs() {
+  return {{"diagnose", "what a calibrated model gets wrong against measured data, and why", run_diagnose},
+          {"synth-data", "measured-data CSV simulated with a hidden model extension", run_synth_data}};
+}
+
+}  // namespace repose::cli

@@ -1,0 +1,71 @@
+// `repose diagnose`: what a calibrated model still gets wrong, why, and what an extension gains
+// (README "Diagnosis", docs/diagnosis.md). Steps: fit the baseline; test its lack of fit against
+// the replicate scatter and the trends of its residuals; fit every candidate extension, compare
+// each with the baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error); name
+// the winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate".
+#pragma once
+#include <string>
+#include <vector>
+
+#include "diagnosis/model_fit.h"
+
+namespace repose {
+
+struct LackOfFit {
+  std::string measure;  // "all" for the overall test
+  double chi2 = 0;
+  int groups = 0;
+  int df = 0;           // groups - fitted parameters (overall), groups (per measure)
+  int noise_df = 0;
+  double p = 1;         // F test of chi2/df against the replicate scatter
+};
+
+struct Trend {
+  std::string measure, variable;  // variable: a set: key, or "t" within the series
+  double slope = 0, se = 0, z = 0, p = 1;  // weighted regression of the residuals on the variable
+};
+
+struct ModelResult {
+  std::string id;  // "baseline" or an extension id
+  bool tested = true;
+  std::string untested_reason;
+  std::vector<FreeParameter> parameters;
+  std::vector<double> params;
+  std::vector<double> predicted;       // every group, full fit
+  std::vector<double> heldout;         // every group, predicted with its condition left out
+  double chi2 = 0, aic = 0;
+  int k = 0;
+  double f = 0, p = 1;                 // against the baseline
+  double heldout_rms = 0;              // primary measure, its unit
+  double heldout_z = 0;                // all groups, root mean square standardised error
+  bool significant = false;
+};
+
+struct Diagnosis {
+  std::string verdict;             // adequate | effect | ambiguous
+  std::vector<std::string> cause;  // one id (effect), two or more (ambiguous), none (adequate)
+  ModelResult baseline;
+  std::vector<ModelResult> candidates;
+  std::vector<LackOfFit> lack_of_fit;
+  std::vector<Trend> trends;
+  std::string primary_measure, primary_unit;
+  bool heldout_available = false;  // leave-one-condition-out needs >= 3 conditions
+  double heldout_error_baseline = 0, heldout_error_extended = 0, gain_percent = 0;
+  double separation_chi2 = -1;     // ambiguous: how well the runner-up mimics the winner
+  std::string separating_measurement;
+  std::vector<std::string> statements;  // the findings in plain words, in report order
+  size_t simulations = 0;
+  double seconds = 0;
+};
+
+struct DiagnoseOptions {
+  std::vector<CaseOverride> given;    // --params: calibrated values (the baseline is then not refitted)
+  bool fit_restitution = true;
+  unsigned threads = 2;
+  std::vector<std::string> candidates;  // empty: every extension the data's measures can reveal
+  bool progress = true;
+};
+
+Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options);
+
+}  // namespace repose

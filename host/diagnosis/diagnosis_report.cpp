@@ -1,0 +1,275 @@
+#include "diagnosis/diagnosis_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "diagnosis/plot_png.h"
+#include "util/atomic_file.h"
+
+namespace repose {
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+const PlotColour kBaseline{200, 40, 40}, kExtended{30, 90, 200}, kMeasured{0, 0, 0}, kOther{40, 150, 60};
+
+json model_json(const ModelResult& r, bool heldout) {
+  json j;
+  j["id"] = r.id;
+  j["tested"] = r.tested;
+  if (!r.tested) {
+    j["reason"] = r.untested_reason;
+    return j;
+  }
+  json p = json::object();
+  for (size_t k = 0; k < r.params.size(); ++k) p[r.parameters[k].name] = r.params[k];
+  j["parameters"] = p;
+  j["k"] = r.k;
+  j["chi2"] = r.chi2;
+  j["aic"] = r.aic;
+  if (r.id != "baseline") {
+    j["f"] = r.f;
+    j["p"] = r.p;
+    j["beats_baseline"] = r.significant;
+  }
+  if (heldout) {
+    j["heldout_error"] = r.heldout_rms;
+    j["heldout_rms_standardised"] = r.heldout_z;
+  }
+  return j;
+}
+
+const ModelResult* winner(const Diagnosis& d) {
+  if (d.cause.empty()) return nullptr;
+  for (const auto& c : d.candidates)
+    if (c.id == d.cause[0]) return &c;
+  return nullptr;
+}
+
+std::string safe(std::string s) {
+  for (char& c : s)
+    if (!std::isalnum((unsigned char)c)) c = '_';
+  return s;
+}
+
+// The figures; returns (file, caption) in report order.
+std::vector<std::pair<std::string, std::string>> write_figures(const Observations& obs, const Diagnosis& d,
+                                                               const fs::path& dir) {
+  std::vector<std::pair<std::string, std::string>> figures;
+  const ModelResult* w = winner(d);
+  std::string wname = w ? w->id : "";
+  for (const std::string& m : obs.measures) {
+    bool series = false;
+    for (const auto& g : obs.groups) series = series || (g.measure == m && g.series);
+    if (series) continue;
+    // Residuals against each condition variable.
+    for (const std::string& v : obs.variables) {
+      Plot p;
+      p.title = m + ": measured - simulated";
+      p.x_label = v;
+      p.y_label = m + " residual";
+      p.zero_line = true;
+      PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+      // The extended model's points sit a little to the right, so both error bars show.
+      double lo = 1e300, hi = -1e300;
+      for (const auto& c : obs.conditions)
+        if (c.variables.count(v)) { lo = std::min(lo, c.variables.at(v)); hi = std::max(hi, c.variables.at(v)); }
+      double shift = 0.015 * (hi - lo);
+      for (size_t g = 0; g < obs.groups.size(); ++g) {
+        const auto& grp = obs.groups[g];
+        if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
+        double x = obs.conditions[grp.condition].variables.at(v);
+        double se = grp.sd / std::sqrt(double(grp.values.size()));
+        b.x.push_back(x);
+        b.y.push_back(grp.mean - d.baseline.predicted[g]);
+        b.error.push_back(se);
+        if (w) {
+          e.x.push_back(x + shift);
+          e.y.push_back(grp.mean - w->predicted[g]);
+          e.error.push_back(se);
+        }
+      }
+      p.series.push_back(b);
+      if (w) p.series.push_back(e);
+      std::string file = "residuals_" + safe(m) + "_vs_" + safe(v.substr(v.rfind('.') + 1)) + ".png";
+      write_plot_png(p, (dir / file).string());
+      figures.push_back({file, "Residuals of " + m + " against " + v +
+                                   " (bars: standard error of each mean from the replicate scatter)"});
+    }
+    // Measured against simulated.
+    Plot p;
+    p.title = m + ": measured vs simulated";
+    p.x_label = "simulated " + m;
+    p.y_label = "measured " + m;
+    p.diagonal = true;
+    PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+    for (size_t g = 0; g < obs.groups.size(); ++g) {
+      const auto& grp = obs.groups[g];
+      if (grp.measure != m) continue;
+      double se = grp.sd / std::sqrt(double(grp.values.size()));
+      b.x.push_back(d.baseline.predicted[g]);
+      b.y.push_back(grp.mean);
+      b.error.push_back(se);
+      if (w) {
+        e.x.push_back(w->predicted[g]);
+        e.y.push_back(grp.mean);
+        e.error.push_back(se);
+      }
+    }
+    p.series.push_back(b);
+    if (w) p.series.push_back(e);
+    std::string file = "measured_vs_simulated_" + safe(m) + ".png";
+    write_plot_png(p, (dir / file).string());
+    figures.push_back({file, "Measured against simulated " + m + " (the line is measured = simulated)"});
+  }
+  // Series: the residuals against time, every condition, and the trajectory of the last one.
+  for (const std::string& m : obs.measures) {
+    Plot r;
+    r.title = m + "(t): measured - simulated";
+    r.x_label = "t (s)";
+    r.y_label = m + " residual";
+    r.zero_line = true;
+    PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+    Plot z;
+    size_t last = obs.conditions.size() - 1;
+    z.title = m + "(t), " + obs.conditions[last].label;
+    z.x_label = "t (s)";
+    z.y_label = m;
+    PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
+        ze{wname, {}, {}, {}, kExtended, true, false};
+    for (size_t g = 0; g < obs.groups.size(); ++g) {
+      const auto& grp = obs.groups[g];
+      if (grp.measure != m || !grp.series) continue;
+      b.x.push_back(grp.t);
+      b.y.push_back(grp.mean - d.baseline.predicted[g]);
+      if (w) {
+        e.x.push_back(grp.t);
+        e.y.push_back(grp.mean - w->predicted[g]);
+      }
+      if (grp.condition == last) {
+        zm.x.push_back(grp.t);
+        zm.y.push_back(grp.mean);
+        zb.x.push_back(grp.t);
+        zb.y.push_back(d.baseline.predicted[g]);
+        if (w) {
+          ze.x.push_back(grp.t);
+          ze.y.push_back(w->predicted[g]);
+        }
+      }
+    }
+    if (b.x.empty()) continue;
+    r.series.push_back(b);
+    if (w) r.series.push_back(e);
+    std::string file = "residuals_" + safe(m) + "_vs_t.png";
+    write_plot_png(r, (dir / file).string());
+    figures.push_back({file, "Residuals of the " + m + " series against time, every condition"});
+    z.series = {zm, zb};
+    if (w) z.series.push_back(ze);
+    file = "series_" + safe(m) + ".png";
+    write_plot_png(z, (dir / file).string());
+    figures.push_back({file, "The " + m + " series of " + obs.conditions[last].label + ": measured means and simulations"});
+  }
+  return figures;
+}
+
+}  // namespace
+
+void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::string& dir_name) {
+  fs::path dir(dir_name);
+  fs::create_directories(dir);
+  auto figures = write_figures(obs, d, dir);
+
+  json j;
+  j["data"] = obs.path;
+  j["verdict"] = d.verdict;
+  if (d.verdict == "effect") j["cause"] = d.cause[0];
+  else if (d.verdict == "ambiguous") j["cause"] = d.cause;
+  else j["cause"] = nullptr;
+  j["baseline"] = model_json(d.baseline, d.heldout_available);
+  j["candidates"] = json::array();
+  for (const auto& c : d.candidates) j["candidates"].push_back(model_json(c, d.heldout_available));
+  j["primary_measure"] = d.primary_measure;
+  j["unit"] = d.primary_unit;
+  if (d.heldout_available) {
+    j["heldout_error_baseline"] = d.heldout_error_baseline;
+    j["heldout_error_extended"] = d.heldout_error_extended;
+    j["gain_percent"] = d.gain_percent;
+  } else {
+    j["heldout_error_baseline"] = nullptr;
+    j["heldout_error_extended"] = nullptr;
+    j["gain_percent"] = nullptr;
+  }
+  j["heldout_method"] = "leave one condition out: refit on the others, predict it";
+  j["lack_of_fit"] = json::array();
+  for (const auto& l : d.lack_of_fit)
+    j["lack_of_fit"].push_back({{"measure", l.measure}, {"chi2", l.chi2}, {"groups", l.groups}, {"df", l.df},
+                                {"noise_df", l.noise_df}, {"p", l.p}});
+  j["trends"] = json::array();
+  for (const auto& t : d.trends)
+    j["trends"].push_back({{"measure", t.measure}, {"variable", t.variable}, {"slope", t.slope}, {"se", t.se},
+                           {"z", t.z}, {"p", t.p}});
+  if (d.separation_chi2 >= 0) j["separation_chi2"] = d.separation_chi2;
+  if (!d.separating_measurement.empty()) j["separating_measurement"] = d.separating_measurement;
+  j["noise"] = json::object();
+  for (const auto& [m, n] : obs.noise) j["noise"][m] = {{"sd", n.sd}, {"df", n.df}, {"given", n.given}};
+  j["conditions"] = json::array();
+  for (const auto& c : obs.conditions) j["conditions"].push_back(c.label);
+  j["statements"] = d.statements;
+  j["figures"] = json::array();
+  for (const auto& f : figures) j["figures"].push_back(f.first);
+  j["simulations"] = d.simulations;
+  j["seconds"] = d.seconds;
+  write_file_atomically((dir / "diagnosis.json").string(), j.dump(2) + "\n");
+
+  std::ostringstream md;
+  md << "# Diagnosis of " << fs::path(obs.path).filename().string() << "\n\n";
+  md << "**Verdict: " << d.verdict << "**";
+  if (!d.cause.empty()) {
+    md << " (";
+    for (size_t k = 0; k < d.cause.size(); ++k) md << (k ? ", " : "") << "`" << d.cause[k] << "`";
+    md << ")";
+  }
+  md << "\n\n" << obs.conditions.size() << " conditions, " << obs.groups.size() << " measured means; noise from the "
+     << "replicate scatter:";
+  for (const auto& [m, n] : obs.noise)
+    md << " " << m << " SD " << n.sd << (n.given ? " (given)" : " (pooled, df " + std::to_string(n.df) + ")") << ";";
+  md << "\n\n## Findings\n\n";
+  for (const auto& s : d.statements) md << "- " << s << "\n";
+  md << "\n## Candidates\n\n| model | fitted parameters | chi^2 | AIC | F test p | held-out error | beats baseline |\n"
+        "|---|---|---|---|---|---|---|\n";
+  auto row = [&](const ModelResult& r) {
+    if (!r.tested) {
+      md << "| " << r.id << " | not tested: " << r.untested_reason << " | | | | | |\n";
+      return;
+    }
+    std::string ps;
+    for (size_t k = 0; k < r.params.size(); ++k) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "%s%s = %.4g", k ? ", " : "", r.parameters[k].name.c_str(), r.params[k]);
+      ps += buf;
+    }
+    char buf[256];
+    std::snprintf(buf, sizeof buf, "| %.4g | %.4g | %s | %s | %s |\n", r.chi2, r.aic,
+                  r.id == "baseline" ? "" : std::to_string(r.p).c_str(),
+                  d.heldout_available ? std::to_string(r.heldout_rms).c_str() : "",
+                  r.id == "baseline" ? "" : (r.significant ? "yes" : "no"));
+    md << "| " << r.id << " | " << ps << " " << buf;
+  };
+  row(d.baseline);
+  for (const auto& c : d.candidates) row(c);
+  if (d.heldout_available)
+    md << "\nHeld-out error: " << d.primary_measure << " RMS (" << d.primary_unit
+       << "), each condition predicted by a fit to the others. Baseline " << d.heldout_error_baseline
+       << ", extended " << d.heldout_error_extended << ", gain " << d.gain_percent << " %.\n";
+  md << "\n## Figures\n\n";
+  for (const auto& [file, caption] : figures) md << caption << ":\n\n![" << caption << "](" << file << ")\n\n";
+  md << "---\n" << d.simulations << " simulations in " << d.seconds << " s.\n";
+  write_file_atomically((dir / "report.md").string(), md.str());
+}
+
+}  // namespace repose

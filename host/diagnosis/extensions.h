@@ -1,0 +1,39 @@
+// The candidate model extensions of `repose diagnose` (docs/diagnosis.md): what each adds to the
+// baseline Hertz-Mindlin model, its parameters with their search ranges, and how it is switched
+// on in a case. This table is the one place to add another candidate: give it an id, its
+// parameters and an `apply` that writes them into a CaseSpec (and the physics, off by default,
+// in the kernels), and diagnose fits and compares it with the rest.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "case/case_spec.h"
+
+namespace repose {
+
+struct FreeParameter {
+  std::string name;  // as reported, e.g. "drag_coefficient"
+  std::string unit;
+  double lo = 0, hi = 1;  // search range
+  bool log_scale = false; // search log(value) (strengths spanning decades)
+};
+
+struct ModelExtension {
+  std::string id;           // "air_drag"
+  std::string description;  // one line for reports
+  std::vector<FreeParameter> parameters;
+  // Which measures can reveal it; empty: none of the experiments diagnose runs yet (pending).
+  std::vector<std::string> revealed_by;
+  std::string pending_reason;  // why it cannot be tested yet, when revealed_by is empty
+  std::function<void(CaseSpec&, const std::vector<double>&)> apply;
+};
+
+const std::vector<ModelExtension>& model_extensions();
+const ModelExtension* find_extension(const std::string& id);
+
+// The interaction between a drop case's body (its first sphere) and its plate (the first plane
+// wall): the contact every drop-test extension acts on. Throws naming the case when absent.
+Interaction& drop_interaction(CaseSpec& spec);
+
+}  // namespace repose

@@ -1,0 +1,180 @@
+#include "diagnosis/model_fit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace repose {
+
+namespace {
+
+double to_unit(const FreeParameter& p, double v) {
+  return p.log_scale ? std::log(v / p.lo) / std::log(p.hi / p.lo) : (v - p.lo) / (p.hi - p.lo);
+}
+double from_unit(const FreeParameter& p, double u) {
+  u = std::clamp(u, 0.0, 1.0);
+  return p.log_scale ? p.lo * std::exp(u * std::log(p.hi / p.lo)) : p.lo + u * (p.hi - p.lo);
+}
+
+}  // namespace
+
+double chi_square(const Observations& obs, const std::vector<double>& predicted, const std::vector<char>& use,
+                  const std::vector<double>& target) {
+  double chi2 = 0;
+  for (size_t g = 0; g < obs.groups.size(); ++g) {
+    const auto& grp = obs.groups[g];
+    if (!use[grp.condition]) continue;
+    double r = (target.empty() ? grp.mean : target[g]) - predicted[g];
+    chi2 += r * r * grp.weight();
+  }
+  return chi2;
+}
+
+ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
+                   const std::vector<double>& start, double step, int max_evaluations,
+                   const std::vector<double>& target) {
+  const Observations& obs = predictor.observations();
+  auto params = predictor.parameters(extension);
+  size_t n = params.size();
+  ModelFit fit;
+  for (const auto& g : obs.groups) fit.groups += use[g.condition] ? 1 : 0;
+  auto values = [&](const std::vector<double>& u) {
+    std::vector<double> v(n);
+    for (size_t k = 0; k < n; ++k) v[k] = from_unit(params[k], u[k]);
+    return v;
+  };
+  auto objective = [&](const std::vector<double>& u) {
+    ++fit.evaluations;
+    return chi_square(obs, predictor.predict(extension, values(u), use), use, target);
+  };
+
+  std::vector<double> u0(n, 0.5);
+  for (size_t k = 0; k < n; ++k) {
+    if (k < start.size()) u0[k] = std::clamp(to_unit(params[k], start[k]), 0.0, 1.0);
+    else if (predictor.fits_restitution() && k == 0) u0[k] = to_unit(params[0], predictor.case_restitution());
+  }
+  if (n == 0) {
+    fit.predicted = predictor.predict(extension, {}, use);
+    fit.chi2 = chi_square(obs, fit.predicted, use, target);
+    return fit;
+  }
+  // Nelder-Mead (standard coefficients) over the dimensions in `free`, the others held; the
+  // simplex kept inside the unit cube by clamping. Returns the best point and its value.
+  auto nelder_mead = [&](std::vector<double> u, const std::vector<size_t>& free, double size0, int budget) {
+    size_t m = free.size();
+    int stop = fit.evaluations + budget;
+    std::vector<std::vector<double>> x(m + 1, u);
+    for (size_t k = 0; k < m; ++k) {
+      size_t d = free[k];
+      x[k + 1][d] = u[d] + (u[d] + size0 <= 1.0 ? size0 : -size0);
+    }
+    std::vector<double> f(m + 1);
+    for (size_t k = 0; k <= m; ++k) f[k] = objective(x[k]);
+    auto along = [&](const std::vector<double>& centroid, const std::vector<double>& worst, double a) {
+      std::vector<double> p = worst;
+      for (size_t d : free) p[d] = std::clamp(centroid[d] + a * (worst[d] - centroid[d]), 0.0, 1.0);
+      return p;
+    };
+    while (fit.evaluations < stop) {
+      std::vector<size_t> order(m + 1);
+      for (size_t k = 0; k <= m; ++k) order[k] = k;
+      std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return f[a] < f[b]; });
+      std::vector<std::vector<double>> xs;
+      std::vector<double> fs;
+      for (size_t k : order) { xs.push_back(x[k]); fs.push_back(f[k]); }
+      x = xs;
+      f = fs;
+      double size = 0;
+      for (size_t k = 1; k <= m; ++k)
+        for (size_t d : free) size = std::max(size, std::abs(x[k][d] - x[0][d]));
+      // 0.01 in chi^2 is far below any decision; a small simplex is converged.
+      if (size < 1e-3 || (f[m] - f[0] < 0.01 && size < 0.03)) break;
+      std::vector<double> centroid = x[0];
+      for (size_t d : free) {
+        centroid[d] = 0;
+        for (size_t k = 0; k < m; ++k) centroid[d] += x[k][d] / m;
+      }
+      auto xr = along(centroid, x[m], -1.0);
+      double fr = objective(xr);
+      if (fr < f[0]) {
+        auto xe = along(centroid, x[m], -2.0);
+        double fe = objective(xe);
+        if (fe < fr) { x[m] = xe; f[m] = fe; } else { x[m] = xr; f[m] = fr; }
+      } else if (fr < f[m - 1]) {
+        x[m] = xr;
+        f[m] = fr;
+      } else {
+        auto xc = fr < f[m] ? along(centroid, x[m], -0.5) : along(centroid, x[m], 0.5);
+        double fc = objective(xc);
+        if (fc < std::min(fr, f[m])) {
+          x[m] = xc;
+          f[m] = fc;
+        } else {
+          for (size_t k = 1; k <= m; ++k) {
+            for (size_t d : free) x[k][d] = x[0][d] + 0.5 * (x[k][d] - x[0][d]);
+            f[k] = objective(x[k]);
+          }
+        }
+      }
+    }
+    size_t best = std::min_element(f.begin(), f.end()) - f.begin();
+    return std::make_pair(x[best], f[best]);
+  };
+
+  // Golden-section search of one dimension over its whole range (the profile's inner fit).
+  auto golden = [&](std::vector<double> u, size_t d, int evaluations) {
+    const double r = 0.6180339887498949;
+    double a = 0, b = 1;
+    std::vector<double> p = u, q = u;
+    p[d] = b - r * (b - a);
+    q[d] = a + r * (b - a);
+    double fp = objective(p), fq = objective(q);
+    for (int i = 2; i < evaluations; ++i) {
+      if (fp < fq) {
+        b = q[d];
+        q = p;
+        fq = fp;
+        p[d] = b - r * (b - a);
+        fp = objective(p);
+      } else {
+        a = p[d];
+        p = q;
+        fp = fq;
+        q[d] = a + r * (b - a);
+        fq = objective(q);
+      }
+    }
+    return fp < fq ? std::make_pair(p, fp) : std::make_pair(q, fq);
+  };
+
+  std::vector<size_t> all_dims(n);
+  for (size_t k = 0; k < n; ++k) all_dims[k] = k;
+  // Parameters without a start value: scan the first of them over its range, the started ones
+  // refitted at each point (a profile: they trade off against each other), and start where it
+  // fits best. The range's low end is the extension nearly off, so the fit starts no worse than
+  // the model without it.
+  if (start.size() < n) {
+    size_t k = start.size();
+    std::vector<size_t> held(start.size());
+    for (size_t j = 0; j < held.size(); ++j) held[j] = j;
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<double> best_u = u0;
+    for (int i = 0; i <= 9; ++i) {
+      std::vector<double> u = u0;
+      u[k] = i / 9.0;
+      auto [ui, fi] = held.empty()       ? std::make_pair(u, objective(u))
+                      : held.size() == 1 ? golden(u, held[0], 14)
+                                         : nelder_mead(u, held, 0.04, 12);
+      if (fi < best) { best = fi; best_u = ui; }
+    }
+    u0 = best_u;
+    step = std::min(step, 0.08);
+  }
+  auto [u_best, f_best] = nelder_mead(u0, all_dims, step, max_evaluations);
+  fit.params = values(u_best);
+  fit.predicted = predictor.predict(extension, fit.params, use);  // cached
+  fit.chi2 = f_best;
+  return fit;
+}
+
+}  // namespace repose

@@ -1,0 +1,32 @@
+// Small x-y plots as PNG for the diagnosis report: points with error bars, lines, a legend,
+// axis ticks and labels (text drawn with stb_easy_font, written with stb_image_write).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace repose {
+
+using PlotColour = std::array<uint8_t, 3>;
+
+struct PlotSeries {
+  std::string label;
+  std::vector<double> x, y;
+  std::vector<double> error;  // half-height of an error bar per point (empty: none)
+  PlotColour colour{0, 0, 0};
+  bool line = false;          // join the points
+  bool points = true;
+};
+
+struct Plot {
+  std::string title, x_label, y_label;
+  std::vector<PlotSeries> series;
+  bool zero_line = false;     // a horizontal line at y = 0
+  bool diagonal = false;      // the line y = x (measured vs simulated)
+};
+
+// Throws std::runtime_error naming the path when it cannot write.
+void write_plot_png(const Plot& plot, const std::string& path, int width = 720, int height = 450);
+
+}  // namespace repose

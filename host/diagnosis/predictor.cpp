@@ -1,0 +1,146 @@
+#include "diagnosis/predictor.h"
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+#include <thread>
+
+#include "case/case_loader.h"
+#include "diagnosis/impact_phase.h"
+
+namespace repose {
+
+Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_restitution,
+                     unsigned threads)
+    : obs_(obs), fit_restitution_(fit_restitution), threads_(std::max(1u, threads)) {
+  for (const Condition& c : obs.conditions) {
+    std::vector<CaseOverride> sets = given;
+    sets.insert(sets.end(), c.sets.begin(), c.sets.end());
+    CaseSpec spec = load_case(c.case_path, sets);
+    if (spec.experiment.type != "drop")
+      throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + spec.experiment.type +
+                      "': diagnose simulates drop tests (slide, roll and repose rigs are not in the engine yet)");
+    if (!spec.bodies.empty() || spec.spheres.size() != 1)
+      throw DataError(obs.path + ": case " + c.case_path +
+                      ": diagnose drops one sphere (clump bodies are not diagnosed yet: the extensions' "
+                      "drop physics, air drag and the impact-time alignment, are written for spheres)");
+    drop_interaction(spec);  // the body-plate contact must exist
+    specs_.push_back(std::move(spec));
+  }
+  for (const auto& g : obs.groups)
+    if (g.measure != "rebound_height" && g.measure != "restitution" && g.measure != "height")
+      throw DataError(obs.path + ":" + std::to_string(g.line) + ": measure '" + g.measure +
+                      "' needs an experiment the engine does not run yet (drop measures: rebound_height, "
+                      "restitution, height)");
+}
+
+std::vector<FreeParameter> Predictor::parameters(const ModelExtension* extension) const {
+  std::vector<FreeParameter> p;
+  if (fit_restitution_) p.push_back({"restitution", "1", 0.05, 0.95, false});
+  if (extension) p.insert(p.end(), extension->parameters.begin(), extension->parameters.end());
+  return p;
+}
+
+double Predictor::case_restitution() const {
+  CaseSpec spec = specs_.front();
+  return drop_interaction(spec).restitution;
+}
+
+DropResult Predictor::drop(size_t condition, const ModelExtension* extension, const std::vector<double>& params) {
+  std::string key = std::to_string(condition) + "|" + (extension ? extension->id : "baseline");
+  for (double v : params) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "|%a", v);
+    key += buf;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = cache_.find(key);
+    if (it != cache_.end()) return it->second;
+  }
+  CaseSpec spec = specs_[condition];
+  size_t k = 0;
+  if (fit_restitution_) drop_interaction(spec).restitution = params.at(k++);
+  if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
+  // Models far from the data (met while searching) can stop the body on the plate: predict no
+  // rebound, a fall in vacuum and rest, so the search moves away from them.
+  double g = std::sqrt(spec.gravity[0] * spec.gravity[0] + spec.gravity[1] * spec.gravity[1] +
+                       spec.gravity[2] * spec.gravity[2]);
+  double fall = std::sqrt(2 * spec.experiment.drop_height / g);
+  spec.experiment.max_time = std::min(spec.experiment.max_time, 3 * fall + 0.5);
+  align_impact_phase(spec);
+  DropResult r;
+  try {
+    r = run_drop(spec, DropOptions{});
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).find("did not rebound") == std::string::npos) throw;
+    r.drop_height = spec.experiment.drop_height;
+    for (int k = 0; k <= 100; ++k) {
+      double t = k * 0.01 * spec.experiment.max_time;
+      r.trajectory.push_back({t, std::max(0.0, r.drop_height - 0.5 * g * t * t)});
+    }
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++simulations_;
+  cache_[key] = r;
+  return r;
+}
+
+double Predictor::value_of(const ObservationGroup& g, const DropResult& r) const {
+  if (g.measure == "rebound_height") return r.rebound_height;
+  if (g.measure == "restitution") return r.restitution;
+  // height: the camera's trajectory, linear between frames.
+  const auto& tr = r.trajectory;
+  if (g.t < tr.front().first)
+    throw DataError(obs_.path + ":" + std::to_string(g.line) + ": t = " + std::to_string(g.t) +
+                    " s is before the release (t = 0)");
+  if (g.t > tr.back().first) {
+    // The simulated drop stops past the rebound apex; from there the body is in free flight
+    // (until it lands again, where it stays for this purpose).
+    size_t n = tr.size();
+    double v = (tr[n - 1].second - tr[n - 2].second) / (tr[n - 1].first - tr[n - 2].first);
+    const Vec3d& gv = specs_[g.condition].gravity;
+    double gm = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
+    double s = g.t - tr[n - 1].first;
+    return std::max(0.0, tr[n - 1].second + v * s - 0.5 * gm * s * s);
+  }
+  size_t hi = 1;
+  while (hi + 1 < tr.size() && tr[hi].first < g.t) ++hi;
+  double t0 = tr[hi - 1].first, t1 = tr[hi].first;
+  double w = t1 > t0 ? (g.t - t0) / (t1 - t0) : 0.0;
+  return tr[hi - 1].second + w * (tr[hi].second - tr[hi - 1].second);
+}
+
+std::vector<double> Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
+                                       const std::vector<char>& use) {
+  size_t nc = obs_.conditions.size();
+  std::vector<DropResult> results(nc);
+  std::vector<size_t> todo;
+  for (size_t c = 0; c < nc; ++c)
+    if (use[c]) todo.push_back(c);
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    for (size_t k = next++; k < todo.size(); k = next++) {
+      try {
+        results[todo[k]] = drop(todo[k], extension, params);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<size_t>(threads_, todo.size()); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+  std::vector<double> out(obs_.groups.size(), 0.0);
+  for (size_t g = 0; g < obs_.groups.size(); ++g)
+    if (use[obs_.groups[g].condition]) out[g] = value_of(obs_.groups[g], results[obs_.groups[g].condition]);
+  return out;
+}
+
+}  // namespace repose

@@ -1,0 +1,81 @@
+#include "diagnosis/synthetic_data.h"
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+
+#include "case/case_loader.h"
+#include "diagnosis/extensions.h"
+#include "diagnosis/impact_phase.h"
+#include "experiments/drop.h"
+#include "util/atomic_file.h"
+
+namespace repose {
+
+namespace {
+
+// Standard normal deviates from a seeded 64-bit generator (Box-Muller on 53-bit uniforms), the
+// same numbers on every platform.
+class Gaussian {
+ public:
+  explicit Gaussian(uint64_t seed) : rng_(seed) {}
+  double operator()() {
+    double u1 = ((rng_() >> 11) + 0.5) * 0x1.0p-53, u2 = (rng_() >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+  }
+
+ private:
+  std::mt19937_64 rng_;
+};
+
+}  // namespace
+
+void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
+  namespace fs = std::filesystem;
+  const ModelExtension* ext = nullptr;
+  if (!truth.extension.empty()) {
+    ext = find_extension(truth.extension);
+    if (!ext || !ext->apply) throw std::runtime_error("no simulated extension '" + truth.extension + "'");
+    if (truth.extension_params.size() != ext->parameters.size())
+      throw std::runtime_error(truth.extension + " takes " + std::to_string(ext->parameters.size()) + " parameter(s)");
+  }
+  if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one drop height");
+  fs::path folder = fs::absolute(csv_path).parent_path();
+  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
+  Gaussian noise(truth.seed);
+  std::ostringstream csv;
+  csv << "case,set:experiment.drop_height,measure,value,replicate,t\n";
+  csv.precision(7);
+  for (double h : truth.heights) {
+    std::ostringstream hs;
+    hs << h;
+    CaseSpec spec = load_case(truth.case_path, {{"experiment.drop_height", hs.str()}});
+    if (truth.restitution) drop_interaction(spec).restitution = *truth.restitution;
+    if (ext) ext->apply(spec, truth.extension_params);
+    align_impact_phase(spec);  // as the diagnosis simulates (impact_phase.h)
+    DropResult r = run_drop(spec);
+    for (int rep = 1; rep <= truth.replicates; ++rep)
+      csv << case_column << "," << hs.str() << ",rebound_height," << r.rebound_height + truth.noise * noise() << ","
+          << rep << ",\n";
+    if (truth.series_dt > 0) {
+      // The camera's frames, linear between simulated frames, up to the rebound apex.
+      const auto& tr = r.trajectory;
+      for (int rep = 1; rep <= truth.replicates; ++rep) {
+        size_t k = 1;
+        for (int i = 0; i * truth.series_dt <= tr.back().first; ++i) {
+          double t = i * truth.series_dt;
+          while (k + 1 < tr.size() && tr[k].first < t) ++k;
+          double w = (t - tr[k - 1].first) / (tr[k].first - tr[k - 1].first);
+          double z = tr[k - 1].second + w * (tr[k].second - tr[k - 1].second);
+          csv << case_column << "," << hs.str() << ",height," << z + truth.series_noise * noise() << "," << rep << ","
+              << t << "\n";
+        }
+      }
+    }
+  }
+  write_file_atomically(csv_path, csv.str());
+}
+
+}  // namespace repose

@@ -1,0 +1,29 @@
+// Synthetic measured data with a known truth, to check that `repose diagnose` finds what was
+// hidden: the case's drop test simulated with a truth model (the baseline plus, optionally, one
+// extension of given strength) at several drop heights, each replicate with Gaussian noise of a
+// stated size, written in the measured-data CSV format (README "Measured data").
+#pragma once
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace repose {
+
+struct SyntheticTruth {
+  std::string case_path;                 // the drop case simulated
+  std::string extension;                 // "" : the baseline alone
+  std::vector<double> extension_params;  // in the order of the extension's parameters
+  std::optional<double> restitution;     // body-plate restitution of the truth (default: the case's)
+  std::vector<double> heights;           // drop heights, m (the condition variable)
+  int replicates = 5;
+  double noise = 0.001;                  // SD of one measured rebound height, m
+  double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s
+  double series_noise = 0.001;           // SD of one tracked height, m
+  uint64_t seed = 1;
+};
+
+// Writes the CSV (the case column relative to the CSV's folder) atomically.
+void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path);
+
+}  // namespace repose
