@@ -202,7 +202,7 @@ struct ExperimentSpec {
   // repose
   std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
   double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
-  double settle_energy = 1e-4;     // J per particle: the heap has settled below this
+  double settle_energy = 1e-4;     // J: settled when no particle (or body) has more
   std::string view = "y";          // camera looks along +y ("y") or +x ("x")
   std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
   bool axisymmetric = false;       // also the 3D sector fit (bottomless cylinder)

@@ -44,8 +44,30 @@ Json slope_json(const SlopeFit& s) {
   return j;
 }
 
+// Replicates 2..N of a drop: the same case with simulation.seed + k (a clump lands at a new
+// random orientation each time); their rebound heights and e go into drop.json with mean and sd.
+Json drop_replicates(const CaseSpec& spec, const ExperimentRunOptions& run, const DropResult& first,
+                     int replicates) {
+  Json list = Json::array();
+  std::vector<double> e;
+  for (int k = 0; k < replicates; ++k) {
+    CaseSpec replicate = spec;
+    replicate.seed = spec.seed + uint64_t(k);
+    DropResult r = k == 0 ? first : run_drop(replicate, {run.backend, run.device, run.threads});
+    e.push_back(r.restitution);
+    list.push_back({{"seed", replicate.seed}, {"rebound_height", r.rebound_height}, {"restitution", r.restitution}});
+    std::printf("  replicate %d (seed %llu): h = %.5g m, e = %.4f\n", k + 1,
+                (unsigned long long)replicate.seed, r.rebound_height, r.restitution);
+  }
+  double mean = 0, var = 0;
+  for (double x : e) mean += x / double(e.size());
+  for (double x : e) var += (x - mean) * (x - mean) / double(std::max<size_t>(1, e.size() - 1));
+  std::printf("  e over %d replicates: mean %.4f, sd %.4f\n", replicates, mean, std::sqrt(var));
+  return {{"runs", list}, {"restitution_mean", mean}, {"restitution_sd", std::sqrt(var)}};
+}
+
 int run_drop_verb(const CaseSpec& spec, const std::string& case_path, const ExperimentRunOptions& run,
-                  const std::string& out_dir) {
+                  const std::string& out_dir, int replicates) {
   DropResult r = run_drop(spec, {run.backend, run.device, run.threads});
   Json j;
   j["experiment"] = "drop";
@@ -65,6 +87,10 @@ int run_drop_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   std::printf("drop %s: H = %.4g m, rebound h = %.5g m, e = sqrt(h/H) = %.4f (impact %.3g m/s, contact %.3g ms)\n",
               spec.name.c_str(), r.drop_height, r.rebound_height, r.restitution, r.impact_speed,
               1e3 * r.contact_time);
+  if (replicates > 1) {
+    j["replicates"] = drop_replicates(spec, run, r, replicates);
+    write_json(out_dir + "/drop.json", j);
+  }
   std::printf("wrote %s/drop.json and %s/trajectory.csv\n", out_dir.c_str(), out_dir.c_str());
   return 0;
 }
@@ -138,7 +164,7 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   j["floor_z"] = r.heap.floor_z;
   j["particles_measured"] = r.particles_measured;
   j["settle_time"] = r.settle_time;
-  j["kinetic_energy_per_particle"] = r.kinetic_energy;
+  j["largest_kinetic_energy"] = r.kinetic_energy;
   if (r.heap_3d) {
     Json a;
     a["mean_deg"] = r.heap_3d->mean_deg;
@@ -159,7 +185,7 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   }
   write_json(out_dir + "/repose.json", j);
   write_file_atomically(out_dir + "/energy.csv", [&](std::ostream& o) {
-    o << "t,kinetic_energy_per_particle\n";
+    o << "t,largest_kinetic_energy\n";
     for (const auto& [t, e] : r.energy) o << t << "," << e << "\n";
   });
   write_file_atomically(out_dir + "/heap.csv", [&](std::ostream& o) {
@@ -200,6 +226,10 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
   app.add_flag("--quiet", quiet, "no progress output");
+  int replicates = 1;
+  app.add_option("--replicates", replicates,
+                 "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
+      ->check(CLI::Range(1, 1000));
   CLI11_PARSE(app, argc, argv);
 
   std::vector<CaseOverride> extra;
@@ -216,7 +246,7 @@ int run_experiment(int argc, char** argv) {
   ExperimentRunOptions run{backend, device, threads, !quiet};
   try {
     std::filesystem::create_directories(out_dir);
-    if (type == "drop") return run_drop_verb(spec, case_path, run, out_dir);
+    if (type == "drop") return run_drop_verb(spec, case_path, run, out_dir, replicates);
     if (type == "slide" || (type == "roll" && spec.experiment.method == "tilt"))
       return run_tilt_verb(spec, case_path, run, out_dir);
     if (type == "roll") return run_roll_verb(spec, case_path, run, out_dir);

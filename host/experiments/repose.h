@@ -18,15 +18,15 @@ struct ReposeResult {
   HeapAngle heap;                 // the 2D measurement (with its picture)
   std::optional<AxisymmetricHeapAngle> heap_3d;
   double settle_time = 0;         // s when the heap was judged settled
-  double kinetic_energy = 0;      // J per particle then
+  double kinetic_energy = 0;      // J, the largest of any particle (or body) then
   size_t particles_measured = 0;  // above the heap floor
-  std::vector<std::pair<double, double>> energy;  // (t, kinetic energy per particle)
+  std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
   std::vector<Sphere> spheres;    // the settled heap
   WallForceSeries wall_forces;
 };
 
 // Runs until the lift is over (lift_end, default the lift wall's motion stop) and the kinetic
-// energy per particle is below settle_energy, then measures. Throws std::runtime_error naming
+// energy of every particle (or body) is below settle_energy, then measures. Throws std::runtime_error naming
 // the case when the heap has not settled by max_time or the measurement finds no slope.
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options = {});
 

@@ -26,24 +26,25 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) 
   Vec3d normal = {sb, 0, cb};   // the incline's normal
 
   // Body: lowest point (along the incline normal) on the incline, centre S uphill of the foot.
+  auto spheres = case_spheres(spec);
+  if (spheres.empty()) throw std::runtime_error(spec.path + ": a rolling test needs a body");
   Vec3d centre{0, 0, 0};
   double extent = 0;
-  for (const auto& s : spec.spheres)
-    for (int k = 0; k < 3; ++k) centre[k] += s.position[k] / double(spec.spheres.size());
+  for (const auto& s : spheres)
+    for (int k = 0; k < 3; ++k) centre[k] += s.position[k] / double(spheres.size());
   double lowest = 1e300;
-  for (const auto& s : spec.spheres) {
-    double h = 0;
-    for (int k = 0; k < 3; ++k) h += (s.position[k] - centre[k]) * normal[k];
+  for (const auto& s : spheres) {
+    double h = 0, d2 = 0;
+    for (int k = 0; k < 3; ++k) {
+      h += (s.position[k] - centre[k]) * normal[k];
+      d2 += (s.position[k] - centre[k]) * (s.position[k] - centre[k]);
+    }
     lowest = std::min(lowest, h - s.radius);
-    double d2 = 0;
-    for (int k = 0; k < 3; ++k) d2 += (s.position[k] - centre[k]) * (s.position[k] - centre[k]);
     extent = std::max(extent, std::sqrt(d2) + s.radius);
   }
-  for (auto& s : spec.spheres) {
-    for (int k = 0; k < 3; ++k) s.position[k] += -centre[k] - S * down[k] - lowest * normal[k];
-    s.velocity = {0, 0, 0};
-    s.angular_velocity = {0, 0, 0};
-  }
+  Vec3d shift;
+  for (int k = 0; k < 3; ++k) shift[k] = -centre[k] - S * down[k] - lowest * normal[k];
+  shift_to_rest(spec, shift);
 
   // Rig: the incline (a rectangle from the foot up to beyond the release point) and the floor.
   double length = S + 4 * extent, width = std::max(1.0, 20 * extent);
@@ -73,16 +74,6 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) 
   RollResult r;
   r.incline_deg = ex.incline_deg;
   r.slope_distance = S;
-  auto speed_of = [](const HostState& st) {
-    double m = 0, px = 0, py = 0, pz = 0;
-    for (const auto& v : st.vel) {
-      m += 1.0 / v.w;
-      px += v.x / v.w;
-      py += v.y / v.w;
-      pz += v.z / v.w;
-    }
-    return std::sqrt(px * px + py * py + pz * pz) / m;
-  };
   // The centre is above the contact point on the floor; on the incline it is R sin(beta) ahead.
   bool on_floor = false;
   double previous_x = -1e300;
@@ -91,7 +82,7 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) 
       throw std::runtime_error(spec.path + ": the body had not stopped on the floor after max_time = " +
                                std::to_string(ex.max_time) + " s");
     sim.advance(sample_steps);
-    double x = body_centre(sim.state())[0], speed = speed_of(sim.state());
+    double x = body_centre(sim.state())[0], speed = body_speed(sim.state());
     r.trajectory.push_back({sim.time(), x, speed});
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "x " + std::to_string(x).substr(0, 6) + " m");

@@ -66,8 +66,15 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
     return rotate(sub(x, pivot), ex.tilt_axis, -angle);
   };
   Vec3d start = in_plate_frame(body_centre(sim.state()), sim.time());
-  Vec3d start_first = in_plate_frame({sim.state().pos[0].x, sim.state().pos[0].y, sim.state().pos[0].z}, sim.time());
-  double spin_angle = 0;  // first particle's rotation angle since the tilt began (|w| dt summed)
+  Vec3d turned{0, 0, 0};  // the first body's rotation since the tilt began (w dt summed: rocking cancels)
+  // Its rolling radius: the lowest point of the body below its centre at rest.
+  double rolling_radius = 0;
+  const Vec3d up = plate.normal;
+  {
+    Vec3d c = body_centre(sim.state());
+    for (const auto& p : sim.state().pos)
+      rolling_radius = std::max(rolling_radius, dot(sub(c, {p.x, p.y, p.z}), up) + p.w);
+  }
   TiltSample previous{sim.time(), 0, 0};
   r.trajectory.push_back(previous);
   r.wall_forces.sample(sim);
@@ -77,10 +84,13 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
                                " m up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
                                " degrees (max_angle, max_time)");
     sim.advance(sample_steps);
-    const auto& w = sim.state().omega[0];
-    spin_angle += std::sqrt(double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z) * sample_steps * model.dt;
+    Vec3d w = first_body_spin(sim.state());
+    for (int k = 0; k < 3; ++k) turned[k] += w[k] * double(sample_steps) * model.dt;
+    // Along the plate only: the body still sinks into the plate (Hertz) while it settles.
     Vec3d moved = sub(in_plate_frame(body_centre(sim.state()), sim.time()), start);
-    TiltSample s{sim.time(), rate * (sim.time() - ex.settle_time) * 180 / kPi, std::sqrt(dot(moved, moved))};
+    double sink = dot(moved, up);
+    Vec3d along = {moved[0] - sink * up[0], moved[1] - sink * up[1], moved[2] - sink * up[2]};
+    TiltSample s{sim.time(), rate * (sim.time() - ex.settle_time) * 180 / kPi, std::sqrt(dot(along, along))};
     r.trajectory.push_back(s);
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "tilt " + std::to_string(s.angle_deg).substr(0, 5) + " deg");
@@ -89,10 +99,10 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
       double f = (ex.onset_distance - previous.displacement) / (s.displacement - previous.displacement);
       r.onset_angle_deg = previous.angle_deg + f * (s.angle_deg - previous.angle_deg);
       r.onset_time = previous.time + f * (s.time - previous.time);
-      Vec3d first = sub(in_plate_frame({sim.state().pos[0].x, sim.state().pos[0].y, sim.state().pos[0].z}, sim.time()),
-                        start_first);
-      double first_moved = std::sqrt(dot(first, first));
-      r.rolled_fraction = first_moved > 0 ? spin_angle * sim.state().pos[0].w / first_moved : 0;
+      // Relative to the plate, which turned the body with it.
+      double tilt = rate * (sim.time() - ex.settle_time);
+      Vec3d own = {turned[0] - tilt * ex.tilt_axis[0], turned[1] - tilt * ex.tilt_axis[1], turned[2] - tilt * ex.tilt_axis[2]};
+      r.rolled_fraction = std::sqrt(dot(own, own)) * rolling_radius / s.displacement;
       break;
     }
     previous = s;

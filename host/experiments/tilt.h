@@ -13,14 +13,14 @@ namespace repose {
 
 struct TiltSample {
   double time = 0, angle_deg = 0;
-  double displacement = 0;  // body centre relative to the plate since the tilt began, m
+  double displacement = 0;  // body centre along the plate, relative to it, since the tilt began, m
 };
 
 struct TiltResult {
   double onset_angle_deg = 0;  // alpha
   double tan_alpha = 0;        // mu_s (slide) or the rolling friction coefficient (tilt roll)
   double onset_time = 0;       // s
-  double rolled_fraction = 0;  // body rotation x radius / displacement of the first particle: ~1 rolls, ~0 slides
+  double rolled_fraction = 0;  // first body's rotation x rolling radius / displacement: ~1 rolls, ~0 slides
   std::vector<TiltSample> trajectory;
   WallForceSeries wall_forces;
 };

@@ -9,8 +9,9 @@ namespace repose::stats {
 
 namespace {
 
+// Columns keep at least one space between them when a value is wider than its column.
 std::string pad(const std::string& s, int width, bool right) {
-  if (static_cast<int>(s.size()) >= width) return s;
+  if (static_cast<int>(s.size()) >= width) return right ? " " + s : s + " ";
   std::string fill(static_cast<size_t>(width) - s.size(), ' ');
   return right ? fill + s : s + fill;
 }

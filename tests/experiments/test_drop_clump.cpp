@@ -5,6 +5,12 @@
 #include "case/case_loader.h"
 #include "experiments/drop.h"
 
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "../cli_support.h"
+
 using namespace repose;
 
 namespace {
@@ -72,4 +78,24 @@ TEST_CASE("a contact shorter than a camera frame is still the first impact", "[e
   INFO("20000 fps: e = " << a.restitution << ", 1000 fps: e = " << b.restitution);
   // Seen or not by a frame, the first bounce is the one measured.
   CHECK(b.restitution == Approx(a.restitution).epsilon(0.01));
+}
+
+TEST_CASE("repose experiment drop --replicates drops a clump at one orientation per seed", "[experiments][cli][clump]") {
+  namespace fs = std::filesystem;
+  fs::path out = fs::temp_directory_path() / "repose_test_drop_replicates";
+  fs::remove_all(out);
+  auto run = repose::test::run_repose("experiment drop " + std::string(REPOSE_SOURCE_DIR) +
+                                      "/cases/drop_cabbage.toml --replicates 2 --quiet --set "
+                                      "interaction.cabbage/q235_steel.restitution=0.9 --out " +
+                                      out.string());
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  auto j = nlohmann::json::parse(std::ifstream(out / "drop.json"));
+  const auto& runs = j["replicates"]["runs"];
+  REQUIRE(runs.size() == 2);
+  CHECK(runs[0]["seed"] == 1);
+  CHECK(runs[1]["seed"] == 2);
+  CHECK(runs[0]["restitution"].get<double>() != runs[1]["restitution"].get<double>());
+  double mean = j["replicates"]["restitution_mean"];
+  CHECK(mean == Approx((runs[0]["restitution"].get<double>() + runs[1]["restitution"].get<double>()) / 2));
 }

@@ -1,0 +1,41 @@
+// Angle-of-repose rigs end to end: fill, settle, lift, settle, measure.
+#include <catch2/catch.hpp>
+
+#include "case/case_loader.h"
+#include "experiments/repose.h"
+
+using namespace repose;
+
+TEST_CASE("the bucket rig with a fast gate (454 spheres) gives a sensible angle of repose", "[experiments][repose]") {
+  // The shipped bucket case (454 spheres), filled for 1 s and the gate pulled at 0.25 m/s.
+  CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/repose_bucket_spheres.toml",
+                            {{"wall.gate.motion.start", "1.0"},
+                             {"wall.gate.motion.stop", "2.8"},
+                             {"wall.gate.motion.velocity", "[0.0, 0.0, 0.25]"},
+                             {"experiment.lift_end", "2.8"},
+                             {"experiment.max_time", "10"}});
+  ReposeResult r = run_repose(spec);
+  INFO("angle " << r.angle_deg << " deg, heap " << r.heap.heap_height << " m, " << r.particles_measured
+                << " particles left, settled at " << r.settle_time << " s");
+  // Frictional spheres (mu_s 0.62, mu_r 0.02 between them) hold a slope between the angle of
+  // rolling spheres (~20 deg) and that of rough grains (~40 deg).
+  CHECK(r.angle_deg > 15);
+  CHECK(r.angle_deg < 40);
+  CHECK(r.heap.right.valid);
+  CHECK(r.particles_measured < 454);  // some ran out through the gate
+  CHECK(r.particles_measured > 200);
+  CHECK(r.settle_time >= 2.8);
+  REQUIRE(!r.wall_forces.rows.empty());
+  // The floor carries the weight of what stays in the bucket once settled (wall_forces.csv).
+  const auto& last = r.wall_forces.rows.back();
+  double floor_fz = 0;
+  for (const auto& w : last)
+    if (w.name == "floor") floor_fz = w.fz;
+  CHECK(floor_fz < 0);
+}
+
+TEST_CASE("repose: a lifted wall without a stop time needs lift_end", "[experiments][repose]") {
+  CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/repose_bucket_spheres.toml",
+                            {{"wall.gate.motion.stop", "1e31"}, {"experiment.lift_end", "0"}});
+  CHECK_THROWS_WITH(run_repose(spec), Catch::Contains("lift_end"));
+}
