@@ -285,8 +285,14 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     const ModelResult& best = results[winners[0]];
     d.cause.push_back(best.id);
     std::vector<char> everything(nc, 1);
-    for (size_t w = 1; w < winners.size(); ++w) {
-      const ModelResult& other = results[winners[w]];
+    // Rivals: every other candidate that improves on the baseline at all (lower AIC), significant
+    // or not: one that fits nearly as well as the winner leaves the cause undecided.
+    std::vector<size_t> rivals;
+    for (size_t k = 0; k < results.size(); ++k)
+      if (k != winners[0] && results[k].aic < base.aic) rivals.push_back(k);
+    std::sort(rivals.begin(), rivals.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
+    for (size_t w : rivals) {
+      const ModelResult& other = results[w];
       steps.next("can " + other.id + " mimic " + best.id + "?");
       ModelFit mimic = fit_model(predictor, find_extension(other.id), everything, other.params, 0.08, 50, best.predicted);
       bool close = mimic.chi2 < kSeparable || other.aic - best.aic < kAicClose;

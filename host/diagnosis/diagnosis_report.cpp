@@ -51,6 +51,13 @@ const ModelResult* winner(const Diagnosis& d) {
   return nullptr;
 }
 
+// "rebound_height (m)": a measure with its unit for axis labels.
+std::string with_unit(const std::string& measure) {
+  for (const auto& m : known_measures())
+    if (measure == m.name) return measure + (std::string(m.unit) == "1" ? "" : " (" + std::string(m.unit) + ")");
+  return measure;
+}
+
 std::string safe(std::string s) {
   for (char& c : s)
     if (!std::isalnum((unsigned char)c)) c = '_';
@@ -72,7 +79,7 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
       Plot p;
       p.title = m + ": measured - simulated";
       p.x_label = v;
-      p.y_label = m + " residual";
+      p.y_label = with_unit(m) + " residual";
       p.zero_line = true;
       PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
       // The extended model's points sit a little to the right, so both error bars show.
@@ -104,8 +111,8 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
     // Measured against simulated.
     Plot p;
     p.title = m + ": measured vs simulated";
-    p.x_label = "simulated " + m;
-    p.y_label = "measured " + m;
+    p.x_label = "simulated " + with_unit(m);
+    p.y_label = "measured " + with_unit(m);
     p.diagonal = true;
     PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
     for (size_t g = 0; g < obs.groups.size(); ++g) {
@@ -132,14 +139,14 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
     Plot r;
     r.title = m + "(t): measured - simulated";
     r.x_label = "t (s)";
-    r.y_label = m + " residual";
+    r.y_label = with_unit(m) + " residual";
     r.zero_line = true;
     PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
     Plot z;
     size_t last = obs.conditions.size() - 1;
     z.title = m + "(t), " + obs.conditions[last].label;
     z.x_label = "t (s)";
-    z.y_label = m;
+    z.y_label = with_unit(m);
     PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
         ze{wname, {}, {}, {}, kExtended, true, false};
     for (size_t g = 0; g < obs.groups.size(); ++g) {
