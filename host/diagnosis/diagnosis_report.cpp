@@ -247,7 +247,8 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
     md << " " << m << " SD " << n.sd << (n.given ? " (given)" : " (pooled, df " + std::to_string(n.df) + ")") << ";";
   md << "\n\n## Findings\n\n";
   for (const auto& s : d.statements) md << "- " << s << "\n";
-  md << "\n## Candidates\n\n| model | fitted parameters | chi^2 | AIC | F test p | held-out error | beats baseline |\n"
+  md << "\n## Candidates\n\n| model | fitted parameters | chi^2 | AIC | F test p | held-out error (" << d.primary_unit
+     << ") | beats baseline |\n"
         "|---|---|---|---|---|---|---|\n";
   auto row = [&](const ModelResult& r) {
     if (!r.tested) {
@@ -260,10 +261,10 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
       std::snprintf(buf, sizeof buf, "%s%s = %.4g", k ? ", " : "", r.parameters[k].name.c_str(), r.params[k]);
       ps += buf;
     }
-    char buf[256];
-    std::snprintf(buf, sizeof buf, "| %.4g | %.4g | %s | %s | %s |\n", r.chi2, r.aic,
-                  r.id == "baseline" ? "" : std::to_string(r.p).c_str(),
-                  d.heldout_available ? std::to_string(r.heldout_rms).c_str() : "",
+    char p[32] = "", held[32] = "", buf[256];
+    if (r.id != "baseline") std::snprintf(p, sizeof p, "%.2g", r.p);
+    if (d.heldout_available) std::snprintf(held, sizeof held, "%.4g", r.heldout_rms);
+    std::snprintf(buf, sizeof buf, "| %.4g | %.4g | %s | %s | %s |\n", r.chi2, r.aic, p, held,
                   r.id == "baseline" ? "" : (r.significant ? "yes" : "no"));
     md << "| " << r.id << " | " << ps << " " << buf;
   };

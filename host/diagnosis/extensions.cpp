@@ -52,13 +52,14 @@ const std::vector<ModelExtension>& model_extensions() {
        {},
        {},
        "shows in heaps and flows; the rebound of one sphere barely depends on its size, so drop "
-       "data cannot reveal it (no slide/roll/repose experiment yet)",
+       "data cannot reveal it, and diagnose does not simulate the repose rig yet",
        nullptr},
       {"shape",
        "an elongated or clumped particle instead of a sphere",
        {},
        {},
-       "needs clump bodies in the engine (in progress on main)",
+       "clumps are in the engine, but diagnose does not drop clump bodies yet: their "
+       "orientation-dependent rebound needs a model of the replicate scatter (a sigma column)",
        nullptr},
   };
   return table;
