@@ -273,6 +273,14 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     d.verdict = "adequate";
     d.statements.push_back("Verdict: the baseline is adequate; no candidate extension explains the data better "
                            "(each fails the F test at 1 % or the held-out comparison).");
+    if (overall.p < kSignificance) {
+      std::string untested;
+      for (const auto& c : d.candidates)
+        if (!c.tested) untested += (untested.empty() ? "" : ", ") + c.id;
+      d.statements.push_back("But the baseline does miss the data (lack of fit above): the cause lies outside the "
+                             "candidates tested" +
+                             (untested.empty() ? std::string(".") : " (not testable with these measures: " + untested + ")."));
+    }
   } else {
     const ModelResult& best = results[winners[0]];
     d.cause.push_back(best.id);
