@@ -734,15 +734,7 @@ class CaseReader {
     }
     for (const char* k : {"orientation", "scale"})
       if (s.has(k)) s.fail(k, "applies to template lattices (give template = \"NAME\")");
-    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
-    lattice.kind = s.choice<LatticeSpec::Kind>(
-        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
-        LatticeSpec::Kind::SimpleCubic);
-    lattice.box_min = s.required_vector3("min");
-    lattice.box_max = s.required_vector3("max");
-    for (int axis = 0; axis < 3; ++axis)
-      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
-        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+    read_lattice_box(s, lattice);
     lattice.radius = positive(s, "radius", s.required_number("radius", " (m)"));
     lattice.spacing = positive(s, "spacing", s.required_number("spacing", " (m, the cube edge)"));
     // Nearest neighbours: the cube edge (sc) or half its diagonal (bcc) apart. The relative
@@ -752,6 +744,24 @@ class CaseReader {
     if (nearest < 2 * lattice.radius * (1 - 1e-9))
       s.fail("spacing", format_number(lattice.spacing) + " m puts neighbours " + format_number(nearest) +
                             " m apart, closer than a diameter " + format_number(2 * lattice.radius) + " m");
+    finish_lattice(s, lattice);
+  }
+
+  // type, min, max of a [[lattice]].
+  void read_lattice_box(const Section& s, LatticeSpec& lattice) {
+    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
+    lattice.kind = s.choice<LatticeSpec::Kind>(
+        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
+        LatticeSpec::Kind::SimpleCubic);
+    lattice.box_min = s.required_vector3("min");
+    lattice.box_max = s.required_vector3("max");
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
+        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+  }
+
+  // count, velocity; then the lattice joins the case.
+  void finish_lattice(const Section& s, LatticeSpec& lattice) {
     if (auto count = s.integer("count")) {
       if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
       lattice.max_count = int(*count);
@@ -765,15 +775,7 @@ class CaseReader {
   void read_body_lattice(const Section& s, LatticeSpec& lattice) {
     if (s.has("radius")) s.fail("radius", "a template lattice sizes its bodies with scale, not radius");
     lattice.template_index = template_of(s);
-    if (!s.has("type")) s.missing("type", " ('sc' or 'bcc')");
-    lattice.kind = s.choice<LatticeSpec::Kind>(
-        "type", {{"sc", LatticeSpec::Kind::SimpleCubic}, {"bcc", LatticeSpec::Kind::BodyCentredCubic}},
-        LatticeSpec::Kind::SimpleCubic);
-    lattice.box_min = s.required_vector3("min");
-    lattice.box_max = s.required_vector3("max");
-    for (int axis = 0; axis < 3; ++axis)
-      if (!(lattice.box_max[axis] > lattice.box_min[axis]))
-        s.fail("max", std::string("max must exceed min along ") + "xyz"[axis]);
+    read_lattice_box(s, lattice);
     const toml::node* spacing = s.table().get("spacing");
     if (!spacing) s.missing("spacing", " (m: the cell edge, or [sx, sy, sz])");
     if (spacing->is_array()) {
@@ -786,13 +788,7 @@ class CaseReader {
       if (!(lattice.spacing_xyz[axis] > 0)) s.fail("spacing", "every cell edge must be greater than 0");
     if (auto scale = s.number("scale")) lattice.scale = positive(s, "scale", *scale);
     lattice.orientation = orientation_of(s);
-    if (auto count = s.integer("count")) {
-      if (*count < 0 || *count > 100000000) s.fail("count", "must be 0 (all that fit) or a positive number up to 1e8");
-      lattice.max_count = int(*count);
-    }
-    lattice.velocity = s.vector3("velocity").value_or(Vec3d{});
-    note_use(particle_users_, lattice.material, s);
-    spec_.lattices.push_back(lattice);
+    finish_lattice(s, lattice);
   }
 
   void read_wall(const Section& s, int index) {
