@@ -40,21 +40,21 @@ Executor::Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, i
 }
 
 void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) {
-  std::vector<RunJob> todo;
+  std::vector<RunJob> pending;
   for (const auto& s : specs) {
     const RunRecord* stored = store_.find(s.id);
     if (!stored) {
-      todo.push_back(make_job(plan_, s));
-      if (s.phase == "verify" && !picture_dir_.empty()) todo.back().options.picture_path = picture_dir_ + "/" + s.id + ".png";
+      pending.push_back(make_job(plan_, s));
+      if (s.phase == "verify" && !picture_dir_.empty()) pending.back().options.picture_path = picture_dir_ + "/" + s.id + ".png";
     }
     else if (stored->spec.x != s.x || stored->spec.seed != s.seed)
       throw std::runtime_error(store_.path() + " holds run " + s.id + " at other parameters than the campaign asks for now "
                                "(the analysis it followed changed?); start again with --new");
   }
-  const int skipped = int(specs.size() - todo.size());
+  const int skipped = int(specs.size() - pending.size());
   if (!quiet_ && skipped > 0)
     std::fprintf(stderr, "%s: %d of %zu runs already in %s\n", label.c_str(), skipped, specs.size(), store_.path().c_str());
-  if (todo.empty()) return;
+  if (pending.empty()) return;
 
   const bool remote = mpi_.has_workers();
   std::vector<int>& idle_ranks = mpi_.idle_ranks();
@@ -65,10 +65,10 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
   std::deque<JobOutcome> finished;
   std::string first_error;
   // Hands out the next job unless a run failed; called with the mutex held.
-  auto take = [&]() -> const RunJob* { return (!failed && next < todo.size()) ? &todo[next++] : nullptr; };
+  auto take = [&]() -> const RunJob* { return (!failed && next < pending.size()) ? &pending[next++] : nullptr; };
 
   std::vector<std::thread> threads;
-  for (int t = 0; t < jobs_ && t < int(todo.size()); ++t)
+  for (int t = 0; t < jobs_ && t < int(pending.size()); ++t)
     threads.emplace_back([&] {
       for (;;) {
         const RunJob* job;
@@ -98,8 +98,8 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
     ++simulated_;
     if (quiet_) return;
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    double eta = elapsed / double(received) * double(todo.size() - received);
-    std::fprintf(stderr, "%s [%zu/%zu] %s %s (%.2f s, rank %d), ETA %s\n", label.c_str(), received, todo.size(),
+    double eta = elapsed / double(received) * double(pending.size() - received);
+    std::fprintf(stderr, "%s [%zu/%zu] %s %s (%.2f s, rank %d), ETA %s\n", label.c_str(), received, pending.size(),
                  out.record.spec.id.c_str(), describe(out.record, plan_).c_str(), out.record.wall_s, out.record.rank,
                  format_duration(eta).c_str());
   };
@@ -142,7 +142,7 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
       std::lock_guard lock(mutex);
       handed = next;
     }
-    if (received == handed && (failed || handed == todo.size())) break;
+    if (received == handed && (failed || handed == pending.size())) break;
   }
   for (auto& t : threads) t.join();
   if (failed) throw std::runtime_error(first_error);

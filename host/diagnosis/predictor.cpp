@@ -116,16 +116,16 @@ std::vector<double> Predictor::predict(const ModelExtension* extension, const st
                                        const std::vector<char>& use) {
   size_t nc = obs_.conditions.size();
   std::vector<DropResult> results(nc);
-  std::vector<size_t> todo;
+  std::vector<size_t> pending;
   for (size_t c = 0; c < nc; ++c)
-    if (use[c]) todo.push_back(c);
+    if (use[c]) pending.push_back(c);
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto worker = [&] {
-    for (size_t k = next++; k < todo.size(); k = next++) {
+    for (size_t k = next++; k < pending.size(); k = next++) {
       try {
-        results[todo[k]] = drop(todo[k], extension, params);
+        results[pending[k]] = drop(pending[k], extension, params);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -133,7 +133,7 @@ std::vector<double> Predictor::predict(const ModelExtension* extension, const st
     }
   };
   std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<size_t>(threads_, todo.size()); ++t) pool.emplace_back(worker);
+  for (unsigned t = 1; t < std::min<size_t>(threads_, pending.size()); ++t) pool.emplace_back(worker);
   worker();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);

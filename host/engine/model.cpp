@@ -256,15 +256,20 @@ Model build_model(const CaseSpec& spec) {
   for (size_t wi = 0; wi < spec.walls.size(); ++wi) {
     const WallSpec& w = spec.walls[wi];
     std::string base = w.name.empty() ? "wall" + std::to_string(wi) : w.name;
-    auto plane = [&](Vec3d point, Vec3d normal, const std::string& name) {
+    // A wall row of this [[wall]]: kind, material, motion and names are shared by its rows.
+    auto row = [&](uint32_t kind, const std::string& name) {
       ModelWall mw;
-      mw.kind = gpu::kWallPlane;
+      mw.kind = kind;
       mw.material = static_cast<uint32_t>(w.material);
-      mw.p0 = point;
-      mw.p1 = unit(normal);
       mw.motion = w.motion;
       mw.name = name;
       mw.spec_index = static_cast<int>(wi);
+      return mw;
+    };
+    auto plane = [&](Vec3d point, Vec3d normal, const std::string& name) {
+      ModelWall mw = row(gpu::kWallPlane, name);
+      mw.p0 = point;
+      mw.p1 = unit(normal);
       m.walls.push_back(mw);
     };
     auto face = [&](Vec3d point, Vec3d normal, const std::string& suffix) {
@@ -284,51 +289,36 @@ Model build_model(const CaseSpec& spec) {
         break;
       }
       case WallSpec::Type::Rectangle: {
-        ModelWall mw;
-        mw.kind = gpu::kWallRectangle;
-        mw.material = static_cast<uint32_t>(w.material);
+        ModelWall mw = row(gpu::kWallRectangle, base);
         mw.p0 = w.point;
         mw.p1 = unit(w.normal);
         mw.p2 = unit(sub(w.edge_axis, mul(mw.p1, dot(w.edge_axis, mw.p1))));
         mw.p3 = cross(mw.p1, mw.p2);
         mw.half_u = 0.5 * w.size[0];
         mw.half_v = 0.5 * w.size[1];
-        mw.motion = w.motion;
-        mw.name = base;
-        mw.spec_index = static_cast<int>(wi);
         m.walls.push_back(mw);
         break;
       }
       case WallSpec::Type::Mesh: {
         // One wall row per triangle; vertex ids let the kernels find shared corners.
         for (const auto& tri : w.mesh->triangles) {
-          ModelWall mw;
-          mw.kind = gpu::kWallTriangle;
-          mw.material = static_cast<uint32_t>(w.material);
+          ModelWall mw = row(gpu::kWallTriangle, base);
           mw.p0 = w.mesh->vertices[tri[0]];
           mw.p1 = w.mesh->vertices[tri[1]];
           mw.p2 = w.mesh->vertices[tri[2]];
           mw.p3 = unit(cross(sub(mw.p1, mw.p0), sub(mw.p2, mw.p0)));
           mw.mesh_id = static_cast<uint32_t>(wi);
           mw.vertex_ids = tri;
-          mw.motion = w.motion;
-          mw.name = base;
-          mw.spec_index = static_cast<int>(wi);
           m.walls.push_back(mw);
         }
         break;
       }
       case WallSpec::Type::Cylinder: {
-        ModelWall mw;
-        mw.kind = gpu::kWallCylinder;
-        mw.material = static_cast<uint32_t>(w.material);
+        ModelWall mw = row(gpu::kWallCylinder, base);
         mw.p0 = w.base;
         mw.p1 = unit(w.axis);
         mw.radius = w.radius;
         mw.height = w.height;
-        mw.motion = w.motion;
-        mw.name = base;
-        mw.spec_index = static_cast<int>(wi);
         m.walls.push_back(mw);
         break;
       }
