@@ -336,6 +336,10 @@ Model build_model(const CaseSpec& spec) {
   if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+  if (spec.contact.rolling == RollingModel::ElasticPlastic) {
+    m.flags |= gpu::kFlagRollingSpring;
+    m.rolling_damping = spec.contact.rolling_damping;
+  }
   if (spec.air_drag.drag_coefficient > 0)
     m.air_drag = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi;
 
