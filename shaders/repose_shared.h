@@ -139,6 +139,8 @@ struct Body {
   vec4 force;        // xyz sum of the sub-spheres' contact forces (no gravity)
   vec4 torque;       // xyz torque about the centre of mass
   uvec4 spheres;     // x first sub-sphere, y count (sub-spheres of a body are contiguous)
+  vec4 drag;         // xyz silhouette area / pi seen along each principal axis (m^2; a sphere:
+                     // r^2), for air drag; zero when the case has no air drag
 };
 
 // What a particle needs to know of its body; static during a run.
@@ -182,7 +184,7 @@ struct ScanPush {
 #ifdef __cplusplus
 static_assert(sizeof(PairParams) == 32);
 static_assert(sizeof(WallState) == 144);
-static_assert(sizeof(Body) == 144);
+static_assert(sizeof(Body) == 160);
 static_assert(sizeof(SubSphere) == 32);
 static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");
 static_assert(sizeof(ScanPush) <= 128);

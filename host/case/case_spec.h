@@ -212,8 +212,8 @@ struct ExperimentSpec {
   SourceRef where;
 };
 
-// Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2). Off when
-// drag_coefficient is 0.
+// Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2) and clump
+// body (A its silhouette across the velocity). Off when drag_coefficient is 0.
 struct AirDragSpec {
   double drag_coefficient = 0;  // C_d (a smooth sphere: ~0.47)
   double air_density = 1.2;     // kg/m^3
