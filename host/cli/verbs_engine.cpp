@@ -225,6 +225,7 @@ int run_bench(int argc, char** argv) {
       // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
       Layout probe;
       probe.lean_contacts = v.lean;
+      probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
       size_t per_contact_bytes = bytes_per_contact(probe);
       double bytes_per_particle =
           double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
