@@ -65,7 +65,18 @@ HostState read_state_file(const std::string& path, uint64_t* step, double* time)
     in.read(reinterpret_cast<char*>(v.data()), std::streamsize(k * sizeof(v[0])));
   };
   get(s.pos, n); get(s.vel, n); get(s.omega, n); get(s.force, n); get(s.torque, n);
-  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c); get(s.bodies, b);
+  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c);
+  if (v2) {
+    // Version 2 bodies are 144 B: the same fields without the trailing drag areas.
+    constexpr size_t kV2Body = 144;
+    static_assert(sizeof(gpu::Body) > kV2Body);
+    std::vector<char> raw(b * kV2Body);
+    in.read(raw.data(), std::streamsize(raw.size()));
+    s.bodies.assign(b, gpu::Body{});
+    for (size_t k = 0; k < b; ++k) std::memcpy(&s.bodies[k], raw.data() + k * kV2Body, kV2Body);
+  } else {
+    get(s.bodies, b);
+  }
   get(s.rolling_spring, r);
   if (!in) throw std::runtime_error("state file '" + path + "' is truncated");
   if (step) *step = st;
