@@ -56,18 +56,23 @@ int run_diagnose(int argc, char** argv) {
                "candidate extension that explains them, and its held-out gain."};
   std::string data_path, params_path, out_dir, candidates;
   unsigned threads = 2;
+  int sim_replicates = 8;
   bool quiet = false;
   app.add_option("data", data_path, "measured data CSV (README, 'Measured data')")->required();
   app.add_option("--params", params_path, "calibrated parameters (TOML of case keys); the baseline is then not refitted");
   app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)");
   app.add_option("--threads", threads, "simulations run in parallel (default 2)");
   app.add_option("--candidates", candidates, "comma-separated extension ids to test (default: all that apply)");
+  app.add_option("--sim-replicates", sim_replicates,
+                 "simulated replicates per condition for a stochastic model (a clump at random orientations; default 8)")
+      ->check(CLI::Range(2, 1000));
   app.add_flag("--quiet", quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
   if (out_dir.empty()) out_dir = "out/diagnose_" + std::filesystem::path(data_path).stem().string();
   try {
     DiagnoseOptions options;
     options.threads = threads;
+    options.simulated_replicates = sim_replicates;
     options.progress = !quiet;
     if (!params_path.empty()) {
       options.given = read_params(params_path);
@@ -111,7 +116,8 @@ int run_synth_data(int argc, char** argv) {
   app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
   app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
-  app.add_option("--seed", truth.seed, "noise seed (default 1)");
+  app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
+  app.add_flag("--sigma", truth.write_sigma, "write a sigma column (the noise SDs): diagnose then scores the replicate scatter too");
   app.add_option("--out", out, "CSV to write")->required();
   CLI11_PARSE(app, argc, argv);
   try {

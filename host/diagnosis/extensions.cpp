@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "diagnosis/elongated_body.h"
+
 namespace repose {
 
 Interaction& drop_interaction(CaseSpec& spec) {
@@ -55,12 +57,14 @@ const std::vector<ModelExtension>& model_extensions() {
        "data cannot reveal it, and diagnose does not simulate the repose rig yet",
        nullptr},
       {"shape",
-       "an elongated or clumped particle instead of a sphere",
-       {},
-       {},
-       "clumps are in the engine, but diagnose does not drop clump bodies yet: their "
-       "orientation-dependent rebound needs a model of the replicate scatter (a sigma column)",
-       nullptr},
+       "an elongated body instead of a sphere: a chain of seven overlapping spheres of the sphere's volume, "
+       "aspect ratio a (length over the central diameter); it lands at a random orientation, so its rebound "
+       "scatters between replicates and falls on average",
+       {{"aspect_ratio", "1", kElongatedMinAspect, kElongatedMaxAspect, false}},
+       {"rebound_height", "restitution", "height"},
+       "",
+       [](CaseSpec& s, const std::vector<double>& p) { make_body_elongated(s, p.at(0)); },
+       true},
   };
   return table;
 }

@@ -27,6 +27,9 @@ struct ModelExtension {
   std::vector<std::string> revealed_by;
   std::string pending_reason;  // why it cannot be tested yet, when revealed_by is empty
   std::function<void(CaseSpec&, const std::vector<double>&)> apply;
+  // Its signature is the replicate scatter (a stochastic model): tested only when the data give
+  // sigma, since otherwise the scatter is taken as the measurement noise.
+  bool needs_sigma = false;
 };
 
 const std::vector<ModelExtension>& model_extensions();

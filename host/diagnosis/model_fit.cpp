@@ -18,21 +18,39 @@ double from_unit(const FreeParameter& p, double u) {
 
 }  // namespace
 
-double chi_square(const Observations& obs, const std::vector<double>& predicted, const std::vector<char>& use,
-                  const std::vector<double>& target) {
-  double chi2 = 0;
-  for (size_t g = 0; g < obs.groups.size(); ++g) {
-    const auto& grp = obs.groups[g];
-    if (!use[grp.condition]) continue;
-    double r = (target.empty() ? grp.mean : target[g]) - predicted[g];
-    chi2 += r * r * grp.weight();
+double group_chi_square(const ObservationGroup& grp, size_t g, const Prediction& predicted, const Prediction* target) {
+  double n = double(grp.values.size());
+  double v = predicted.var.empty() ? 0.0 : predicted.var[g];
+  double V = grp.sigma_given ? grp.sd * grp.sd + v : grp.sd * grp.sd;
+  double var_mean = V / n + (predicted.replicates > 1 ? v / predicted.replicates : 0.0);
+  double mean = target ? target->mean[g] : grp.mean;
+  double r = mean - predicted.mean[g];
+  double chi2 = r * r / var_mean;
+  if (grp.sigma_given && grp.values.size() >= 2) {
+    double s2 = target ? grp.sd * grp.sd + (target->var.empty() ? 0.0 : target->var[g]) : grp.s2;
+    double q = std::max(s2, 1e-300) / V;
+    chi2 += (n - 1) * (q - 1 - std::log(q));
   }
   return chi2;
 }
 
+double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
+                  const Prediction* target) {
+  double chi2 = 0;
+  for (size_t g = 0; g < obs.groups.size(); ++g)
+    if (use[obs.groups[g].condition]) chi2 += group_chi_square(obs.groups[g], g, predicted, target);
+  return chi2;
+}
+
+int score_terms(const Observations& obs) {
+  int terms = 0;
+  for (const auto& g : obs.groups) terms += 1 + (g.sigma_given && g.values.size() >= 2 ? 1 : 0);
+  return terms;
+}
+
 ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
                    const std::vector<double>& start, double step, int max_evaluations,
-                   const std::vector<double>& target) {
+                   const Prediction* target) {
   const Observations& obs = predictor.observations();
   auto params = predictor.parameters(extension);
   size_t n = params.size();

@@ -12,8 +12,9 @@
 namespace repose {
 
 Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_restitution,
-                     unsigned threads)
-    : obs_(obs), fit_restitution_(fit_restitution), threads_(std::max(1u, threads)) {
+                     unsigned threads, int simulated_replicates)
+    : obs_(obs), fit_restitution_(fit_restitution), threads_(std::max(1u, threads)),
+      replicates_(std::max(2, simulated_replicates)) {
   for (const Condition& c : obs.conditions) {
     std::vector<CaseOverride> sets = given;
     sets.insert(sets.end(), c.sets.begin(), c.sets.end());
@@ -47,8 +48,24 @@ double Predictor::case_restitution() const {
   return drop_interaction(spec).restitution;
 }
 
-DropResult Predictor::drop(size_t condition, const ModelExtension* extension, const std::vector<double>& params) {
-  std::string key = std::to_string(condition) + "|" + (extension ? extension->id : "baseline");
+CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                               int replicate) const {
+  CaseSpec spec = specs_[condition];
+  size_t k = 0;
+  if (fit_restitution_) drop_interaction(spec).restitution = params.at(k++);
+  if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
+  spec.seed += uint64_t(replicate);  // a clump's orientation (run_drop draws it from the seed)
+  return spec;
+}
+
+bool Predictor::stochastic(const ModelExtension* extension, const std::vector<double>& params) const {
+  return !model_spec(0, extension, params, 0).bodies.empty();
+}
+
+DropResult Predictor::drop(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                           int replicate) {
+  std::string key = std::to_string(condition) + "|" + std::to_string(replicate) + "|" +
+                    (extension ? extension->id : "baseline");
   for (double v : params) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "|%a", v);
@@ -59,10 +76,7 @@ DropResult Predictor::drop(size_t condition, const ModelExtension* extension, co
     auto it = cache_.find(key);
     if (it != cache_.end()) return it->second;
   }
-  CaseSpec spec = specs_[condition];
-  size_t k = 0;
-  if (fit_restitution_) drop_interaction(spec).restitution = params.at(k++);
-  if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
+  CaseSpec spec = model_spec(condition, extension, params, replicate);
   // Models far from the data (met while searching) can stop the body on the plate: predict no
   // rebound, a fall in vacuum and rest, so the search moves away from them.
   double g = std::sqrt(spec.gravity[0] * spec.gravity[0] + spec.gravity[1] * spec.gravity[1] +
@@ -112,20 +126,23 @@ double Predictor::value_of(const ObservationGroup& g, const DropResult& r) const
   return tr[hi - 1].second + w * (tr[hi].second - tr[hi - 1].second);
 }
 
-std::vector<double> Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
-                                       const std::vector<char>& use) {
+Prediction Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
+                              const std::vector<char>& use) {
   size_t nc = obs_.conditions.size();
-  std::vector<DropResult> results(nc);
-  std::vector<size_t> pending;
+  int reps = stochastic(extension, params) ? replicates_ : 1;
+  std::vector<std::vector<DropResult>> results(nc, std::vector<DropResult>(size_t(reps)));
+  std::vector<std::pair<size_t, int>> pending;
   for (size_t c = 0; c < nc; ++c)
-    if (use[c]) pending.push_back(c);
+    if (use[c])
+      for (int r = 0; r < reps; ++r) pending.push_back({c, r});
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto worker = [&] {
     for (size_t k = next++; k < pending.size(); k = next++) {
       try {
-        results[pending[k]] = drop(pending[k], extension, params);
+        auto [c, r] = pending[k];
+        results[c][size_t(r)] = drop(c, extension, params, r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -137,9 +154,22 @@ std::vector<double> Predictor::predict(const ModelExtension* extension, const st
   worker();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
-  std::vector<double> out(obs_.groups.size(), 0.0);
-  for (size_t g = 0; g < obs_.groups.size(); ++g)
-    if (use[obs_.groups[g].condition]) out[g] = value_of(obs_.groups[g], results[obs_.groups[g].condition]);
+  Prediction out;
+  out.replicates = reps;
+  out.mean.assign(obs_.groups.size(), 0.0);
+  out.var.assign(obs_.groups.size(), 0.0);
+  for (size_t g = 0; g < obs_.groups.size(); ++g) {
+    const ObservationGroup& grp = obs_.groups[g];
+    if (!use[grp.condition]) continue;
+    double sum = 0, sum2 = 0;
+    std::vector<double> v;
+    for (const DropResult& r : results[grp.condition]) v.push_back(value_of(grp, r));
+    for (double x : v) sum += x;
+    double mean = sum / reps;
+    for (double x : v) sum2 += (x - mean) * (x - mean);
+    out.mean[g] = mean;
+    out.var[g] = reps > 1 ? sum2 / (reps - 1) : 0.0;
+  }
   return out;
 }
 

@@ -46,23 +46,36 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
   std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);
   std::ostringstream csv;
-  csv << "case,set:experiment.drop_height,measure,value,replicate,t\n";
+  csv << "case,set:experiment.drop_height,measure,value,replicate,t" << (truth.write_sigma ? ",sigma" : "") << "\n";
   csv.precision(7);
-  for (double h : truth.heights) {
+  auto sigma = [&](double sd) {
+    std::ostringstream s;
+    s.precision(7);
+    if (truth.write_sigma) s << "," << sd;
+    return s.str();
+  };
+  for (size_t hi = 0; hi < truth.heights.size(); ++hi) {
+    double h = truth.heights[hi];
     std::ostringstream hs;
     hs << h;
     CaseSpec spec = load_case(truth.case_path, {{"experiment.drop_height", hs.str()}});
     if (truth.restitution) drop_interaction(spec).restitution = *truth.restitution;
     if (ext) ext->apply(spec, truth.extension_params);
     align_impact_phase(spec);  // as the diagnosis simulates (impact_phase.h)
-    DropResult r = run_drop(spec);
+    bool stochastic = !spec.bodies.empty();
+    std::vector<DropResult> drops;
+    for (int rep = 1; rep <= (stochastic ? truth.replicates : 1); ++rep) {
+      if (stochastic) spec.seed = 1000000 + 10000 * truth.seed + 100 * hi + uint64_t(rep);
+      drops.push_back(run_drop(spec));
+    }
+    auto drop_of = [&](int rep) -> const DropResult& { return drops[stochastic ? size_t(rep - 1) : 0]; };
     for (int rep = 1; rep <= truth.replicates; ++rep)
-      csv << case_column << "," << hs.str() << ",rebound_height," << r.rebound_height + truth.noise * noise() << ","
-          << rep << ",\n";
+      csv << case_column << "," << hs.str() << ",rebound_height," << drop_of(rep).rebound_height + truth.noise * noise()
+          << "," << rep << "," << sigma(truth.noise) << "\n";
     if (truth.series_dt > 0) {
       // The camera's frames, linear between simulated frames, up to the rebound apex.
-      const auto& tr = r.trajectory;
       for (int rep = 1; rep <= truth.replicates; ++rep) {
+        const auto& tr = drop_of(rep).trajectory;
         size_t k = 1;
         for (int i = 0; i * truth.series_dt <= tr.back().first; ++i) {
           double t = i * truth.series_dt;
@@ -70,7 +83,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
           double w = (t - tr[k - 1].first) / (tr[k].first - tr[k - 1].first);
           double z = tr[k - 1].second + w * (tr[k].second - tr[k - 1].second);
           csv << case_column << "," << hs.str() << ",height," << z + truth.series_noise * noise() << "," << rep << ","
-              << t << "\n";
+              << t << sigma(truth.series_noise) << "\n";
         }
       }
     }

@@ -1,7 +1,9 @@
 // Synthetic measured data with a known truth, to check that `repose diagnose` finds what was
 // hidden: the case's drop test simulated with a truth model (the baseline plus, optionally, one
 // extension of given strength) at several drop heights, each replicate with Gaussian noise of a
-// stated size, written in the measured-data CSV format (README "Measured data").
+// stated size, written in the measured-data CSV format (README "Measured data"). A truth whose
+// body is a clump (extension `shape`) lands at a random orientation: every replicate is its own
+// drop, with seeds no diagnosis uses (1,000,000 + 10,000 seed + 100 height index + replicate).
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -20,7 +22,8 @@ struct SyntheticTruth {
   double noise = 0.001;                  // SD of one measured rebound height, m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s
   double series_noise = 0.001;           // SD of one tracked height, m
-  uint64_t seed = 1;
+  bool write_sigma = false;              // a sigma column (the noise SDs): the scatter becomes data
+  uint64_t seed = 1;                     // noise; and the orientations of a clump body (shape)
 };
 
 // Writes the CSV (the case column relative to the CSV's folder) atomically.
