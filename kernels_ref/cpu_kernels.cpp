@@ -33,6 +33,7 @@ namespace repose::gpu {
 #define B_wall_force buf.wall_force
 #define B_bodies buf.bodies
 #define B_subs buf.subs
+#define B_rolling_spring buf.rolling_spring
 #define PC buf.push
 #define KERNEL(name) inline void name(Buffers& buf,
 #define KFN(ret, name) inline ret name(Buffers& buf,

@@ -41,6 +41,7 @@ struct Buffers {
   vec4* wall_force = nullptr;
   Body* bodies = nullptr;
   SubSphere* subs = nullptr;
+  vec4* rolling_spring = nullptr;
   SimPush push{};
 };
 

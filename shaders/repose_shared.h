@@ -43,7 +43,11 @@ REPOSE_CONST kBindTransList = 26;    // uint [C]   contact indices, ascending wi
 REPOSE_CONST kBindWallForce = 27;    // vec4 [W]   force on each wall (output only)
 REPOSE_CONST kBindBodies = 28;       // Body [B]   rigid bodies (clumps), only with kFlagBodies
 REPOSE_CONST kBindSubSpheres = 29;   // SubSphere [N] each particle's body and body-frame offset
-REPOSE_CONST kBindingCount = 30;
+REPOSE_CONST kBindRollingSpring = 30;  // vec4 [2C] with kFlagRollingSpring: xyz rolling spring
+                                       // torque of contact c at [c]; a rebuild keeps the old
+                                       // list's at [capacity + c] (one binding, not two: the
+                                       // per-stage limit on lavapipe is 32)
+REPOSE_CONST kBindingCount = 31;
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild; trans_list (transpose_fill) and contact_force (contact kernel) are rewritten after
 // that in the same step, and no kernel touches both names of one buffer. Both backends bind one
@@ -75,6 +79,7 @@ REPOSE_CONST kFlagDrift = 16u;                // kick kernels: also move positio
 REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs (setup, as LIGGGHTS)
 REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean entry (contacts.h)
 REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of rigid bodies (bodies.h)
+REPOSE_CONST kFlagRollingSpring = 256u;       // EDEM type C (EPSD) rolling resistance, full entries only
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;
@@ -134,6 +139,8 @@ struct Body {
   vec4 force;        // xyz sum of the sub-spheres' contact forces (no gravity)
   vec4 torque;       // xyz torque about the centre of mass
   uvec4 spheres;     // x first sub-sphere, y count (sub-spheres of a body are contiguous)
+  vec4 drag;         // xyz silhouette area / pi seen along each principal axis (m^2; a sphere:
+                     // r^2), for air drag; zero when the case has no air drag
 };
 
 // What a particle needs to know of its body; static during a run.
@@ -164,6 +171,7 @@ struct SimPush {
   uint n_bodies;       // rigid bodies (0 without kFlagBodies)
   float large_radius;  // particles above this radius go to the large bucket (neighbour.h)
   float air_drag;      // extension air_drag: 0.5 rho_air C_d pi (x r^2 = drag per v^2), 0: off
+  float rolling_damping;  // kFlagRollingSpring: eta_r, the rolling dashpot's fraction of critical
 };
 
 struct ScanPush {
@@ -176,7 +184,7 @@ struct ScanPush {
 #ifdef __cplusplus
 static_assert(sizeof(PairParams) == 32);
 static_assert(sizeof(WallState) == 144);
-static_assert(sizeof(Body) == 144);
+static_assert(sizeof(Body) == 160);
 static_assert(sizeof(SubSphere) == 32);
 static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");
 static_assert(sizeof(ScanPush) <= 128);

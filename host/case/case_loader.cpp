@@ -309,7 +309,7 @@ class CaseReader {
   void read_contact() {
     auto s = table("contact");
     if (!s) return;
-    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega"}, "[contact]");
+    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_damping"}, "[contact]");
     ContactOptions& c = spec_.contact;
     c.coulomb_cap = s->choice<CoulombCap>(
         "coulomb_cap", {{"spring_and_damper", CoulombCap::SpringAndDamper}, {"spring", CoulombCap::SpringOnly}},
@@ -318,9 +318,19 @@ class CaseReader {
         "normal_attraction", {{"allow", NormalAttraction::Allow}, {"clip", NormalAttraction::Clip}},
         c.normal_attraction);
     c.rolling = s->choice<RollingModel>(
-        "rolling", {{"constant_torque", RollingModel::ConstantTorque}, {"none", RollingModel::None}}, c.rolling);
+        "rolling",
+        {{"constant_torque", RollingModel::ConstantTorque}, {"none", RollingModel::None}, {"epsd", RollingModel::ElasticPlastic}},
+        c.rolling);
     c.rolling_omega = s->choice<RollingOmega>(
         "rolling_omega", {{"own", RollingOmega::Own}, {"relative", RollingOmega::Relative}}, c.rolling_omega);
+    if (auto eta = s->number("rolling_damping")) {
+      c.rolling_damping = non_negative(*s, "rolling_damping", *eta);
+      if (c.rolling != RollingModel::ElasticPlastic)
+        s->fail("rolling_damping", "applies to rolling = \"epsd\" only (the constant torque has no dashpot)");
+    }
+    if (c.rolling == RollingModel::ElasticPlastic && c.rolling_omega == RollingOmega::Relative)
+      s->fail("rolling_omega", "\"relative\" belongs to the constant torque; the EPSD spring always acts on the "
+                               "relative rolling rotation");
   }
 
   void read_neighbour() {

@@ -152,7 +152,8 @@ enum class Integrator { VelocityVerlet, SymplecticEuler };
 // Engines disagree on these (ENGINEERING.md section 1); the defaults are EDEM's.
 enum class CoulombCap { SpringAndDamper, SpringOnly };
 enum class NormalAttraction { Allow, Clip };
-enum class RollingModel { None, ConstantTorque };
+// ElasticPlastic: EDEM type C, the elastic-plastic spring-dashpot (EPSD) of Ai et al. 2011.
+enum class RollingModel { None, ConstantTorque, ElasticPlastic };
 enum class RollingOmega { Own, Relative };  // EDEM uses each body's own w, LIGGGHTS the relative w
 
 struct ContactOptions {
@@ -160,6 +161,7 @@ struct ContactOptions {
   NormalAttraction normal_attraction = NormalAttraction::Allow;
   RollingModel rolling = RollingModel::ConstantTorque;
   RollingOmega rolling_omega = RollingOmega::Own;
+  double rolling_damping = 0.3;  // ElasticPlastic: eta_r, fraction of critical (Ai et al. 2011 use 0.3)
 };
 
 struct TimeSpec {
@@ -210,8 +212,8 @@ struct ExperimentSpec {
   SourceRef where;
 };
 
-// Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2). Off when
-// drag_coefficient is 0.
+// Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2) and clump
+// body (A its silhouette across the velocity). Off when drag_coefficient is 0.
 struct AirDragSpec {
   double drag_coefficient = 0;  // C_d (a smooth sphere: ~0.47)
   double air_density = 1.2;     // kg/m^3

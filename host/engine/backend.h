@@ -22,6 +22,7 @@ struct Layout {
   uint32_t n_bodies = 0;     // rigid bodies; 0: every particle is a free sphere
   uint32_t batch_steps = 1;  // wall states per upload
   bool lean_contacts = false;  // no torque_j buffer (KernelVariant::lean)
+  bool rolling_springs = false;  // kFlagRollingSpring: a rolling spring per contact (and the old list's)
 };
 
 // Inputs that stay constant during a run, uploaded with every allocation.
@@ -36,7 +37,7 @@ struct ConstantData {
 // and old_history share the memory of trans_list and contact_force, which every rebuild
 // rewrites after it has read them (shaders/repose_shared.h).
 inline size_t bytes_per_contact(const Layout& l) {
-  return 3 * sizeof(uint32_t) + sizeof(gpu::vec4) * (l.lean_contacts ? 3 : 4);
+  return 3 * sizeof(uint32_t) + sizeof(gpu::vec4) * ((l.lean_contacts ? 3 : 4) + (l.rolling_springs ? 2 : 0));
 }
 
 // One kernel launch: `groups` workgroups, or the indirect arguments at control word
@@ -55,6 +56,7 @@ struct HostState {
   std::vector<uint32_t> control;
   std::vector<uint32_t> row_start, partner, owner, trans_start, trans_list;
   std::vector<gpu::vec4> history;
+  std::vector<gpu::vec4> rolling_spring;  // one per contact with rolling springs, else empty
   std::vector<gpu::Body> bodies;  // empty without bodies
 };
 

@@ -20,6 +20,7 @@ void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
   v4(pos_, n); v4(vel_, n); v4(omega_, n); v4(force_, n); v4(torque_, n); v4(pos_at_build_, n);
   // old_history and old_partner share contact_force and trans_list (shaders/repose_shared.h).
   v4(history_, c); v4(contact_force_, c); v4(torque_i_, c); v4(torque_j_, l.lean_contacts ? 0 : c);
+  v4(rolling_spring_, l.rolling_springs ? 2 * c : 0);
   v4(wall_force_, l.n_walls);
   u(control_, gpu::kControlWords); u(cell_of_, n); u(cell_start_, t + 2); u(cell_fill_, t + 1);
   u(sorted_, n); u(row_start_, n + 1); u(partner_, c); u(owner_, c); u(old_row_start_, n + 1);
@@ -45,7 +46,7 @@ void CpuBackend::point_buffers() {
   buf_.torque_i = torque_i_.data(); buf_.torque_j = torque_j_.data();
   buf_.trans_start = trans_start_.data(); buf_.trans_fill = trans_fill_.data();
   buf_.trans_list = trans_list_.data(); buf_.wall_force = wall_force_.data();
-  buf_.bodies = bodies_.data(); buf_.subs = subs_.data();
+  buf_.bodies = bodies_.data(); buf_.subs = subs_.data(); buf_.rolling_spring = rolling_spring_.data();
 }
 
 template <class T>
@@ -59,6 +60,7 @@ void CpuBackend::upload_state(const HostState& s) {
   put(row_start_, s.row_start); put(partner_, s.partner); put(owner_, s.owner);
   put(trans_start_, s.trans_start); put(trans_list_, s.trans_list); put(history_, s.history);
   put(bodies_, s.bodies);
+  if (layout_.rolling_springs) put(rolling_spring_, s.rolling_spring);
 }
 
 void CpuBackend::download_state(HostState& s) {
@@ -73,6 +75,7 @@ void CpuBackend::download_state(HostState& s) {
   size_t trans_used = std::min<size_t>(trans_start_[n], layout_.capacity);
   take(s.trans_list, trans_list_, trans_used);
   take(s.bodies, bodies_, layout_.n_bodies);
+  if (layout_.rolling_springs) take(s.rolling_spring, rolling_spring_, used);
 }
 
 void CpuBackend::upload_walls(const std::vector<gpu::WallState>& walls) { put(walls_, walls); }
@@ -103,7 +106,7 @@ std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
 
 size_t CpuBackend::memory_bytes() const {
   size_t b = 0;
-  for (auto* v : {&pos_, &vel_, &omega_, &force_, &torque_, &pos_at_build_, &history_,
+  for (auto* v : {&pos_, &vel_, &omega_, &force_, &torque_, &pos_at_build_, &history_, &rolling_spring_,
                   &contact_force_, &torque_i_, &torque_j_, &wall_force_})
     b += v->size() * sizeof(gpu::vec4);
   for (auto* v : {&material_, &control_, &cell_of_, &cell_start_, &cell_fill_, &sorted_, &row_start_,

@@ -30,7 +30,7 @@ class CpuBackend : public Backend {
   Layout layout_;
   // Storage, one vector per binding.
   // No old_history_ / old_partner_: those bindings alias contact_force_ / trans_list_.
-  std::vector<gpu::vec4> pos_, vel_, omega_, force_, torque_, pos_at_build_, history_,
+  std::vector<gpu::vec4> pos_, vel_, omega_, force_, torque_, pos_at_build_, history_, rolling_spring_,
       contact_force_, torque_i_, torque_j_, wall_force_;
   std::vector<uint32_t> material_, control_, cell_of_, cell_start_, cell_fill_, sorted_,
       row_start_, partner_, owner_, old_row_start_, trans_start_, trans_fill_, trans_list_;

@@ -8,6 +8,7 @@
 #include "case/body_pose.h"
 #include "case/time_step.h"
 #include "geometry/clump.h"
+#include "geometry/projected_area.h"
 
 namespace repose {
 
@@ -65,9 +66,10 @@ struct TemplateFrame {
   MassProperties unit;      // density 1: mass = volume
   Quat principal;           // principal frame -> template frame
   std::vector<Vec3d> local; // sub-sphere centres in the principal frame, about the centre of mass
+  Vec3d silhouette{};       // projected areas along the principal axes (with air drag only)
 };
 
-TemplateFrame template_frame(const TemplateSpec& t) {
+TemplateFrame template_frame(const TemplateSpec& t, bool silhouette) {
   TemplateFrame f;
   f.unit = compute_mass_properties(t.clump, 1.0);
   const glm::dmat3& a = f.unit.principal_axes;
@@ -77,15 +79,21 @@ TemplateFrame template_frame(const TemplateSpec& t) {
     glm::dvec3 d = s.centre - f.unit.centre_of_mass;
     f.local.push_back({glm::dot(a[0], d), glm::dot(a[1], d), glm::dot(a[2], d)});
   }
+  if (silhouette) {
+    std::vector<double> radii;
+    for (const Sphere& s : t.clump.spheres) radii.push_back(s.radius);
+    f.silhouette = projected_areas(f.local, radii);
+  }
   return f;
 }
 
 // Every particle becomes a sub-sphere of a body: lone spheres first (one-sphere bodies), then
 // the case's bodies in order, each body's sub-spheres contiguous.
 void add_bodies(const CaseSpec& spec, Model& m) {
+  bool drag = spec.air_drag.drag_coefficient > 0;
   auto push_body = [&](Vec3d centre, double mass, Quat q, Vec3d moments, Vec3d v, Vec3d w,
                        const std::vector<Vec3d>& local, const std::vector<double>& radii,
-                       uint32_t material) {
+                       uint32_t material, Vec3d drag_area) {
     gpu::Body b{};
     uint32_t first = static_cast<uint32_t>(m.subs.size());
     b.pos = v4(centre, 1.0 / mass);
@@ -98,6 +106,7 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     b.omega = v4(w, 0);
     b.inv_inertia = v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
     b.spheres = gpu::uvec4(first, uint32_t(local.size()), 0u, 0u);
+    b.drag = v4(mul(drag_area, 1 / kPi), 0);
     for (size_t k = 0; k < local.size(); ++k) {
       gpu::SubSphere s{};
       s.local = v4(local[k], radii[k]);
@@ -116,14 +125,15 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     const Material& mat = spec.materials.at(size_t(s.material));
     double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
     double inertia = 0.4 * mass * s.radius * s.radius;
+    double area = drag ? kPi * s.radius * s.radius : 0;
     push_body(s.position, mass, {1, 0, 0, 0}, {inertia, inertia, inertia}, s.velocity,
-              s.angular_velocity, {{0, 0, 0}}, {s.radius}, uint32_t(s.material));
+              s.angular_velocity, {{0, 0, 0}}, {s.radius}, uint32_t(s.material), {area, area, area});
   }
   std::vector<std::optional<TemplateFrame>> frames(spec.templates.size());
   for (const BodySpec& body : spec.bodies) {
     const TemplateSpec& t = spec.templates.at(size_t(body.template_index));
     auto& frame = frames[size_t(body.template_index)];
-    if (!frame) frame = template_frame(t);
+    if (!frame) frame = template_frame(t, drag);
     double s = body.scale;
     double density = t.mass ? *t.mass / frame->unit.volume
                             : spec.materials.at(size_t(body.material)).density;
@@ -140,8 +150,10 @@ void add_bodies(const CaseSpec& spec, Model& m) {
       local.push_back(mul(frame->local[k], s));
       radii.push_back(t.clump.spheres[k].radius * s);
     }
+    Vec3d area = mul(frame->silhouette, s * s);
+    if (!drag) area = {0, 0, 0};
     push_body(centre, mass, q, moments, body.velocity, body.angular_velocity, local, radii,
-              uint32_t(body.material));
+              uint32_t(body.material), area);
   }
   m.n_particles = static_cast<uint32_t>(m.subs.size());
 }
@@ -336,6 +348,10 @@ Model build_model(const CaseSpec& spec) {
   if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+  if (spec.contact.rolling == RollingModel::ElasticPlastic) {
+    m.flags |= gpu::kFlagRollingSpring;
+    m.rolling_damping = spec.contact.rolling_damping;
+  }
   if (spec.air_drag.drag_coefficient > 0)
     m.air_drag = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi;
 

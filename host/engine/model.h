@@ -55,6 +55,7 @@ struct Model {
   uint32_t max_interval = 0;     // forced rebuild interval (walls that move), 0: none
   double total_mass = 0;
   double air_drag = 0;           // extension air_drag: 0.5 rho_air C_d pi (SimPush::air_drag), 0: off
+  double rolling_damping = 0;    // kFlagRollingSpring: eta_r (SimPush::rolling_damping)
 
   // A wall's state at time t (prescribed motion evaluated on the host, in double).
   gpu::WallState wall_state(size_t w, double t) const;

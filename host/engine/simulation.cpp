@@ -15,6 +15,10 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   layout_.table_size = model_.table_size;
   layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
   layout_.lean_contacts = variant_.lean;
+  layout_.rolling_springs = (model_.flags & gpu::kFlagRollingSpring) != 0;
+  if (layout_.rolling_springs && variant_.lean)
+    throw std::invalid_argument("rolling = \"epsd\" stores each contact's rolling torque: use the 'full' kernel "
+                                "variant, not 'lean'");
   layout_.n_bodies = static_cast<uint32_t>(model_.bodies.size());
   constants_ = {model_.material, model_.pairs, model_.subs};
 

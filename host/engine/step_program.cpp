@@ -58,6 +58,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.half_skin_sq = float(0.25 * m.skin * m.skin);
   p.large_radius = float(m.large_radius);
   p.air_drag = float(m.air_drag);
+  p.rolling_damping = float(m.rolling_damping);
   return p;
 }
 

@@ -44,6 +44,7 @@ void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
   sizes[kBindWallForce] = std::max<size_t>(l.n_walls, 1) * v4;
   sizes[kBindBodies] = l.n_bodies * sizeof(Body);
   sizes[kBindSubSpheres] = constants.subs.size() * sizeof(SubSphere);
+  sizes[kBindRollingSpring] = l.rolling_springs ? 2 * c * v4 : 0;
   std::array<const vk::Buffer*, kBindingCount> bound{};
   for (uint32_t i = 0; i < kBindingCount; ++i) {
     if (i == kBindOldPartner || i == kBindOldHistory) {
@@ -83,6 +84,7 @@ void VulkanBackend::upload_state(const HostState& s) {
   up(b(kBindOwner), s.owner); up(b(kBindTransStart), s.trans_start);
   up(b(kBindTransList), s.trans_list); up(b(kBindHistory), s.history);
   if (layout_.n_bodies) up(b(kBindBodies), s.bodies);
+  if (layout_.rolling_springs) up(b(kBindRollingSpring), s.rolling_spring);
 }
 
 template <class T>
@@ -104,6 +106,7 @@ void VulkanBackend::download_state(HostState& s) {
   size_t trans_used = std::min<size_t>(s.trans_start[n], layout_.capacity);
   down(b(kBindTransList), s.trans_list, trans_used);
   if (layout_.n_bodies) down(b(kBindBodies), s.bodies, layout_.n_bodies);
+  if (layout_.rolling_springs) down(b(kBindRollingSpring), s.rolling_spring, used);
 }
 
 void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBindWalls), walls); }

@@ -8,7 +8,10 @@
 
 namespace repose {
 
-constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
+// Version 3 adds the rolling springs (a count, then one vec4 per contact); version 2 files
+// (no rolling springs) still read.
+constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '3'};
+constexpr char kStateMagicV2[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
 
 void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time);
 // Reads a file written by write_state_file; throws naming the file when it is not one.

@@ -56,6 +56,18 @@ KFN(void, body_kick_and_drift) uint b, vec3 force, vec3 torque) {
   vec3 inv_i = xyz(B_bodies[b].inv_inertia);
   precise float h = PC.kick * PC.dt;
   precise vec3 accel = scale3(force, p4.w) + vec3(PC.gx, PC.gy, PC.gz);
+  if (PC.air_drag > 0.0f) {
+    // Extension air_drag with the body's silhouette across its velocity: an ellipsoid's
+    // A(d) = sqrt(sum (A_i d_i)^2) over the principal axes (exact for spheres and ellipsoids),
+    // times |v| without a division: |(A_i v_i)| in the body frame.
+    vec3 v_old = xyz(B_bodies[b].vel);
+    vec3 vb = quat_rotate_inverse(q, v_old);
+    vec4 d = B_bodies[b].drag;
+    precise vec3 av = vec3(d.x * vb.x, d.y * vb.y, d.z * vb.z);
+    precise float area_speed = length3(av);
+    precise float k = -((PC.air_drag * p4.w) * area_speed);
+    accel = accel + scale3(v_old, k);
+  }
   precise vec3 v = xyz(B_bodies[b].vel) + scale3(accel, h);
   precise vec3 L = xyz(B_bodies[b].ang_mom) + scale3(torque, h);
   if ((PC.flags & kFlagDrift) != 0u) {

@@ -14,6 +14,7 @@ struct ContactOut {
   float normal_force;  // signed scalar normal force (negative = attractive)
   vec3 n_x_ft;         // n x Ft: the tangential force's moment per unit lever arm
   float roll_arm;      // mu_r |Fn| when a rolling torque applies, else -1
+  float normal_stiffness;  // Hertz secant stiffness Fn_elastic / overlap = 4/3 E* sqrt(R* dn)
 };
 
 // Torque on one body of a contact: the tangential force's moment about its centre (r from the
@@ -59,6 +60,45 @@ FN float linear_cohesion(float pi_k, float radius_star, float overlap) {
   if (!(pi_k > 0.0f)) return 0.0f;
   precise float f = (pi_k * radius_star) * overlap;
   return f;
+}
+
+// EDEM's type C rolling resistance (elastic-plastic spring-dashpot, Ai et al. 2011 model C; the
+// EPSD of LIGGGHTS): a rolling spring torque, built from the relative rolling rotation (twist
+// about n excluded) with stiffness k_r = 2.25 k_n (mu_r R*)^2, capped at mu_r R* |Fn| (full
+// mobilisation), plus a dashpot of eta_r times critical damping, 2 sqrt(I_r k_r), while the
+// spring is below the cap. `spring` is the contact's stored torque, turned into the current
+// tangent plane with its length kept (as the tangential spring). Returns the torque on i (j
+// receives minus it).
+FN vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float normal_force,
+                            float normal_stiffness, float mu_r, float inertia_r, float eta_r, float dt,
+                            INOUT(vec3) spring) {
+  precise vec3 w = w_i - w_j;
+  precise vec3 w_roll = w - scale3(n, dot3(w, n));
+  precise float old_sq = dot3(spring, spring);
+  precise vec3 m = spring - scale3(n, dot3(spring, n));
+  precise float new_sq = dot3(m, m);
+  if (new_sq > 0.0f) {
+    precise float keep = sqrt(old_sq / new_sq);
+    m = scale3(m, keep);
+  }
+  precise float arm = mu_r * radius_star;
+  precise float k_r = (2.25f * normal_stiffness) * (arm * arm);
+  precise float k_r_dt = -(k_r * dt);
+  m = m + scale3(w_roll, k_r_dt);
+  precise float m_max = arm * abs(normal_force);
+  precise float len = length3(m);
+  precise vec3 t;
+  if (len > m_max) {
+    // Fully mobilised: the spring slips at the cap; no damping (Ai et al.'s f = 0).
+    precise float ratio = m_max / len;
+    m = scale3(m, ratio);
+    t = m;
+  } else {
+    precise float c_r = -((2.0f * eta_r) * sqrt(inertia_r * k_r));
+    t = m + scale3(w_roll, c_r);
+  }
+  spring = m;
+  return t;
 }
 
 FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
@@ -132,6 +172,7 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   precise float arm = rolling ? mu_r * abs(fn) : -1.0f;
   o.roll_arm = arm;
+  o.normal_stiffness = (4.0f * e_star * sqrt_rd) / 3.0f;
   o.torque_i = vec3(0.0f);
   o.torque_j = vec3(0.0f);
   if ((flags & kFlagLeanContacts) != 0u) return o;  // the gather derives the torques

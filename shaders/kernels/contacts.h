@@ -27,6 +27,8 @@ KFN(void, process_contact) uint i, uint c) {
   float rj = 0.0f;
   vec3 v_rel = vec3(0.0f);
   vec3 wj = vec3(0.0f);
+  vec3 w_wall = vec3(0.0f);  // a wall's spin, for the rolling spring (rolls relative to the wall)
+  float inv_inertia_r = 0.0f;  // 1 / (7/5 m r^2) summed over the two bodies (rolling dashpot)
   uint mj = 0u;
   bool touching = false;
 
@@ -48,6 +50,7 @@ KFN(void, process_contact) uint i, uint c) {
       rj = rad_j - 0.5f * overlap;
       precise vec3 spin = scale3(wi, ri) + scale3(wj, rj);
       v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
+      inv_inertia_r = vi.w / (1.4f * (ri * ri)) + vj.w / (1.4f * (rj * rj));
     }
   } else {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
@@ -63,11 +66,15 @@ KFN(void, process_contact) uint i, uint c) {
       precise vec3 contact_point = xi - scale3(n, ri);
       precise vec3 v_wall = wall_point_velocity(ws, contact_point);
       v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
+      w_wall = xyz(ws.omega);
+      inv_inertia_r = vi.w / (1.4f * (ri * ri));
     }
   }
 
   bool lean = (PC.flags & kFlagLeanContacts) != 0u;
+  bool rolling_spring = (PC.flags & kFlagRollingSpring) != 0u;
   if (!touching) {
+    if (rolling_spring) B_rolling_spring[c] = vec4(0.0f);
     // Separated: the tangential history ends with the contact (LIGGGHTS, EDEM). Lean: overlap 0
     // tells gather_lean that the torques are zero.
     B_history[c] = vec4(0.0f);
@@ -80,6 +87,16 @@ KFN(void, process_contact) uint i, uint c) {
   ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
                                pp, PC.dt, PC.flags, shear);
   if ((PC.flags & kFlagKeepHistory) == 0u) B_history[c] = vec4(shear, hist.w + 1.0f);
+  if (rolling_spring) {
+    // Full entries only (the host refuses lean ones): the torque is stored per contact.
+    vec3 spring = xyz(B_rolling_spring[c]);
+    vec3 w_other = is_wall ? w_wall : wj;
+    vec3 tr = epsd_rolling_torque(n, wi, w_other, radius_star, o.normal_force, o.normal_stiffness, pp.b.x,
+                                  1.0f / inv_inertia_r, PC.rolling_damping, PC.dt, spring);
+    o.torque_i = o.torque_i + tr;
+    if (!is_wall) o.torque_j = o.torque_j - tr;
+    if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);
+  }
   if (lean) {
     B_contact_force[c] = vec4(o.force_i, o.roll_arm);
     B_torque_i[c] = vec4(o.n_x_ft, overlap);

@@ -42,6 +42,7 @@ layout(std430, set = 0, binding = kBindTransList) buffer TransListBuf { uint B_t
 layout(std430, set = 0, binding = kBindWallForce) buffer WallForceBuf { vec4 B_wall_force[]; };
 layout(std430, set = 0, binding = kBindBodies) buffer BodyBuf { Body B_bodies[]; };
 layout(std430, set = 0, binding = kBindSubSpheres) buffer SubSphereBuf { SubSphere B_subs[]; };
+layout(std430, set = 0, binding = kBindRollingSpring) buffer RollingSpringBuf { vec4 B_rolling_spring[]; };
 
 #ifndef REPOSE_SCAN_PUSH
 layout(push_constant) uniform PushBlock { SimPush PC; };

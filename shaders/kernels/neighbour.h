@@ -51,6 +51,7 @@ KERNEL(k_save_old_contacts) uint c) {
   if (c >= B_control[kCtlOldContacts]) return;
   B_old_partner[c] = B_partner[c];
   B_old_history[c] = B_history[c];
+  if ((PC.flags & kFlagRollingSpring) != 0u) B_rolling_spring[PC.capacity + c] = B_rolling_spring[c];
 }
 
 KERNEL(k_clear_buckets) uint b) {
@@ -110,9 +111,15 @@ KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint
   B_partner[slot] = partner;
   B_owner[slot] = i;
   vec4 carried = vec4(0.0f);
+  uint from = 0xffffffffu;
   for (uint o = old_begin; o < old_end; ++o)
-    if (B_old_partner[o] == partner) carried = B_old_history[o];
+    if (B_old_partner[o] == partner) {
+      carried = B_old_history[o];
+      from = o;
+    }
   B_history[slot] = carried;
+  if ((PC.flags & kFlagRollingSpring) != 0u)
+    B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
 }
 
 // True when particles i and j are sub-spheres of one body (no contact inside a clump).

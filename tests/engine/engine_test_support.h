@@ -144,6 +144,7 @@ inline bool same_state(const HostState& a, const HostState& b, std::string* whic
   ok &= check(same_bytes(a.history, b.history), "history");
   ok &= check(same_bytes(a.trans_list, b.trans_list), "trans_list");
   ok &= check(same_bytes(a.bodies, b.bodies), "bodies");
+  ok &= check(same_bytes(a.rolling_spring, b.rolling_spring), "rolling_spring");
   return ok;
 }
 
