@@ -76,7 +76,7 @@ int run_diagnose(int argc, char** argv) {
     options.progress = !quiet;
     if (!params_path.empty()) {
       options.given = read_params(params_path);
-      options.fit_restitution = false;
+      options.fit_baseline = false;
     }
     std::stringstream list(candidates);
     for (std::string id; std::getline(list, id, ',');)
@@ -107,11 +107,16 @@ int run_synth_data(int argc, char** argv) {
   CLI::App app{"Simulate measured drop data with a known (hidden) model extension and replicate noise."};
   SyntheticTruth truth;
   std::string out, extension;
-  double restitution = -1;
+  double restitution = -1, grain_friction = -1;
   app.add_option("case", truth.case_path, "drop case (TOML)")->required();
   app.add_option("--extension", extension, "hidden effect ID=VALUE[,VALUE] (e.g. air_drag=0.8); none by default");
   app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)");
-  app.add_option("--heights", truth.heights, "drop heights, m")->delimiter(',')->required();
+  app.add_option("--heights", truth.heights, "drop heights, m; for a heap case the values of --condition")
+      ->delimiter(',')
+      ->required();
+  app.add_option("--condition", truth.heap_condition_key, "heap case: the key the conditions vary (default fill.0.count)");
+  app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth");
+  app.add_option("--angle-noise", truth.angle_noise, "heap case: SD of one measured angle, deg (default 0.5)");
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
   app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
@@ -122,6 +127,7 @@ int run_synth_data(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   try {
     if (restitution > 0) truth.restitution = restitution;
+    if (grain_friction > 0) truth.grain_friction = grain_friction;
     if (!extension.empty()) {
       auto eq = extension.find('=');
       if (eq == std::string::npos) throw std::runtime_error("--extension: write ID=VALUE");

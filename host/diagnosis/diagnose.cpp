@@ -108,7 +108,7 @@ class Steps {
 }  // namespace
 
 Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
-  Predictor predictor(obs, options.given, options.fit_restitution, options.threads, options.simulated_replicates);
+  Predictor predictor(obs, options.given, options.fit_baseline, options.threads, options.simulated_replicates);
   Diagnosis d;
   size_t nc = obs.conditions.size();
   std::vector<char> all(nc, 1);
@@ -218,7 +218,9 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     std::string fitted;
     for (size_t k = 0; k < base.params.size(); ++k)
       fitted += (k ? ", " : "") + base.parameters[k].name + " = " + num(base.params[k]);
-    d.statements.push_back("Baseline (Hertz-Mindlin, constant restitution): " +
+    d.statements.push_back(std::string(predictor.experiment() == "drop"
+                                           ? "Baseline (Hertz-Mindlin, constant restitution): "
+                                           : "Baseline (Hertz-Mindlin, one grain size, constant rolling torque): ") +
                            (fitted.empty() ? std::string("parameters as given") : "fitted " + fitted) +
                            "; chi^2 = " + num(base.chi2) + " over " + std::to_string(obs.groups.size()) +
                            " measured means, weighed by their replicate scatter" +
@@ -345,21 +347,30 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
       size_t far = nc - 1;
       const ModelResult& second = *std::find_if(results.begin(), results.end(),
                                                 [&](const ModelResult& r) { return r.id == d.cause[1]; });
-      DropResult a = predictor.drop(far, find_extension(best.id), best.params);
-      DropResult b = predictor.drop(far, find_extension(second.id), second.params);
-      double worst = 0, at = 0;
-      size_t n = std::min(a.trajectory.size(), b.trajectory.size());
-      for (size_t k = 0; k < n; ++k) {
-        double diff = std::abs(a.trajectory[k].second - b.trajectory[k].second);
-        if (diff > worst) { worst = diff; at = a.trajectory[k].first; }
-      }
       bool has_series = std::any_of(obs.groups.begin(), obs.groups.end(), [](const auto& g) { return g.series; });
-      d.separating_measurement =
-          has_series ? "more replicates or a wider range of conditions (the trajectories already measured differ too "
-                       "little between the two)"
-                     : "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two "
-                       "fitted models differ there by up to " + num(worst * 1000, 3) + " mm at t = " + num(at, 3) +
-                       " s in condition " + obs.conditions[far].label + ", while their rebound heights agree";
+      if (predictor.experiment() == "drop") {
+        Outcome a = predictor.simulate(far, find_extension(best.id), best.params);
+        Outcome b = predictor.simulate(far, find_extension(second.id), second.params);
+        double worst = 0, at = 0;
+        size_t n = std::min(a.trajectory.size(), b.trajectory.size());
+        for (size_t k = 0; k < n; ++k) {
+          double diff = std::abs(a.trajectory[k].second - b.trajectory[k].second);
+          if (diff > worst) { worst = diff; at = a.trajectory[k].first; }
+        }
+        d.separating_measurement =
+            has_series ? "more replicates or a wider range of conditions (the trajectories already measured differ "
+                         "too little between the two)"
+                       : "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two "
+                         "fitted models differ there by up to " + num(worst * 1000, 3) + " mm at t = " + num(at, 3) +
+                         " s in condition " + obs.conditions[far].label + ", while their rebound heights agree";
+      } else {
+        bool has_bed = std::find(obs.measures.begin(), obs.measures.end(), "bed_height") != obs.measures.end();
+        d.separating_measurement =
+            has_bed ? "more replicate heaps, or a second rig that loads the grains differently (a flow or a shear "
+                      "test): the angle and the bed height move alike under both"
+                    : "the bed height before the lift (measure 'bed_height'): packing separates a size spread from "
+                      "rolling resistance, which the angle alone confounds";
+      }
       d.statements.push_back("Verdict: ambiguous between " + names + ": the data cannot tell them apart. " +
                              "To separate them, measure " + d.separating_measurement + ".");
     }

@@ -65,7 +65,7 @@ struct Diagnosis {
 
 struct DiagnoseOptions {
   std::vector<CaseOverride> given;    // --params: calibrated values (the baseline is then not refitted)
-  bool fit_restitution = true;
+  bool fit_baseline = true;           // the baseline's free parameter (Predictor) is fitted
   unsigned threads = 2;
   std::vector<std::string> candidates;  // empty: every extension the data's measures can reveal
   int simulated_replicates = 8;         // per condition, for a model whose drop is stochastic (shape)

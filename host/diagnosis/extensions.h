@@ -39,4 +39,8 @@ const ModelExtension* find_extension(const std::string& id);
 // wall): the contact every drop-test extension acts on. Throws naming the case when absent.
 Interaction& drop_interaction(CaseSpec& spec);
 
+// The grains' contact with each other in a heap case: the first [[fill]]'s material with itself.
+// Throws naming the case when absent.
+Interaction& heap_interaction(CaseSpec& spec);
+
 }  // namespace repose

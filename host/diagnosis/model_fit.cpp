@@ -69,7 +69,7 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
   std::vector<double> u0(n, 0.5);
   for (size_t k = 0; k < n; ++k) {
     if (k < start.size()) u0[k] = std::clamp(to_unit(params[k], start[k]), 0.0, 1.0);
-    else if (predictor.fits_restitution() && k == 0) u0[k] = to_unit(params[0], predictor.case_restitution());
+    else if (predictor.fits_baseline() && k == 0) u0[k] = to_unit(params[0], predictor.case_baseline_value());
   }
   if (n == 0) {
     fit.predicted = predictor.predict(extension, {}, use);
@@ -177,17 +177,20 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
     for (size_t j = 0; j < held.size(); ++j) held[j] = j;
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> best_u = u0;
-    for (int i = 0; i <= 9; ++i) {
+    // A heap costs ~1000 drops: a coarser profile (6 points, 8 evaluations each) there.
+    int points = predictor.expensive() ? 5 : 9, inner = predictor.expensive() ? 8 : 14;
+    for (int i = 0; i <= points; ++i) {
       std::vector<double> u = u0;
-      u[k] = i / 9.0;
+      u[k] = double(i) / points;
       auto [ui, fi] = held.empty()       ? std::make_pair(u, objective(u))
-                      : held.size() == 1 ? golden(u, held[0], 14)
+                      : held.size() == 1 ? golden(u, held[0], inner)
                                          : nelder_mead(u, held, 0.04, 12);
       if (fi < best) { best = fi; best_u = ui; }
     }
     u0 = best_u;
     step = std::min(step, 0.08);
   }
+  if (predictor.expensive()) max_evaluations = std::min(max_evaluations, 24);
   auto [u_best, f_best] = nelder_mead(u0, all_dims, step, max_evaluations);
   fit.params = values(u_best);
   fit.predicted = predictor.predict(extension, fit.params, use);  // cached

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "case/case_loader.h"
+#include "case/particle_factory.h"
+#include "experiments/repose.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/drop.h"
@@ -30,6 +32,41 @@ class Gaussian {
   std::mt19937_64 rng_;
 };
 
+std::string text(double v) {
+  std::ostringstream s;
+  s.precision(7);
+  s << v;
+  return s.str();
+}
+
+void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, const std::string& csv_path) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(csv_path).parent_path();
+  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
+  Gaussian noise(truth.seed);
+  std::ostringstream csv;
+  csv << "case,set:" << truth.heap_condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "")
+      << "\n";
+  csv.precision(7);
+  for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
+    std::string value = text(truth.heights[ci]);
+    for (int rep = 1; rep <= truth.replicates; ++rep) {
+      CaseSpec spec = load_case(truth.case_path, {{truth.heap_condition_key, value}});
+      if (truth.grain_friction) heap_interaction(spec).static_friction = *truth.grain_friction;
+      if (ext) ext->apply(spec, truth.extension_params);
+      spec.spheres.clear();
+      for (FillSpec& f : spec.fills) f.seed = 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep);
+      expand_particles(spec);
+      ReposeResult r = run_repose(spec);
+      csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
+          << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
+      csv << case_column << "," << value << ",bed_height," << r.bed_height + truth.noise * noise() << "," << rep
+          << (truth.write_sigma ? "," + text(truth.noise) : "") << "\n";
+    }
+  }
+  write_file_atomically(csv_path, csv.str());
+}
+
 }  // namespace
 
 void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
@@ -41,7 +78,11 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     if (truth.extension_params.size() != ext->parameters.size())
       throw std::runtime_error(truth.extension + " takes " + std::to_string(ext->parameters.size()) + " parameter(s)");
   }
-  if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one drop height");
+  if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one condition (drop height)");
+  if (load_case(truth.case_path).experiment.type == "repose") {
+    write_heap_data(truth, ext, csv_path);
+    return;
+  }
   fs::path folder = fs::absolute(csv_path).parent_path();
   std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);

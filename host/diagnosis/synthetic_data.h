@@ -4,6 +4,9 @@
 // stated size, written in the measured-data CSV format (README "Measured data"). A truth whose
 // body is a clump (extension `shape`) lands at a random orientation: every replicate is its own
 // drop, with seeds no diagnosis uses (1,000,000 + 10,000 seed + 100 height index + replicate).
+// A heap case (experiment repose, grains from sphere [[fill]]s) is refilled for every replicate
+// with such seeds; each replicate gives repose_angle and bed_height, with measurement noise on top
+// of the heaps' own scatter.
 #pragma once
 #include <cstdint>
 #include <optional>
@@ -17,7 +20,11 @@ struct SyntheticTruth {
   std::string extension;                 // "" : the baseline alone
   std::vector<double> extension_params;  // in the order of the extension's parameters
   std::optional<double> restitution;     // body-plate restitution of the truth (default: the case's)
-  std::vector<double> heights;           // drop heights, m (the condition variable)
+  std::optional<double> grain_friction;  // heap: the grains' sliding friction (default: the case's)
+  std::vector<double> heights;           // drop heights, m (the condition variable); a heap case:
+                                         // the values of heap_condition_key
+  std::string heap_condition_key = "fill.0.count";  // a heap's condition variable (any case key)
+  double angle_noise = 0.5;              // heap: SD of one measured angle, deg (bed height: `noise`)
   int replicates = 5;
   double noise = 0.001;                  // SD of one measured rebound height, m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s

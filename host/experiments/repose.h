@@ -18,6 +18,10 @@ struct ReposeResult {
   HeapAngle heap;                 // the 2D measurement (with its picture)
   std::optional<AxisymmetricHeapAngle> heap_3d;
   double settle_time = 0;         // s when the heap was judged settled
+  // The bed before the lift (first sample at or after the lift wall's motion start): twice the
+  // volume-weighted mean height of the particles above the floor, the height a uniform bed of
+  // the same particles would have. At a given count it falls as the bed packs denser.
+  double bed_height = 0;          // m
   double kinetic_energy = 0;      // J, the largest of any particle (or body) then
   size_t particles_measured = 0;  // above the heap floor
   std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
