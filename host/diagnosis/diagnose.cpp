@@ -137,7 +137,9 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
       r.untested_reason = e.pending_reason;
     } else if (!revealed) {
       r.tested = false;
-      r.untested_reason = "none of the measured quantities responds to it";
+      std::string shows;
+      for (const auto& m : e.revealed_by) shows += (shows.empty() ? "" : ", ") + m;
+      r.untested_reason = "none of the measured quantities responds to it (it shows in " + shows + ")";
     } else if (e.needs_sigma && !d.scatter_scored) {
       r.tested = false;
       r.untested_reason = "its signature is the replicate scatter, which without a sigma column (the measurement "

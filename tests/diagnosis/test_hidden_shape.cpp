@@ -37,9 +37,10 @@ TEST_CASE("hidden shape is named from the replicate scatter (cabbage, sigma give
   // measured, a model with the right shape misses only by the sampling error of eight replicates
   // (~35 % of the SD) and of the means: measured gains 45-60 %, so 30 % is a clear threshold.
   CHECK(d.gain_percent > 30);
-  // The aspect ratio trades off against the restitution (an elongated body's rebound depends on
-  // both); eight orientations per condition pin it to ~0.3.
-  CHECK(candidate(d, "shape").params.back() == Approx(truth.extension_params[0]).margin(0.4));
+  // The aspect ratio is named but not pinned: any chain from a ~ 1.3 up scatters by ~25 mm, and
+  // the mean trades a against the restitution (measured with `synth-data` + `diagnose`: fitted
+  // 2.35, 2.52, 1.46 for hidden 1.6, 2.0, 2.4). What the data do show is an elongated body.
+  CHECK(candidate(d, "shape").params.back() > 1.2);
 }
 
 TEST_CASE("shape data without a sigma column: shape is not tested and the diagnosis says why",
