@@ -278,7 +278,20 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   // 2. Every candidate extension, fitted and compared with the baseline.
   std::vector<ModelResult> results;
   for (const ModelExtension* ext : tested) {
-    ModelResult r = fit_with_heldout(ext);
+    ModelResult r;
+    try {
+      r = fit_with_heldout(ext);
+    } catch (const std::runtime_error& e) {
+      // A candidate whose experiment cannot be simulated to the end (e.g. a heap that never
+      // settles under it) is reported untested with the reason; the others still count.
+      ModelResult failed;
+      failed.id = ext->id;
+      failed.tested = false;
+      failed.untested_reason = std::string("its simulation failed: ") + e.what();
+      d.candidates.push_back(failed);
+      d.statements.push_back(ext->id + ": not tested, its simulation failed (" + e.what() + ").");
+      continue;
+    }
     int dk = std::max(1, r.k - base.k);
     r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
     r.p = stats::f_upper_tail(r.f, dk, noise_df);

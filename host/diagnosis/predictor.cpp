@@ -156,7 +156,7 @@ Outcome Predictor::run_drop_condition(CaseSpec spec) const {
 Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
   Outcome out;
   try {
-    ReposeResult r = run_repose(spec);
+    ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
     out.values["repose_angle"] = r.angle_deg;
     out.values["bed_height"] = r.bed_height;
   } catch (const std::runtime_error& e) {

@@ -57,7 +57,7 @@ void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, con
       spec.spheres.clear();
       for (FillSpec& f : spec.fills) f.seed = 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep);
       expand_particles(spec);
-      ReposeResult r = run_repose(spec);
+      ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
       csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
           << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
       csv << case_column << "," << value << ",bed_height," << r.bed_height + truth.noise * noise() << "," << rep

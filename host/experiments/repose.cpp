@@ -48,7 +48,7 @@ double bed_height(const HostState& st, const std::optional<double>& floor) {
 
 }  // namespace
 
-ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options) {
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled) {
   const ExperimentSpec& ex = spec.experiment;
   const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
@@ -81,6 +81,12 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     if (sim.time() >= lift_end && e < ex.settle_energy) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
+      break;
+    }
+    if (sim.time() >= ex.max_time && measure_unsettled) {
+      r.settle_time = sim.time();
+      r.kinetic_energy = e;
+      r.settled = false;
       break;
     }
     if (sim.time() >= ex.max_time)
