@@ -56,22 +56,27 @@ int run_diagnose(int argc, char** argv) {
                "candidate extension that explains them, and its held-out gain."};
   std::string data_path, params_path, out_dir, candidates;
   unsigned threads = 2;
+  int sim_replicates = 8;
   bool quiet = false;
   app.add_option("data", data_path, "measured data CSV (README, 'Measured data')")->required();
   app.add_option("--params", params_path, "calibrated parameters (TOML of case keys); the baseline is then not refitted");
   app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)");
   app.add_option("--threads", threads, "simulations run in parallel (default 2)");
   app.add_option("--candidates", candidates, "comma-separated extension ids to test (default: all that apply)");
+  app.add_option("--sim-replicates", sim_replicates,
+                 "simulated replicates per condition for a stochastic model (a clump at random orientations; default 8)")
+      ->check(CLI::Range(2, 1000));
   app.add_flag("--quiet", quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
   if (out_dir.empty()) out_dir = "out/diagnose_" + std::filesystem::path(data_path).stem().string();
   try {
     DiagnoseOptions options;
     options.threads = threads;
+    options.simulated_replicates = sim_replicates;
     options.progress = !quiet;
     if (!params_path.empty()) {
       options.given = read_params(params_path);
-      options.fit_restitution = false;
+      options.fit_baseline = false;
     }
     std::stringstream list(candidates);
     for (std::string id; std::getline(list, id, ',');)
@@ -102,20 +107,27 @@ int run_synth_data(int argc, char** argv) {
   CLI::App app{"Simulate measured drop data with a known (hidden) model extension and replicate noise."};
   SyntheticTruth truth;
   std::string out, extension;
-  double restitution = -1;
+  double restitution = -1, grain_friction = -1;
   app.add_option("case", truth.case_path, "drop case (TOML)")->required();
   app.add_option("--extension", extension, "hidden effect ID=VALUE[,VALUE] (e.g. air_drag=0.8); none by default");
   app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)");
-  app.add_option("--heights", truth.heights, "drop heights, m")->delimiter(',')->required();
+  app.add_option("--heights", truth.heights, "drop heights, m; for a heap case the values of --condition")
+      ->delimiter(',')
+      ->required();
+  app.add_option("--condition", truth.heap_condition_key, "heap case: the key the conditions vary (default fill.0.count)");
+  app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth");
+  app.add_option("--angle-noise", truth.angle_noise, "heap case: SD of one measured angle, deg (default 0.5)");
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
   app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
   app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
-  app.add_option("--seed", truth.seed, "noise seed (default 1)");
+  app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
+  app.add_flag("--sigma", truth.write_sigma, "write a sigma column (the noise SDs): diagnose then scores the replicate scatter too");
   app.add_option("--out", out, "CSV to write")->required();
   CLI11_PARSE(app, argc, argv);
   try {
     if (restitution > 0) truth.restitution = restitution;
+    if (grain_friction > 0) truth.grain_friction = grain_friction;
     if (!extension.empty()) {
       auto eq = extension.find('=');
       if (eq == std::string::npos) throw std::runtime_error("--extension: write ID=VALUE");

@@ -108,7 +108,7 @@ class Steps {
 }  // namespace
 
 Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
-  Predictor predictor(obs, options.given, options.fit_restitution, options.threads);
+  Predictor predictor(obs, options.given, options.fit_baseline, options.threads, options.simulated_replicates);
   Diagnosis d;
   size_t nc = obs.conditions.size();
   std::vector<char> all(nc, 1);
@@ -117,6 +117,8 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   for (const auto& g : obs.groups)
     if (!g.series) { d.primary_measure = g.measure; break; }
   d.primary_unit = unit_of(d.primary_measure);
+  d.scatter_scored = std::any_of(obs.groups.begin(), obs.groups.end(),
+                                 [](const ObservationGroup& g) { return g.sigma_given && g.values.size() >= 2; });
   int noise_df = obs.noise_df();
 
   // Which candidates the data can speak to.
@@ -135,7 +137,13 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
       r.untested_reason = e.pending_reason;
     } else if (!revealed) {
       r.tested = false;
-      r.untested_reason = "none of the measured quantities responds to it";
+      std::string shows;
+      for (const auto& m : e.revealed_by) shows += (shows.empty() ? "" : ", ") + m;
+      r.untested_reason = "none of the measured quantities responds to it (it shows in " + shows + ")";
+    } else if (e.needs_sigma && !d.scatter_scored) {
+      r.tested = false;
+      r.untested_reason = "its signature is the replicate scatter, which without a sigma column (the measurement "
+                          "error) is taken as the noise: give sigma to test it";
     } else {
       tested.push_back(&e);
     }
@@ -157,30 +165,50 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     if (ext) start = d.baseline.params;
     ModelFit full = fit_model(predictor, ext, all, start);
     r.params = full.params;
-    r.predicted = full.predicted;
+    r.prediction = full.predicted;
+    r.predicted = full.predicted.mean;
+    if (d.scatter_scored)
+      for (size_t g = 0; g < obs.groups.size(); ++g)
+        r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + full.predicted.var[g]));
     r.chi2 = full.chi2;
     r.aic = r.chi2 + 2.0 * r.k;
     if (d.heldout_available) {
-      r.heldout.assign(obs.groups.size(), 0.0);
+      Prediction held = full.predicted;
       for (size_t c = 0; c < nc; ++c) {
         steps.next(r.id + ", without " + obs.conditions[c].label);
         std::vector<char> use(nc, 1), only(nc, 0);
         use[c] = 0;
         only[c] = 1;
         ModelFit loo = fit_model(predictor, ext, use, full.params, 0.05, 30);
-        auto pred = r.k ? predictor.predict(ext, loo.params, only) : full.predicted;
+        Prediction pred = r.k ? predictor.predict(ext, loo.params, only) : full.predicted;
+        held.replicates = pred.replicates;
         for (size_t g = 0; g < obs.groups.size(); ++g)
-          if (obs.groups[g].condition == c) r.heldout[g] = pred[g];
+          if (obs.groups[g].condition == c) {
+            held.mean[g] = pred.mean[g];
+            held.var[g] = pred.var[g];
+          }
       }
+      r.heldout = held.mean;
+      // Held-out error of the primary measure: RMS error of the mean or, when the file gives sigma
+      // (the scatter is data too), the 2-Wasserstein distance between the measured and predicted
+      // normal distributions of one value, sqrt((mean error)^2 + (SD error)^2), in the same unit.
       double se = 0, sz = 0;
       int ne = 0;
       for (size_t g = 0; g < obs.groups.size(); ++g) {
-        double e = obs.groups[g].mean - r.heldout[g];
-        sz += e * e * obs.groups[g].weight();
-        if (obs.groups[g].measure == d.primary_measure) { se += e * e; ++ne; }
+        const ObservationGroup& grp = obs.groups[g];
+        double e = grp.mean - held.mean[g];
+        sz += group_chi_square(grp, g, held);
+        if (grp.measure != d.primary_measure) continue;
+        double e2 = e * e;
+        if (grp.sigma_given && grp.values.size() >= 2) {
+          double sd_error = std::sqrt(grp.s2) - std::sqrt(grp.sd * grp.sd + held.var[g]);
+          e2 += sd_error * sd_error;
+        }
+        se += e2;
+        ++ne;
       }
       r.heldout_rms = std::sqrt(se / std::max(1, ne));
-      r.heldout_z = std::sqrt(sz / obs.groups.size());
+      r.heldout_z = std::sqrt(sz / score_terms(obs));
     }
     return r;
   };
@@ -192,15 +220,21 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     std::string fitted;
     for (size_t k = 0; k < base.params.size(); ++k)
       fitted += (k ? ", " : "") + base.parameters[k].name + " = " + num(base.params[k]);
-    d.statements.push_back("Baseline (Hertz-Mindlin, constant restitution): " +
+    d.statements.push_back(std::string(predictor.experiment() == "drop"
+                                           ? "Baseline (Hertz-Mindlin, constant restitution): "
+                                           : "Baseline (Hertz-Mindlin, one grain size, constant rolling torque): ") +
                            (fitted.empty() ? std::string("parameters as given") : "fitted " + fitted) +
                            "; chi^2 = " + num(base.chi2) + " over " + std::to_string(obs.groups.size()) +
-                           " measured means, weighed by their replicate scatter.");
+                           " measured means, weighed by their replicate scatter" +
+                           (d.scatter_scored ? std::string(", and their replicate variances against the given "
+                                                           "sigma (the scatter is data too)")
+                                             : std::string()) +
+                           ".");
   }
   LackOfFit overall;
   overall.measure = "all";
   overall.chi2 = base.chi2;
-  overall.groups = int(obs.groups.size());
+  overall.groups = score_terms(obs);
   overall.df = std::max(1, overall.groups - base.k);
   overall.noise_df = noise_df;
   overall.p = stats::f_upper_tail(overall.chi2 / overall.df, overall.df, noise_df);
@@ -210,9 +244,8 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     l.measure = m;
     for (size_t g = 0; g < obs.groups.size(); ++g) {
       if (obs.groups[g].measure != m) continue;
-      double r = obs.groups[g].mean - base.predicted[g];
-      l.chi2 += r * r * obs.groups[g].weight();
-      ++l.groups;
+      l.chi2 += group_chi_square(obs.groups[g], g, base.prediction);
+      l.groups += 1 + (obs.groups[g].sigma_given && obs.groups[g].values.size() >= 2 ? 1 : 0);
     }
     l.df = l.groups;
     l.noise_df = obs.noise.at(m).df;
@@ -245,7 +278,20 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   // 2. Every candidate extension, fitted and compared with the baseline.
   std::vector<ModelResult> results;
   for (const ModelExtension* ext : tested) {
-    ModelResult r = fit_with_heldout(ext);
+    ModelResult r;
+    try {
+      r = fit_with_heldout(ext);
+    } catch (const std::runtime_error& e) {
+      // A candidate whose experiment cannot be simulated to the end (e.g. a heap that never
+      // settles under it) is reported untested with the reason; the others still count.
+      ModelResult failed;
+      failed.id = ext->id;
+      failed.tested = false;
+      failed.untested_reason = std::string("its simulation failed: ") + e.what();
+      d.candidates.push_back(failed);
+      d.statements.push_back(ext->id + ": not tested, its simulation failed (" + e.what() + ").");
+      continue;
+    }
     int dk = std::max(1, r.k - base.k);
     r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
     r.p = stats::f_upper_tail(r.f, dk, noise_df);
@@ -294,7 +340,7 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     for (size_t w : rivals) {
       const ModelResult& other = results[w];
       steps.next("can " + other.id + " mimic " + best.id + "?");
-      ModelFit mimic = fit_model(predictor, find_extension(other.id), everything, other.params, 0.08, 50, best.predicted);
+      ModelFit mimic = fit_model(predictor, find_extension(other.id), everything, other.params, 0.08, 50, &best.prediction);
       bool close = mimic.chi2 < kSeparable || other.aic - best.aic < kAicClose;
       if (d.separation_chi2 < 0 || mimic.chi2 < d.separation_chi2) d.separation_chi2 = mimic.chi2;
       if (close) d.cause.push_back(other.id);
@@ -316,21 +362,30 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
       size_t far = nc - 1;
       const ModelResult& second = *std::find_if(results.begin(), results.end(),
                                                 [&](const ModelResult& r) { return r.id == d.cause[1]; });
-      DropResult a = predictor.drop(far, find_extension(best.id), best.params);
-      DropResult b = predictor.drop(far, find_extension(second.id), second.params);
-      double worst = 0, at = 0;
-      size_t n = std::min(a.trajectory.size(), b.trajectory.size());
-      for (size_t k = 0; k < n; ++k) {
-        double diff = std::abs(a.trajectory[k].second - b.trajectory[k].second);
-        if (diff > worst) { worst = diff; at = a.trajectory[k].first; }
-      }
       bool has_series = std::any_of(obs.groups.begin(), obs.groups.end(), [](const auto& g) { return g.series; });
-      d.separating_measurement =
-          has_series ? "more replicates or a wider range of conditions (the trajectories already measured differ too "
-                       "little between the two)"
-                     : "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two "
-                       "fitted models differ there by up to " + num(worst * 1000, 3) + " mm at t = " + num(at, 3) +
-                       " s in condition " + obs.conditions[far].label + ", while their rebound heights agree";
+      if (predictor.experiment() == "drop") {
+        Outcome a = predictor.simulate(far, find_extension(best.id), best.params);
+        Outcome b = predictor.simulate(far, find_extension(second.id), second.params);
+        double worst = 0, at = 0;
+        size_t n = std::min(a.trajectory.size(), b.trajectory.size());
+        for (size_t k = 0; k < n; ++k) {
+          double diff = std::abs(a.trajectory[k].second - b.trajectory[k].second);
+          if (diff > worst) { worst = diff; at = a.trajectory[k].first; }
+        }
+        d.separating_measurement =
+            has_series ? "more replicates or a wider range of conditions (the trajectories already measured differ "
+                         "too little between the two)"
+                       : "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two "
+                         "fitted models differ there by up to " + num(worst * 1000, 3) + " mm at t = " + num(at, 3) +
+                         " s in condition " + obs.conditions[far].label + ", while their rebound heights agree";
+      } else {
+        bool has_bed = std::find(obs.measures.begin(), obs.measures.end(), "bed_height") != obs.measures.end();
+        d.separating_measurement =
+            has_bed ? "more replicate heaps, or a second rig that loads the grains differently (a flow or a shear "
+                      "test): the angle and the bed height move alike under both"
+                    : "the bed height before the lift (measure 'bed_height'): packing separates a size spread from "
+                      "rolling resistance, which the angle alone confounds";
+      }
       d.statements.push_back("Verdict: ambiguous between " + names + ": the data cannot tell them apart. " +
                              "To separate them, measure " + d.separating_measurement + ".");
     }
@@ -342,8 +397,8 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     d.gain_percent = 100.0 * (1.0 - d.heldout_error_extended / base.heldout_rms);
   if (d.heldout_available && !winners.empty())
     d.statements.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " +
-                           d.primary_measure + " to " + in_unit(d.heldout_error_extended, d.primary_unit) +
-                           " (RMS), the baseline to " + in_unit(d.heldout_error_baseline, d.primary_unit) + ": " +
+                           d.primary_measure + (d.scatter_scored ? " (mean and replicate SD)" : "") + " to " +
+                           in_unit(d.heldout_error_extended, d.primary_unit) + " (RMS), the baseline to " + in_unit(d.heldout_error_baseline, d.primary_unit) + ": " +
                            num(d.gain_percent, 3) + " % less error.");
   for (auto& r : results) d.candidates.push_back(r);
   d.simulations = predictor.simulations();

@@ -31,12 +31,16 @@ struct ModelResult {
   std::string untested_reason;
   std::vector<FreeParameter> parameters;
   std::vector<double> params;
-  std::vector<double> predicted;       // every group, full fit
+  std::vector<double> predicted;       // every group, full fit (means)
+  std::vector<double> predicted_sd;    // every group: predicted SD of one measured value (sigma and
+                                       // the model's replicate scatter; empty without a given sigma)
+  Prediction prediction;               // the full fit's prediction (means, replicate variances)
   std::vector<double> heldout;         // every group, predicted with its condition left out
   double chi2 = 0, aic = 0;
   int k = 0;
   double f = 0, p = 1;                 // against the baseline
-  double heldout_rms = 0;              // primary measure, its unit
+  double heldout_rms = 0;              // primary measure, its unit: RMS error of the mean, or with a
+                                       // given sigma of (mean, SD) together (see diagnose.cpp)
   double heldout_z = 0;                // all groups, root mean square standardised error
   bool significant = false;
 };
@@ -50,6 +54,7 @@ struct Diagnosis {
   std::vector<Trend> trends;
   std::string primary_measure, primary_unit;
   bool heldout_available = false;  // leave-one-condition-out needs >= 3 conditions
+  bool scatter_scored = false;     // the file gives sigma: replicate scatter is compared too
   double heldout_error_baseline = 0, heldout_error_extended = 0, gain_percent = 0;
   double separation_chi2 = -1;     // ambiguous: how well the runner-up mimics the winner
   std::string separating_measurement;
@@ -60,9 +65,10 @@ struct Diagnosis {
 
 struct DiagnoseOptions {
   std::vector<CaseOverride> given;    // --params: calibrated values (the baseline is then not refitted)
-  bool fit_restitution = true;
+  bool fit_baseline = true;           // the baseline's free parameter (Predictor) is fitted
   unsigned threads = 2;
   std::vector<std::string> candidates;  // empty: every extension the data's measures can reveal
+  int simulated_replicates = 8;         // per condition, for a model whose drop is stochastic (shape)
   bool progress = true;
 };
 

@@ -32,6 +32,8 @@ json model_json(const ModelResult& r, bool heldout) {
   j["k"] = r.k;
   j["chi2"] = r.chi2;
   j["aic"] = r.aic;
+  j["simulated_replicates"] = r.prediction.replicates;
+  if (!r.predicted_sd.empty()) j["predicted_sd"] = r.predicted_sd;  // per group, sigma + replicate scatter
   if (r.id != "baseline") {
     j["f"] = r.f;
     j["p"] = r.p;
@@ -211,7 +213,10 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
     j["heldout_error_extended"] = nullptr;
     j["gain_percent"] = nullptr;
   }
-  j["heldout_method"] = "leave one condition out: refit on the others, predict it";
+  j["heldout_method"] = d.scatter_scored
+                            ? "leave one condition out: refit on the others, predict it; error of the mean and "
+                              "of the replicate SD together (2-Wasserstein distance of normals)"
+                            : "leave one condition out: refit on the others, predict it";
   j["lack_of_fit"] = json::array();
   for (const auto& l : d.lack_of_fit)
     j["lack_of_fit"].push_back({{"measure", l.measure}, {"chi2", l.chi2}, {"groups", l.groups}, {"df", l.df},

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "diagnosis/elongated_body.h"
+
 namespace repose {
 
 Interaction& drop_interaction(CaseSpec& spec) {
@@ -14,6 +16,14 @@ Interaction& drop_interaction(CaseSpec& spec) {
   for (auto& in : spec.interactions)
     if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;
   throw std::runtime_error(spec.path + ": no [[interaction]] between the body and the plate");
+}
+
+Interaction& heap_interaction(CaseSpec& spec) {
+  if (spec.fills.empty()) throw std::runtime_error(spec.path + ": the case has no [[fill]] of grains");
+  int a = spec.fills[0].material;
+  for (auto& in : spec.interactions)
+    if (in.material_a == a && in.material_b == a) return in;
+  throw std::runtime_error(spec.path + ": no [[interaction]] of the grains' material with itself");
 }
 
 const std::vector<ModelExtension>& model_extensions() {
@@ -41,26 +51,39 @@ const std::vector<ModelExtension>& model_extensions() {
        "",
        [](CaseSpec& s, const std::vector<double>& p) { drop_interaction(s).cohesion_energy_density = p.at(0); }},
       {"rolling_epsd",
-       "EDEM type C elastic-plastic spring-dashpot rolling resistance",
-       {},
-       {},
-       "needs a rolling spring per contact (a history binding) and a rolling or heap test: a drop "
-       "without spin does not load rolling resistance",
-       nullptr},
+       "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
+       "k_r = 2.25 mu_r^2 R*^2 k_n capped at mu_r R* |Fn|, with a dashpot of rolling_damping (fraction of "
+       "critical), instead of the constant torque",
+       {{"rolling_damping", "1", 0.05, 1.0, false}},
+       {"repose_angle", "bed_height"},
+       "",
+       [](CaseSpec& s, const std::vector<double>& p) {
+         s.contact.rolling = RollingModel::ElasticPlastic;
+         s.contact.rolling_damping = p.at(0);
+       }},
       {"size_spread",
-       "a distribution of particle sizes instead of one size ([[fill]] radius = [min, max])",
-       {},
-       {},
-       "shows in heaps and flows; the rebound of one sphere barely depends on its size, so drop "
-       "data cannot reveal it, and diagnose does not simulate the repose rig yet",
-       nullptr},
+       "a distribution of grain sizes instead of one size: every sphere [[fill]]'s radius uniform in "
+       "[r (1 - s), r (1 + s)] about its mean r",
+       {{"size_spread", "1", 0.0, 0.4, false}},
+       {"repose_angle", "bed_height"},
+       "",
+       [](CaseSpec& s, const std::vector<double>& p) {
+         for (FillSpec& f : s.fills) {
+           if (f.template_index >= 0) continue;
+           double r = 0.5 * (f.radius_min + f.radius_max);
+           f.radius_min = r * (1 - p.at(0));
+           f.radius_max = r * (1 + p.at(0));
+         }
+       }},
       {"shape",
-       "an elongated or clumped particle instead of a sphere",
-       {},
-       {},
-       "clumps are in the engine, but diagnose does not drop clump bodies yet: their "
-       "orientation-dependent rebound needs a model of the replicate scatter (a sigma column)",
-       nullptr},
+       "an elongated body instead of a sphere: a chain of seven overlapping spheres of the sphere's volume, "
+       "aspect ratio a (length over the central diameter); it lands at a random orientation, so its rebound "
+       "scatters between replicates and falls on average",
+       {{"aspect_ratio", "1", kElongatedMinAspect, kElongatedMaxAspect, false}},
+       {"rebound_height", "restitution", "height"},
+       "",
+       [](CaseSpec& s, const std::vector<double>& p) { make_body_elongated(s, p.at(0)); },
+       true},
   };
   return table;
 }

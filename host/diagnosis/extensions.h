@@ -27,6 +27,9 @@ struct ModelExtension {
   std::vector<std::string> revealed_by;
   std::string pending_reason;  // why it cannot be tested yet, when revealed_by is empty
   std::function<void(CaseSpec&, const std::vector<double>&)> apply;
+  // Its signature is the replicate scatter (a stochastic model): tested only when the data give
+  // sigma, since otherwise the scatter is taken as the measurement noise.
+  bool needs_sigma = false;
 };
 
 const std::vector<ModelExtension>& model_extensions();
@@ -35,5 +38,9 @@ const ModelExtension* find_extension(const std::string& id);
 // The interaction between a drop case's body (its first sphere) and its plate (the first plane
 // wall): the contact every drop-test extension acts on. Throws naming the case when absent.
 Interaction& drop_interaction(CaseSpec& spec);
+
+// The grains' contact with each other in a heap case: the first [[fill]]'s material with itself.
+// Throws naming the case when absent.
+Interaction& heap_interaction(CaseSpec& spec);
 
 }  // namespace repose

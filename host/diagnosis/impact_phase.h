@@ -10,7 +10,8 @@
 
 namespace repose {
 
-// Sets spec.time.dt for the case's drop test (its first sphere, [experiment] drop_height).
+// Sets spec.time.dt for the case's drop test (its first sphere or its one clump, [experiment]
+// drop_height).
 void align_impact_phase(CaseSpec& spec);
 
 }  // namespace repose

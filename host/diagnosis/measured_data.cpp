@@ -73,6 +73,7 @@ const std::vector<MeasureInfo>& known_measures() {
   static const std::vector<MeasureInfo> m = {
       {"rebound_height", false, "m"}, {"restitution", false, "1"},  {"height", true, "m"},
       {"slide_angle", false, "deg"},  {"roll_distance", false, "m"}, {"repose_angle", false, "deg"},
+      {"bed_height", false, "m"},
   };
   return m;
 }
@@ -161,6 +162,14 @@ MeasuredData read_measured_data(const std::string& path) {
       fail(path, line_no, cell("value"), "value",
            std::to_string(m.value) + " m is more than ten times the drop height " +
                std::to_string(spec.experiment.drop_height) + " m: millimetres? Values are in SI units (m)");
+    double fill_height = 0;  // the tallest [[fill]] region: a bed cannot stand higher
+    for (const FillSpec& f : spec.fills)
+      fill_height = std::max(fill_height, f.shape == FillSpec::Shape::Box ? f.box_max[2] - f.box_min[2] : f.cyl_height);
+    if (std::string(info->unit) == "m" && spec.experiment.type == "repose" && fill_height > 0 &&
+        m.value > 10 * fill_height)
+      fail(path, line_no, cell("value"), "value",
+           std::to_string(m.value) + " m is more than ten times the fill region's height " +
+               std::to_string(fill_height) + " m: millimetres? Values are in SI units (m)");
     if (std::string(info->unit) == "deg" && (m.value <= 0 || m.value >= 90))
       fail(path, line_no, cell("value"), "value", "an angle in degrees must lie in (0, 90)");
     data.rows.push_back(std::move(m));

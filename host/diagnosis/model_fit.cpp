@@ -18,21 +18,39 @@ double from_unit(const FreeParameter& p, double u) {
 
 }  // namespace
 
-double chi_square(const Observations& obs, const std::vector<double>& predicted, const std::vector<char>& use,
-                  const std::vector<double>& target) {
-  double chi2 = 0;
-  for (size_t g = 0; g < obs.groups.size(); ++g) {
-    const auto& grp = obs.groups[g];
-    if (!use[grp.condition]) continue;
-    double r = (target.empty() ? grp.mean : target[g]) - predicted[g];
-    chi2 += r * r * grp.weight();
+double group_chi_square(const ObservationGroup& grp, size_t g, const Prediction& predicted, const Prediction* target) {
+  double n = double(grp.values.size());
+  double v = predicted.var.empty() ? 0.0 : predicted.var[g];
+  double V = grp.sigma_given ? grp.sd * grp.sd + v : grp.sd * grp.sd;
+  double var_mean = V / n + (predicted.replicates > 1 ? v / predicted.replicates : 0.0);
+  double mean = target ? target->mean[g] : grp.mean;
+  double r = mean - predicted.mean[g];
+  double chi2 = r * r / var_mean;
+  if (grp.sigma_given && grp.values.size() >= 2) {
+    double s2 = target ? grp.sd * grp.sd + (target->var.empty() ? 0.0 : target->var[g]) : grp.s2;
+    double q = std::max(s2, 1e-300) / V;
+    chi2 += (n - 1) * (q - 1 - std::log(q));
   }
   return chi2;
 }
 
+double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
+                  const Prediction* target) {
+  double chi2 = 0;
+  for (size_t g = 0; g < obs.groups.size(); ++g)
+    if (use[obs.groups[g].condition]) chi2 += group_chi_square(obs.groups[g], g, predicted, target);
+  return chi2;
+}
+
+int score_terms(const Observations& obs) {
+  int terms = 0;
+  for (const auto& g : obs.groups) terms += 1 + (g.sigma_given && g.values.size() >= 2 ? 1 : 0);
+  return terms;
+}
+
 ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
                    const std::vector<double>& start, double step, int max_evaluations,
-                   const std::vector<double>& target) {
+                   const Prediction* target) {
   const Observations& obs = predictor.observations();
   auto params = predictor.parameters(extension);
   size_t n = params.size();
@@ -51,7 +69,7 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
   std::vector<double> u0(n, 0.5);
   for (size_t k = 0; k < n; ++k) {
     if (k < start.size()) u0[k] = std::clamp(to_unit(params[k], start[k]), 0.0, 1.0);
-    else if (predictor.fits_restitution() && k == 0) u0[k] = to_unit(params[0], predictor.case_restitution());
+    else if (predictor.fits_baseline() && k == 0) u0[k] = to_unit(params[0], predictor.case_baseline_value());
   }
   if (n == 0) {
     fit.predicted = predictor.predict(extension, {}, use);
@@ -159,17 +177,20 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
     for (size_t j = 0; j < held.size(); ++j) held[j] = j;
     double best = std::numeric_limits<double>::infinity();
     std::vector<double> best_u = u0;
-    for (int i = 0; i <= 9; ++i) {
+    // A heap costs ~1000 drops: a coarser profile (6 points, 8 evaluations each) there.
+    int points = predictor.expensive() ? 5 : 9, inner = predictor.expensive() ? 8 : 14;
+    for (int i = 0; i <= points; ++i) {
       std::vector<double> u = u0;
-      u[k] = i / 9.0;
+      u[k] = double(i) / points;
       auto [ui, fi] = held.empty()       ? std::make_pair(u, objective(u))
-                      : held.size() == 1 ? golden(u, held[0], 14)
+                      : held.size() == 1 ? golden(u, held[0], inner)
                                          : nelder_mead(u, held, 0.04, 12);
       if (fi < best) { best = fi; best_u = ui; }
     }
     u0 = best_u;
     step = std::min(step, 0.08);
   }
+  if (predictor.expensive()) max_evaluations = std::min(max_evaluations, 24);
   auto [u_best, f_best] = nelder_mead(u0, all_dims, step, max_evaluations);
   fit.params = values(u_best);
   fit.predicted = predictor.predict(extension, fit.params, use);  // cached

@@ -1,6 +1,13 @@
-// Fitting a model's free parameters to the measured group means: weighted least squares
-// (chi^2 = sum over groups of (mean - simulated)^2 / var(mean)), minimised by Nelder-Mead in the
-// unit cube of the parameters' search ranges (log ranges for strengths spanning decades).
+// Fitting a model's free parameters to the measured groups, minimised by Nelder-Mead in the unit
+// cube of the parameters' search ranges (log ranges for strengths spanning decades). The score:
+//   chi^2 = sum over groups of (mean - predicted)^2 / (V/n + v/R)
+//         + sum over groups with n >= 2, when the file gives sigma, of (n-1) [s^2/V - 1 - ln(s^2/V)]
+// with n replicates measured, s^2 their sample variance, v the model's replicate variance from R
+// simulated replicates (0 for a deterministic model) and V the variance of one measured value:
+// sigma^2 + v when sigma is given, else the pooled replicate scatter (which then holds any
+// scatter the body itself causes). The second sum is the deviance of s^2 against V ((n-1) s^2/V
+// is chi^2 with n-1 degrees of freedom): a model that predicts the wrong scatter pays for it,
+// one chi^2 term per group.
 #pragma once
 #include <vector>
 
@@ -10,21 +17,28 @@ namespace repose {
 
 struct ModelFit {
   std::vector<double> params;      // fitted values, in the order of Predictor::parameters
-  std::vector<double> predicted;   // every group (only the fitted conditions are meaningful)
+  Prediction predicted;            // every group (only the fitted conditions are meaningful)
   double chi2 = 0;                 // over the fitted conditions
   int groups = 0;                  // groups in the fit
   int evaluations = 0;
 };
 
-// chi^2 of given predictions over the groups of the conditions marked in `use`, against the
-// measured means or, when `target` is not empty, against those values (another model's predictions).
-double chi_square(const Observations& obs, const std::vector<double>& predicted, const std::vector<char>& use,
-                  const std::vector<double>& target = {});
+// One group's terms of the score (above): against the measured mean and scatter or, when
+// `target` is given, against another model's prediction as if it were the truth (mean, and
+// sample variance sd^2 + its replicate variance).
+double group_chi_square(const ObservationGroup& grp, size_t g, const Prediction& predicted,
+                        const Prediction* target = nullptr);
+// The score over the groups of the conditions marked in `use`.
+double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
+                  const Prediction* target = nullptr);
+// How many chi^2 terms the score has over all groups: one per mean, plus one per replicate
+// variance when sigma is given (the degrees of freedom before fitting).
+int score_terms(const Observations& obs);
 
 // Fits `extension` (nullptr: the baseline) on the conditions marked in `use`, starting from
 // `start` (empty: the middle of each range, the case's restitution).
 ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
                    const std::vector<double>& start = {}, double step = 0.15, int max_evaluations = 80,
-                   const std::vector<double>& target = {});
+                   const Prediction* target = nullptr);
 
 }  // namespace repose

@@ -69,7 +69,10 @@ Observations group_observations(const MeasuredData& data) {
       double mean = 0;
       for (double v : g.values) mean += v;
       g.mean = mean / g.values.size();
-      for (double v : g.values) ss += (v - g.mean) * (v - g.mean);
+      double gs = 0;
+      for (double v : g.values) gs += (v - g.mean) * (v - g.mean);
+      g.s2 = g.values.size() > 1 ? gs / double(g.values.size() - 1) : 0.0;
+      ss += gs;
       n.df += int(g.values.size()) - 1;
     }
     if (given_sigma.count(measure)) {
@@ -86,7 +89,10 @@ Observations group_observations(const MeasuredData& data) {
     }
     obs.noise[measure] = n;
     for (auto& g : obs.groups)
-      if (g.measure == measure) g.sd = n.sd;
+      if (g.measure == measure) {
+        g.sd = n.sd;
+        g.sigma_given = n.given;
+      }
   }
 
   // Condition variables that take more than one value.

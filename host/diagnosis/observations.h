@@ -26,6 +26,8 @@ struct ObservationGroup {
   std::vector<double> values;   // the replicates
   double mean = 0;
   double sd = 0;                // noise of one value: given sigma, else the measure's pooled scatter
+  double s2 = 0;                // sample variance of the replicates (n - 1 in the denominator)
+  bool sigma_given = false;     // sd is the file's measurement error: the scatter itself is data
   int line = 0;                 // first CSV line of the group
   double weight() const { return double(values.size()) / (sd * sd); }  // 1 / var(mean)
 };

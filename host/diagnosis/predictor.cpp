@@ -7,48 +7,108 @@
 #include <thread>
 
 #include "case/case_loader.h"
+#include "case/particle_factory.h"
 #include "diagnosis/impact_phase.h"
+#include "experiments/repose.h"
 
 namespace repose {
 
-Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_restitution,
-                     unsigned threads)
-    : obs_(obs), fit_restitution_(fit_restitution), threads_(std::max(1u, threads)) {
+namespace {
+
+bool is_drop_measure(const std::string& m) { return m == "rebound_height" || m == "restitution" || m == "height"; }
+bool is_heap_measure(const std::string& m) { return m == "repose_angle" || m == "bed_height"; }
+
+}  // namespace
+
+Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_baseline,
+                     unsigned threads, int simulated_replicates)
+    : obs_(obs), fit_baseline_(fit_baseline), threads_(std::max(1u, threads)),
+      replicates_(std::max(2, simulated_replicates)) {
   for (const Condition& c : obs.conditions) {
     std::vector<CaseOverride> sets = given;
     sets.insert(sets.end(), c.sets.begin(), c.sets.end());
     CaseSpec spec = load_case(c.case_path, sets);
-    if (spec.experiment.type != "drop")
-      throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + spec.experiment.type +
-                      "': diagnose simulates drop tests (slide, roll and repose rigs are not in the engine yet)");
-    if (!spec.bodies.empty() || spec.spheres.size() != 1)
-      throw DataError(obs.path + ": case " + c.case_path +
-                      ": diagnose drops one sphere (clump bodies are not diagnosed yet: the extensions' "
-                      "drop physics, air drag and the impact-time alignment, are written for spheres)");
-    drop_interaction(spec);  // the body-plate contact must exist
+    const std::string& type = spec.experiment.type;
+    if (type != "drop" && type != "repose")
+      throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + type +
+                      "': diagnose simulates drop tests and angle-of-repose heaps (slide and roll are not wired yet)");
+    if (experiment_.empty()) experiment_ = type;
+    if (type != experiment_)
+      throw DataError(obs.path + ": case " + c.case_path + " runs '" + type + "' but an earlier row's case runs '" +
+                      experiment_ + "': one diagnosis compares one experiment");
+    if (type == "drop") {
+      if (!spec.bodies.empty() || spec.spheres.size() != 1)
+        throw DataError(obs.path + ": case " + c.case_path +
+                        ": diagnose drops one sphere (a clump body is what the `shape` extension tests; the other "
+                        "extensions' drop physics and the impact-time alignment are written for a sphere)");
+      drop_interaction(spec);  // the body-plate contact must exist
+    } else {
+      bool sphere_fills = !spec.fills.empty();
+      size_t filled = 0;
+      for (const FillSpec& f : spec.fills) {
+        sphere_fills = sphere_fills && f.template_index < 0;
+        filled += size_t(f.count);
+      }
+      if (!sphere_fills || !spec.lattices.empty() || !spec.bodies.empty() || spec.spheres.size() != filled)
+        throw DataError(obs.path + ": case " + c.case_path +
+                        ": diagnose fills heaps from sphere [[fill]]s only (no [[sphere]], [[lattice]] or clumps), "
+                        "so that replicates and size spreads can refill them");
+      heap_interaction(spec);  // the grain-grain contact must exist
+      spec.spheres.clear();    // refilled per model and replicate (model_spec)
+    }
     specs_.push_back(std::move(spec));
   }
-  for (const auto& g : obs.groups)
-    if (g.measure != "rebound_height" && g.measure != "restitution" && g.measure != "height")
-      throw DataError(obs.path + ":" + std::to_string(g.line) + ": measure '" + g.measure +
-                      "' needs an experiment the engine does not run yet (drop measures: rebound_height, "
-                      "restitution, height)");
+  for (const auto& g : obs.groups) {
+    bool ok = experiment_ == "drop" ? is_drop_measure(g.measure) : is_heap_measure(g.measure);
+    if (!ok)
+      throw DataError(obs.path + ":" + std::to_string(g.line) + ": measure '" + g.measure + "' is not reported by the " +
+                      experiment_ + " experiment diagnose simulates (drop: rebound_height, restitution, height; "
+                      "repose: repose_angle, bed_height)");
+  }
+  if (experiment_ == "drop") {
+    baseline_ = {"restitution", "1", 0.05, 0.95, false};
+    baseline_value_ = [](CaseSpec& s) -> double& { return drop_interaction(s).restitution; };
+  } else {
+    baseline_ = {"static_friction", "1", 0.05, 1.2, false};
+    baseline_value_ = [](CaseSpec& s) -> double& { return heap_interaction(s).static_friction; };
+  }
 }
 
 std::vector<FreeParameter> Predictor::parameters(const ModelExtension* extension) const {
   std::vector<FreeParameter> p;
-  if (fit_restitution_) p.push_back({"restitution", "1", 0.05, 0.95, false});
+  if (fit_baseline_) p.push_back(baseline_);
   if (extension) p.insert(p.end(), extension->parameters.begin(), extension->parameters.end());
   return p;
 }
 
-double Predictor::case_restitution() const {
+double Predictor::case_baseline_value() const {
   CaseSpec spec = specs_.front();
-  return drop_interaction(spec).restitution;
+  return baseline_value_(spec);
 }
 
-DropResult Predictor::drop(size_t condition, const ModelExtension* extension, const std::vector<double>& params) {
-  std::string key = std::to_string(condition) + "|" + (extension ? extension->id : "baseline");
+CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                               int replicate) const {
+  CaseSpec spec = specs_[condition];
+  size_t k = 0;
+  if (fit_baseline_) baseline_value_(spec) = params.at(k++);
+  if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
+  spec.seed += uint64_t(replicate);  // a clump's orientation (run_drop draws it from the seed)
+  if (experiment_ == "repose") {
+    for (FillSpec& f : spec.fills) f.seed += uint64_t(replicate);
+    expand_particles(spec);
+  }
+  return spec;
+}
+
+bool Predictor::stochastic(const ModelExtension* extension, const std::vector<double>& params) const {
+  if (experiment_ == "repose") return true;
+  return !model_spec(0, extension, params, 0).bodies.empty();
+}
+
+Outcome Predictor::simulate(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                            int replicate) {
+  std::string key = std::to_string(condition) + "|" + std::to_string(replicate) + "|" +
+                    (extension ? extension->id : "baseline");
   for (double v : params) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "|%a", v);
@@ -59,10 +119,15 @@ DropResult Predictor::drop(size_t condition, const ModelExtension* extension, co
     auto it = cache_.find(key);
     if (it != cache_.end()) return it->second;
   }
-  CaseSpec spec = specs_[condition];
-  size_t k = 0;
-  if (fit_restitution_) drop_interaction(spec).restitution = params.at(k++);
-  if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
+  CaseSpec spec = model_spec(condition, extension, params, replicate);
+  Outcome r = experiment_ == "drop" ? run_drop_condition(std::move(spec)) : run_heap_condition(spec);
+  std::lock_guard<std::mutex> lock(mutex_);
+  ++simulations_;
+  cache_[key] = r;
+  return r;
+}
+
+Outcome Predictor::run_drop_condition(CaseSpec spec) const {
   // Models far from the data (met while searching) can stop the body on the plate: predict no
   // rebound, a fall in vacuum and rest, so the search moves away from them.
   double g = std::sqrt(spec.gravity[0] * spec.gravity[0] + spec.gravity[1] * spec.gravity[1] +
@@ -70,26 +135,42 @@ DropResult Predictor::drop(size_t condition, const ModelExtension* extension, co
   double fall = std::sqrt(2 * spec.experiment.drop_height / g);
   spec.experiment.max_time = std::min(spec.experiment.max_time, 3 * fall + 0.5);
   align_impact_phase(spec);
-  DropResult r;
+  Outcome out;
   try {
-    r = run_drop(spec, DropOptions{});
+    DropResult r = run_drop(spec, DropOptions{});
+    out.values["rebound_height"] = r.rebound_height;
+    out.values["restitution"] = r.restitution;
+    out.trajectory = std::move(r.trajectory);
   } catch (const std::runtime_error& e) {
     if (std::string(e.what()).find("did not rebound") == std::string::npos) throw;
-    r.drop_height = spec.experiment.drop_height;
+    out.values["rebound_height"] = 0;
+    out.values["restitution"] = 0;
     for (int k = 0; k <= 100; ++k) {
       double t = k * 0.01 * spec.experiment.max_time;
-      r.trajectory.push_back({t, std::max(0.0, r.drop_height - 0.5 * g * t * t)});
+      out.trajectory.push_back({t, std::max(0.0, spec.experiment.drop_height - 0.5 * g * t * t)});
     }
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  ++simulations_;
-  cache_[key] = r;
-  return r;
+  return out;
 }
 
-double Predictor::value_of(const ObservationGroup& g, const DropResult& r) const {
-  if (g.measure == "rebound_height") return r.rebound_height;
-  if (g.measure == "restitution") return r.restitution;
+Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
+  Outcome out;
+  try {
+    ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
+    out.values["repose_angle"] = r.angle_deg;
+    out.values["bed_height"] = r.bed_height;
+  } catch (const std::runtime_error& e) {
+    // A model far from the data (met while searching) whose heap shows no slope: no heap, so the
+    // search moves away from it. A heap still moving at max_time is the case's problem: say so.
+    if (std::string(e.what()).find("slope") == std::string::npos) throw;
+    out.values["repose_angle"] = 0;
+    out.values["bed_height"] = 0;
+  }
+  return out;
+}
+
+double Predictor::value_of(const ObservationGroup& g, const Outcome& r) const {
+  if (!g.series) return r.values.at(g.measure);
   // height: the camera's trajectory, linear between frames.
   const auto& tr = r.trajectory;
   if (g.t < tr.front().first)
@@ -112,20 +193,23 @@ double Predictor::value_of(const ObservationGroup& g, const DropResult& r) const
   return tr[hi - 1].second + w * (tr[hi].second - tr[hi - 1].second);
 }
 
-std::vector<double> Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
-                                       const std::vector<char>& use) {
+Prediction Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
+                              const std::vector<char>& use) {
   size_t nc = obs_.conditions.size();
-  std::vector<DropResult> results(nc);
-  std::vector<size_t> pending;
+  int reps = stochastic(extension, params) ? replicates_ : 1;
+  std::vector<std::vector<Outcome>> results(nc, std::vector<Outcome>(size_t(reps)));
+  std::vector<std::pair<size_t, int>> pending;
   for (size_t c = 0; c < nc; ++c)
-    if (use[c]) pending.push_back(c);
+    if (use[c])
+      for (int r = 0; r < reps; ++r) pending.push_back({c, r});
   std::atomic<size_t> next{0};
   std::exception_ptr error;
   std::mutex error_mutex;
   auto worker = [&] {
     for (size_t k = next++; k < pending.size(); k = next++) {
       try {
-        results[pending[k]] = drop(pending[k], extension, params);
+        auto [c, r] = pending[k];
+        results[c][size_t(r)] = simulate(c, extension, params, r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
@@ -137,9 +221,22 @@ std::vector<double> Predictor::predict(const ModelExtension* extension, const st
   worker();
   for (auto& t : pool) t.join();
   if (error) std::rethrow_exception(error);
-  std::vector<double> out(obs_.groups.size(), 0.0);
-  for (size_t g = 0; g < obs_.groups.size(); ++g)
-    if (use[obs_.groups[g].condition]) out[g] = value_of(obs_.groups[g], results[obs_.groups[g].condition]);
+  Prediction out;
+  out.replicates = reps;
+  out.mean.assign(obs_.groups.size(), 0.0);
+  out.var.assign(obs_.groups.size(), 0.0);
+  for (size_t g = 0; g < obs_.groups.size(); ++g) {
+    const ObservationGroup& grp = obs_.groups[g];
+    if (!use[grp.condition]) continue;
+    double sum = 0, sum2 = 0;
+    std::vector<double> v;
+    for (const Outcome& r : results[grp.condition]) v.push_back(value_of(grp, r));
+    for (double x : v) sum += x;
+    double mean = sum / reps;
+    for (double x : v) sum2 += (x - mean) * (x - mean);
+    out.mean[g] = mean;
+    out.var[g] = reps > 1 ? sum2 / (reps - 1) : 0.0;
+  }
   return out;
 }
 

@@ -1,7 +1,18 @@
 // Simulated values of the measured quantities: every condition of the data is run as its virtual
-// experiment (the drop test) with the model under test, on the cpu backend, conditions spread
-// over a few threads, each result cached by (condition, model, parameters) for the whole run.
+// experiment with the model under test, on the cpu backend, spread over a few threads, each
+// result cached by (condition, model, parameters, replicate) for the run. Two experiments:
+// - drop (rebound_height, restitution, the height series): the baseline's free parameter is the
+//   body-plate restitution;
+// - repose (repose_angle, bed_height), on cases whose grains come from sphere [[fill]]s: the
+//   baseline's free parameter is the grains' sliding friction with each other.
+//
+// A stochastic model is simulated `simulated_replicates` times per condition, replicate r with
+// seed + r in every evaluation (common random numbers: the same draws whatever the parameters, so
+// the objective stays smooth), and predicts the mean and the replicate variance of one value: a
+// clump body (extension `shape`) lands at a random orientation drawn from the case's seed, a heap
+// is filled from its fills' seeds. A sphere's drop is deterministic: one run, variance 0.
 #pragma once
+#include <functional>
 #include <map>
 #include <mutex>
 #include <string>
@@ -13,36 +24,63 @@
 
 namespace repose {
 
+struct Prediction {
+  std::vector<double> mean;  // every group (0 where its condition was not asked for)
+  std::vector<double> var;   // the model's replicate variance of one value (0: deterministic)
+  int replicates = 1;        // simulated replicates behind each mean
+};
+
+// One simulated experiment: its scalar measures and, for a drop, the camera's trajectory.
+struct Outcome {
+  std::map<std::string, double> values;
+  std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
+};
+
 class Predictor {
  public:
   // `given`: calibrated parameters (case overrides) applied to every case before its row's sets.
-  // `fit_restitution`: the baseline's free parameter (the body-plate restitution) is fitted;
-  // otherwise it stays at the case's (or given) value.
-  Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_restitution, unsigned threads);
+  // `fit_baseline`: the baseline's free parameter is fitted; otherwise it stays at the case's
+  // (or given) value.
+  Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_baseline, unsigned threads,
+            int simulated_replicates = 8);
 
   // The parameters a model fits, in order: the baseline's free ones, then the extension's.
   std::vector<FreeParameter> parameters(const ModelExtension* extension) const;
-  bool fits_restitution() const { return fit_restitution_; }
-  double case_restitution() const;  // of the first condition's case (the start of a fit)
+  bool fits_baseline() const { return fit_baseline_; }
+  double case_baseline_value() const;  // of the first condition's case (the start of a fit)
+  const std::string& experiment() const { return experiment_; }  // "drop" or "repose"
+  // A heap costs ~1000 drops: fits then spend fewer evaluations (model_fit.cpp).
+  bool expensive() const { return experiment_ == "repose"; }
+  // Whether the model's result depends on the replicate's seed (a clump body, a filled heap).
+  bool stochastic(const ModelExtension* extension, const std::vector<double>& params) const;
 
-  // The predicted value of every group whose condition is marked in `use` (others: 0).
-  std::vector<double> predict(const ModelExtension* extension, const std::vector<double>& params,
-                              const std::vector<char>& use);
-  // One condition's drop (cached). Thread-safe.
-  DropResult drop(size_t condition, const ModelExtension* extension, const std::vector<double>& params);
-  // The value of one group from a drop result.
-  double value_of(const ObservationGroup& g, const DropResult& r) const;
+  // The prediction for every group whose condition is marked in `use`.
+  Prediction predict(const ModelExtension* extension, const std::vector<double>& params, const std::vector<char>& use);
+  // One condition's experiment, replicate r (cached). Thread-safe.
+  Outcome simulate(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                   int replicate = 0);
+  // The value of one group from an outcome.
+  double value_of(const ObservationGroup& g, const Outcome& r) const;
 
   const Observations& observations() const { return obs_; }
   size_t simulations() const { return simulations_; }
+  int simulated_replicates() const { return replicates_; }
 
  private:
+  CaseSpec model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
+                      int replicate) const;
+  Outcome run_drop_condition(CaseSpec spec) const;
+  Outcome run_heap_condition(const CaseSpec& spec) const;
   const Observations& obs_;
-  std::vector<CaseSpec> specs_;  // per condition, loaded once
-  bool fit_restitution_;
+  std::string experiment_;
+  std::vector<CaseSpec> specs_;  // per condition, loaded once (a heap's with its fills unexpanded)
+  FreeParameter baseline_;
+  std::function<double&(CaseSpec&)> baseline_value_;
+  bool fit_baseline_;
   unsigned threads_;
+  int replicates_;
   std::mutex mutex_;
-  std::map<std::string, DropResult> cache_;
+  std::map<std::string, Outcome> cache_;
   size_t simulations_ = 0;
 };
 

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "case/case_loader.h"
+#include "case/particle_factory.h"
+#include "experiments/repose.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/drop.h"
@@ -30,6 +32,41 @@ class Gaussian {
   std::mt19937_64 rng_;
 };
 
+std::string text(double v) {
+  std::ostringstream s;
+  s.precision(7);
+  s << v;
+  return s.str();
+}
+
+void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, const std::string& csv_path) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(csv_path).parent_path();
+  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
+  Gaussian noise(truth.seed);
+  std::ostringstream csv;
+  csv << "case,set:" << truth.heap_condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "")
+      << "\n";
+  csv.precision(7);
+  for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
+    std::string value = text(truth.heights[ci]);
+    for (int rep = 1; rep <= truth.replicates; ++rep) {
+      CaseSpec spec = load_case(truth.case_path, {{truth.heap_condition_key, value}});
+      if (truth.grain_friction) heap_interaction(spec).static_friction = *truth.grain_friction;
+      if (ext) ext->apply(spec, truth.extension_params);
+      spec.spheres.clear();
+      for (FillSpec& f : spec.fills) f.seed = 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep);
+      expand_particles(spec);
+      ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
+      csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
+          << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
+      csv << case_column << "," << value << ",bed_height," << r.bed_height + truth.noise * noise() << "," << rep
+          << (truth.write_sigma ? "," + text(truth.noise) : "") << "\n";
+    }
+  }
+  write_file_atomically(csv_path, csv.str());
+}
+
 }  // namespace
 
 void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
@@ -41,28 +78,45 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     if (truth.extension_params.size() != ext->parameters.size())
       throw std::runtime_error(truth.extension + " takes " + std::to_string(ext->parameters.size()) + " parameter(s)");
   }
-  if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one drop height");
+  if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one condition (drop height)");
+  if (load_case(truth.case_path).experiment.type == "repose") {
+    write_heap_data(truth, ext, csv_path);
+    return;
+  }
   fs::path folder = fs::absolute(csv_path).parent_path();
   std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);
   std::ostringstream csv;
-  csv << "case,set:experiment.drop_height,measure,value,replicate,t\n";
+  csv << "case,set:experiment.drop_height,measure,value,replicate,t" << (truth.write_sigma ? ",sigma" : "") << "\n";
   csv.precision(7);
-  for (double h : truth.heights) {
+  auto sigma = [&](double sd) {
+    std::ostringstream s;
+    s.precision(7);
+    if (truth.write_sigma) s << "," << sd;
+    return s.str();
+  };
+  for (size_t hi = 0; hi < truth.heights.size(); ++hi) {
+    double h = truth.heights[hi];
     std::ostringstream hs;
     hs << h;
     CaseSpec spec = load_case(truth.case_path, {{"experiment.drop_height", hs.str()}});
     if (truth.restitution) drop_interaction(spec).restitution = *truth.restitution;
     if (ext) ext->apply(spec, truth.extension_params);
     align_impact_phase(spec);  // as the diagnosis simulates (impact_phase.h)
-    DropResult r = run_drop(spec);
+    bool stochastic = !spec.bodies.empty();
+    std::vector<DropResult> drops;
+    for (int rep = 1; rep <= (stochastic ? truth.replicates : 1); ++rep) {
+      if (stochastic) spec.seed = 1000000 + 10000 * truth.seed + 100 * hi + uint64_t(rep);
+      drops.push_back(run_drop(spec));
+    }
+    auto drop_of = [&](int rep) -> const DropResult& { return drops[stochastic ? size_t(rep - 1) : 0]; };
     for (int rep = 1; rep <= truth.replicates; ++rep)
-      csv << case_column << "," << hs.str() << ",rebound_height," << r.rebound_height + truth.noise * noise() << ","
-          << rep << ",\n";
+      csv << case_column << "," << hs.str() << ",rebound_height," << drop_of(rep).rebound_height + truth.noise * noise()
+          << "," << rep << "," << sigma(truth.noise) << "\n";
     if (truth.series_dt > 0) {
       // The camera's frames, linear between simulated frames, up to the rebound apex.
-      const auto& tr = r.trajectory;
       for (int rep = 1; rep <= truth.replicates; ++rep) {
+        const auto& tr = drop_of(rep).trajectory;
         size_t k = 1;
         for (int i = 0; i * truth.series_dt <= tr.back().first; ++i) {
           double t = i * truth.series_dt;
@@ -70,7 +124,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
           double w = (t - tr[k - 1].first) / (tr[k].first - tr[k - 1].first);
           double z = tr[k - 1].second + w * (tr[k].second - tr[k - 1].second);
           csv << case_column << "," << hs.str() << ",height," << z + truth.series_noise * noise() << "," << rep << ","
-              << t << "\n";
+              << t << sigma(truth.series_noise) << "\n";
         }
       }
     }

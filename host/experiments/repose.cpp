@@ -32,9 +32,23 @@ double max_kinetic_energy(const HostState& st) {
   return most;
 }
 
+// Twice the volume-weighted mean height of the particles above the floor (default: the lowest
+// sphere bottom): a uniform bed of height h has its volume's centre at h / 2.
+double bed_height(const HostState& st, const std::optional<double>& floor) {
+  double lowest = std::numeric_limits<double>::infinity();
+  for (const auto& p : st.pos) lowest = std::min(lowest, double(p.z) - p.w);
+  double floor_z = floor.value_or(lowest), volume = 0, moment = 0;
+  for (const auto& p : st.pos) {
+    double v = double(p.w) * p.w * p.w;
+    volume += v;
+    moment += v * (double(p.z) - floor_z);
+  }
+  return volume > 0 ? 2 * moment / volume : 0.0;
+}
+
 }  // namespace
 
-ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options) {
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled) {
   const ExperimentSpec& ex = spec.experiment;
   const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
@@ -53,8 +67,13 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
 
   ReposeResult r;
+  bool bed_measured = false;
   while (true) {
     sim.advance(sample_steps);
+    if (!bed_measured && sim.time() >= lift.motion.start_time - 1e-9) {
+      r.bed_height = bed_height(sim.state(), ex.heap_floor_z);
+      bed_measured = true;
+    }
     double e = max_kinetic_energy(sim.state());
     r.energy.push_back({sim.time(), e});
     r.wall_forces.sample(sim);
@@ -62,6 +81,12 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     if (sim.time() >= lift_end && e < ex.settle_energy) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
+      break;
+    }
+    if (sim.time() >= ex.max_time && measure_unsettled) {
+      r.settle_time = sim.time();
+      r.kinetic_energy = e;
+      r.settled = false;
       break;
     }
     if (sim.time() >= ex.max_time)

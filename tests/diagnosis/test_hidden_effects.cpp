@@ -6,61 +6,14 @@
 // means carry 0.45 mm, the hidden effects move rebound heights by 2-6 mm across the heights, so
 // a model that has found the cause predicts a held-out height at about the noise of a mean
 // (measured gains 40-70 %), while 25 % stays clear of what a wrong cause reaches.
-#include <catch2/catch.hpp>
-#include <filesystem>
 #include <algorithm>
-#include <cmath>
-#include <random>
 
-#include "diagnosis/diagnose.h"
-#include "diagnosis/synthetic_data.h"
+#include "hidden_effect_support.h"
 
 using namespace repose;
-namespace fs = std::filesystem;
+using namespace repose::hidden;
 
-namespace {
-
-const std::vector<double> kHeights = {0.30, 0.35, 0.40, 0.45, 0.50};
-
-// A uniform draw in [lo, hi] (log-uniform when log_scale) from a seeded generator.
-double draw(uint64_t seed, double lo, double hi, bool log_scale = false) {
-  std::mt19937_64 rng(seed);
-  double u = (rng() >> 11) * 0x1.0p-53;
-  return log_scale ? lo * std::pow(hi / lo, u) : lo + u * (hi - lo);
-}
-
-Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth) {
-  fs::path dir = fs::temp_directory_path() / ("repose_hidden_" + name);
-  fs::create_directories(dir);
-  fs::path case_file = dir / fs::path(truth.case_path).filename();
-  fs::copy_file(truth.case_path, case_file, fs::copy_options::overwrite_existing);
-  truth.case_path = case_file.string();
-  std::string csv = (dir / "data.csv").string();
-  write_synthetic_data(truth, csv);
-  DiagnoseOptions options;
-  options.progress = false;
-  options.threads = 2;
-  return diagnose(group_observations(read_measured_data(csv)), options);
-}
-
-std::string case_path(const std::string& name) {
-  return std::string(REPOSE_SOURCE_DIR) + "/cases/diagnosis/" + name + ".toml";
-}
-
-const ModelResult& candidate(const Diagnosis& d, const std::string& id) {
-  for (const auto& c : d.candidates)
-    if (c.id == id) return c;
-  FAIL("no candidate " << id);
-  return d.baseline;
-}
-
-std::string summary(const Diagnosis& d) {
-  std::string s = "verdict " + d.verdict + "\n";
-  for (const auto& line : d.statements) s += "  " + line + "\n";
-  return s;
-}
-
-}  // namespace
+static const std::vector<double> kHeights = {0.30, 0.35, 0.40, 0.45, 0.50};
 
 TEST_CASE("no hidden effect: the baseline is adequate (no false alarm)", "[diagnosis][hidden]") {
   SyntheticTruth truth;
