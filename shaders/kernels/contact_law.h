@@ -62,6 +62,18 @@ FN float linear_cohesion(float pi_k, float radius_star, float overlap) {
   return f;
 }
 
+// A stored spring (tangential or rolling) turned into the current tangent plane, its length kept.
+FN vec3 turn_into_tangent_plane(vec3 s, vec3 n) {
+  precise float old_sq = dot3(s, s);
+  precise vec3 p = s - scale3(n, dot3(s, n));
+  precise float new_sq = dot3(p, p);
+  if (new_sq > 0.0f) {
+    precise float keep = sqrt(old_sq / new_sq);
+    p = scale3(p, keep);
+  }
+  return p;
+}
+
 // EDEM's type C rolling resistance (elastic-plastic spring-dashpot, Ai et al. 2011 model C; the
 // EPSD of LIGGGHTS): a rolling spring torque, built from the relative rolling rotation (twist
 // about n excluded) with stiffness k_r = 2.25 k_n (mu_r R*)^2, capped at mu_r R* |Fn| (full
@@ -74,13 +86,7 @@ FN vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float
                             INOUT(vec3) spring) {
   precise vec3 w = w_i - w_j;
   precise vec3 w_roll = w - scale3(n, dot3(w, n));
-  precise float old_sq = dot3(spring, spring);
-  precise vec3 m = spring - scale3(n, dot3(spring, n));
-  precise float new_sq = dot3(m, m);
-  if (new_sq > 0.0f) {
-    precise float keep = sqrt(old_sq / new_sq);
-    m = scale3(m, keep);
-  }
+  precise vec3 m = turn_into_tangent_plane(spring, n);
   precise float arm = mu_r * radius_star;
   precise float k_r = (2.25f * normal_stiffness) * (arm * arm);
   precise float k_r_dt = -(k_r * dt);
@@ -128,14 +134,7 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   fn = fn - linear_cohesion(pp.b.w, radius_star, overlap);
 
   // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.
-  precise float s_old_sq = dot3(shear, shear);
-  precise vec3 s_proj = shear - scale3(n, dot3(shear, n));
-  precise float s_new_sq = dot3(s_proj, s_proj);
-  if (s_new_sq > 0.0f) {
-    precise float keep = sqrt(s_old_sq / s_new_sq);
-    s_proj = scale3(s_proj, keep);
-  }
-  precise vec3 spring = s_proj + scale3(v_t, dt);
+  precise vec3 spring = turn_into_tangent_plane(shear, n) + scale3(v_t, dt);
 
   precise vec3 f_spring = scale3(spring, -st);
   precise vec3 f_damp = scale3(v_t, -gamma_t);
