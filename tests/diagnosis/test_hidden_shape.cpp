@@ -72,3 +72,25 @@ TEST_CASE("sigma given, no hidden effect: adequate, shape fitted and rejected (n
   CHECK_FALSE(candidate(d, "shape").significant);
   CHECK(d.baseline.params.at(0) == Approx(*truth.restitution).margin(0.01));
 }
+
+TEST_CASE("sigma given, hidden restitution_velocity: still named, shape fitted and rejected",
+          "[diagnosis][hidden]") {
+  // The scatter's deviance must not turn a deterministic effect into a false `shape`: the truth
+  // is the cabbage test of test_hidden_effects.cpp with the camera error given as sigma.
+  SyntheticTruth truth;
+  truth.case_path = case_path("cabbage_drop");
+  truth.restitution = 0.9;
+  truth.extension = "restitution_velocity";
+  truth.extension_params = {draw(24, 1.2e-3, 2.0e-3, true)};
+  truth.heights = {0.30, 0.35, 0.40, 0.45, 0.50};
+  truth.write_sigma = true;
+  truth.seed = 24;
+  Diagnosis d = diagnose_hidden("restitution_velocity_sigma", truth);
+  INFO("truth: viscoelastic_time " << truth.extension_params[0] << " s\n" << summary(d));
+  CHECK(d.verdict == "effect");
+  REQUIRE(d.cause.size() == 1);
+  CHECK(d.cause[0] == "restitution_velocity");
+  CHECK(d.gain_percent > 25);
+  CHECK(candidate(d, "shape").tested);
+  CHECK_FALSE(candidate(d, "shape").significant);
+}
