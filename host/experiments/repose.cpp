@@ -1,3 +1,4 @@
+#include "experiments/experiment_simulation.h"
 #include "experiments/repose.h"
 
 #include <algorithm>
@@ -60,10 +61,9 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
                              std::to_string(lift_end) + " s)");
 
   Model model = build_model(spec);
-  auto sample_steps = std::max<uint64_t>(1, uint64_t(std::llround(0.05 / model.dt)));
+  uint64_t sample_steps = steps_in(0.05, model.dt);
   uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
-  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 {}, uint32_t(std::min<uint64_t>(sample_steps, 200)));
+  Simulation sim = experiment_simulation(model, options, sample_steps, 200);
   Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
 
   ReposeResult r;

@@ -1,3 +1,4 @@
+#include "experiments/experiment_simulation.h"
 #include "experiments/roll.h"
 
 #include <algorithm>
@@ -65,10 +66,9 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) 
   spec.walls = {incline, floor};
 
   Model model = build_model(spec);
-  auto sample_steps = std::max<uint64_t>(1, uint64_t(std::llround(0.005 / model.dt)));
+  uint64_t sample_steps = steps_in(0.005, model.dt);
   uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
-  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 {}, uint32_t(std::min<uint64_t>(sample_steps, 500)));
+  Simulation sim = experiment_simulation(model, options, sample_steps, 500);
   Progress progress(spec.name + " roll", total_steps, model.dt, options.progress);
 
   RollResult r;

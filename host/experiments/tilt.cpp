@@ -1,3 +1,4 @@
+#include "experiments/experiment_simulation.h"
 #include "experiments/tilt.h"
 
 #include <algorithm>
@@ -50,11 +51,10 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
 
   Model model = build_model(spec);
   double sample_dt = std::min(0.01, 0.05 * kPi / 180.0 / rate);  // every 0.05 degrees at most
-  auto sample_steps = std::max<uint64_t>(1, uint64_t(std::llround(sample_dt / model.dt)));
+  uint64_t sample_steps = steps_in(sample_dt, model.dt);
   double end_time = std::min(ex.max_time, plate.motion.stop_time);
   uint64_t total_steps = uint64_t(end_time / model.dt) + 1;
-  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 {}, uint32_t(std::min<uint64_t>(sample_steps, 500)));
+  Simulation sim = experiment_simulation(model, options, sample_steps, 500);
   Progress progress(spec.name + " tilt", total_steps, model.dt, options.progress);
 
   TiltResult r;
