@@ -80,6 +80,7 @@ REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs
 REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean entry (contacts.h)
 REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of rigid bodies (bodies.h)
 REPOSE_CONST kFlagRollingSpring = 256u;       // EDEM type C (EPSD) rolling resistance, full entries only
+REPOSE_CONST kFlagSpinningFriction = 512u;    // some pair has spinning friction (PairParams::c.x), full entries only
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;
@@ -110,6 +111,7 @@ struct PairParams {
   vec4 a;  // x E*, y G*, z damping factor -2 sqrt(5/6) beta (>= 0), w static friction
   vec4 b;  // x rolling friction, y restitution, z viscoelastic time A (s, extension
            // restitution_velocity, 0: off), w pi x cohesion energy density (extension cohesion, 0: off)
+  vec4 c;  // x spinning (twisting) friction mu_spin (0: off), yzw unused
 };
 
 // One wall at one step of a batch; the host evaluates prescribed motion.
@@ -182,7 +184,7 @@ struct ScanPush {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(PairParams) == 32);
+static_assert(sizeof(PairParams) == 48);
 static_assert(sizeof(WallState) == 144);
 static_assert(sizeof(Body) == 160);
 static_assert(sizeof(SubSphere) == 32);

@@ -503,8 +503,8 @@ class CaseReader {
   }
 
   void read_interaction(const Section& s) {
-    s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction", "viscoelastic_time",
-                  "cohesion_energy_density"},
+    s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction", "spinning_friction",
+                  "viscoelastic_time", "cohesion_energy_density"},
                  "an [[interaction]]");
     Interaction in;
     in.where = s.where();
@@ -544,6 +544,7 @@ class CaseReader {
     in.rolling_friction = parameter("rolling_friction", preset ? preset->rolling_friction : 0);
     if (in.rolling_friction < 0)
       s.fail("rolling_friction", format_number(in.rolling_friction) + " must not be negative");
+    if (auto mu = s.number("spinning_friction")) in.spinning_friction = non_negative(s, "spinning_friction", *mu);
     // Extensions restitution_velocity and cohesion (docs/diagnosis.md), off unless given.
     if (auto a = s.number("viscoelastic_time")) in.viscoelastic_time = non_negative(s, "viscoelastic_time", *a);
     if (auto k = s.number("cohesion_energy_density"))

@@ -37,6 +37,7 @@ struct Interaction {
   double restitution = 0;              // (0, 1]
   double static_friction = 0;          // >= 0
   double rolling_friction = 0;         // >= 0
+  double spinning_friction = 0;        // >= 0, torque mu_spin R* |Fn| against the spin about n (0: off)
   // Model extensions (docs/diagnosis.md), 0 = off:
   double viscoelastic_time = 0;        // s, restitution_velocity: damping A Sn vn on top of EDEM's
   double cohesion_energy_density = 0;  // J/m^3, cohesion: EDEM linear cohesion F = k pi R* dn

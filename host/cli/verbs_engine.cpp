@@ -73,8 +73,8 @@ int run_case(int argc, char** argv) {
   if (!loaded) return 2;
   CaseSpec& spec = *loaded;
   // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
-  // EPSD rolling springs need the full entry (the torque is stored per contact).
-  bool springs = spec.contact.rolling == RollingModel::ElasticPlastic;
+  // EPSD rolling springs and spinning friction need the full entry (torques stored per contact).
+  bool springs = needs_full_contact_entries(spec);
   if (variant_text.empty()) variant_text = backend == "vulkan" && !springs ? "contact,lean" : "contact";
   KernelVariant variant = parse_variant(variant_text);
   Model model = build_model(spec);

@@ -53,13 +53,19 @@ const std::vector<ModelExtension>& model_extensions() {
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
        "k_r = 2.25 mu_r^2 R*^2 k_n capped at mu_r R* |Fn|, with a dashpot of rolling_damping (fraction of "
-       "critical), instead of the constant torque",
+       "critical), instead of the constant torque; with spinning friction equal to each pair's rolling "
+       "friction (model C has no twisting resistance: without it a grain spins on the floor forever)",
        {{"rolling_damping", "1", 0.05, 1.0, false}},
        {"repose_angle", "bed_height"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          s.contact.rolling = RollingModel::ElasticPlastic;
          s.contact.rolling_damping = p.at(0);
+         // The constant torque it replaces acts on the whole spin, twist included; EPSD's spring
+         // excludes the twist, so the same coefficient goes to spinning friction (a case that
+         // already sets one keeps it).
+         for (Interaction& in : s.interactions)
+           if (in.spinning_friction == 0) in.spinning_friction = in.rolling_friction;
        }},
       {"size_spread",
        "a distribution of grain sizes instead of one size: every sphere [[fill]]'s radius uniform in "

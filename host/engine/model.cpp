@@ -160,6 +160,15 @@ void add_bodies(const CaseSpec& spec, Model& m) {
 
 }  // namespace
 
+bool needs_spinning_friction(const CaseSpec& spec) {
+  return std::any_of(spec.interactions.begin(), spec.interactions.end(),
+                     [](const Interaction& in) { return in.spinning_friction > 0; });
+}
+
+bool needs_full_contact_entries(const CaseSpec& spec) {
+  return spec.contact.rolling == RollingModel::ElasticPlastic || needs_spinning_friction(spec);
+}
+
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in) {
   auto youngs = [](const Material& m) {
     return m.youngs_modulus > 0 ? m.youngs_modulus : 2 * m.shear_modulus * (1 + m.poisson);
@@ -175,6 +184,7 @@ gpu::PairParams pair_params(const Material& a, const Material& b, const Interact
   // Extensions (docs/diagnosis.md), zero when off: viscoelastic time, pi x cohesion energy density.
   p.b = gpu::vec4(float(in.rolling_friction), float(in.restitution), float(in.viscoelastic_time),
                   float(kPi * in.cohesion_energy_density));
+  p.c = gpu::vec4(float(in.spinning_friction), 0.0f, 0.0f, 0.0f);
   return p;
 }
 
@@ -352,6 +362,7 @@ Model build_model(const CaseSpec& spec) {
     m.flags |= gpu::kFlagRollingSpring;
     m.rolling_damping = spec.contact.rolling_damping;
   }
+  if (needs_spinning_friction(spec)) m.flags |= gpu::kFlagSpinningFriction;
   if (spec.air_drag.drag_coefficient > 0)
     m.air_drag = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi;
 

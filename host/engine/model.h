@@ -70,5 +70,10 @@ Model build_model(const CaseSpec& spec);
 
 // EDEM's derived pair constants (ENGINEERING.md section 1), in double, then rounded once.
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in);
+// Some interaction has spinning friction (kFlagSpinningFriction).
+bool needs_spinning_friction(const CaseSpec& spec);
+// The case stores per-contact torques the lean entry has no room for (EPSD rolling springs,
+// spinning friction): run the 'full' kernel variant.
+bool needs_full_contact_entries(const CaseSpec& spec);
 
 }  // namespace repose

@@ -19,6 +19,9 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   if (layout_.rolling_springs && variant_.lean)
     throw std::invalid_argument("rolling = \"epsd\" stores each contact's rolling torque: use the 'full' kernel "
                                 "variant, not 'lean'");
+  if ((model_.flags & gpu::kFlagSpinningFriction) != 0 && variant_.lean)
+    throw std::invalid_argument("spinning_friction stores each contact's torques: use the 'full' kernel variant, "
+                                "not 'lean'");
   layout_.n_bodies = static_cast<uint32_t>(model_.bodies.size());
   constants_ = {model_.material, model_.pairs, model_.subs};
 

@@ -107,6 +107,26 @@ FN vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float
   return t;
 }
 
+// Spinning (twisting) friction, as in Chrono's SMC contact: a torque about the contact normal
+// against the relative spin s = (w_i - w_j) . n, of magnitude mu_spin R* |Fn|. It is limited so
+// that it never reverses the spin within a step: over one step the kick changes a spin by
+// dt T / I (integrate.h), so the torque is at most |s| / (2 dt D), with D = sum over the two
+// bodies of (entries in its contact list) x (1 / its moment of inertia about n) (the caller's
+// `stop_share`, 0 for a wall). Each of a body's contacts then takes at most half its share of
+// the stopping torque, so even all of them together cannot turn the spin over. Returns the
+// torque on i (j receives minus it); zero without spin.
+FN vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, float radius_star,
+                                 float normal_force, float stop_share, float dt) {
+  precise vec3 w = w_i - w_j;
+  precise float s = dot3(w, n);
+  if (!(s > 0.0f || s < 0.0f)) return vec3(0.0f);
+  precise float t_cap = (mu_spin * radius_star) * abs(normal_force);
+  precise float t_stop = abs(s) / ((2.0f * dt) * stop_share);
+  precise float t = min(t_cap, t_stop);
+  precise float k = s > 0.0f ? -t : t;
+  return scale3(n, k);
+}
+
 FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
                             float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
                             PairParams pp, float dt, uint flags, INOUT(vec3) shear) {

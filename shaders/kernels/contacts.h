@@ -7,6 +7,28 @@
 #ifndef REPOSE_KERNELS_CONTACTS_H
 #define REPOSE_KERNELS_CONTACTS_H
 
+// A body's part of the spinning friction limiter (contact_law.h): the entries of its contact
+// lists times 1 / its moment of inertia about n. A sphere's 1/I is omega.w; a clump's is
+// n . (R I^-1 R^T n) from its principal moments, and its entries those of all its sub-spheres
+// (contiguous, so two differences of the scanned row starts).
+KFN(float, spin_stop_share) uint i, vec3 n) {
+  uint first = i;
+  uint count = 1u;
+  precise float inv_i = B_omega[i].w;
+  if ((PC.flags & kFlagBodies) != 0u) {
+    uint b = B_subs[i].info.x;
+    first = B_bodies[b].spheres.x;
+    count = B_bodies[b].spheres.y;
+    vec3 nb = quat_rotate_inverse(B_bodies[b].quat, n);
+    vec3 m = xyz(B_bodies[b].inv_inertia);
+    inv_i = (nb.x * nb.x) * m.x + (nb.y * nb.y) * m.y + (nb.z * nb.z) * m.z;
+  }
+  uint last = first + count;
+  uint entries = (B_row_start[last] - B_row_start[first]) + (B_trans_start[last] - B_trans_start[first]);
+  precise float share = float(max(entries, 1u)) * inv_i;
+  return share;
+}
+
 KFN(void, process_contact) uint i, uint c) {
   uint p = B_partner[c];
   vec4 pi = B_pos[i];
@@ -96,6 +118,15 @@ KFN(void, process_contact) uint i, uint c) {
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
     if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);
+  }
+  if ((PC.flags & kFlagSpinningFriction) != 0u && pp.c.x > 0.0f) {
+    // Full entries only (the host refuses lean ones), like the rolling spring.
+    vec3 w_other = is_wall ? w_wall : wj;
+    precise float share = spin_stop_share(KB i, n);
+    if (!is_wall) share = share + spin_stop_share(KB p, n);
+    vec3 ts = spinning_friction_torque(n, wi, w_other, pp.c.x, radius_star, o.normal_force, share, PC.dt);
+    o.torque_i = o.torque_i + ts;
+    if (!is_wall) o.torque_j = o.torque_j - ts;
   }
   if (lean) {
     B_contact_force[c] = vec4(o.force_i, o.roll_arm);

@@ -82,10 +82,15 @@ TEST_CASE("size_spread: fill radii uniform in [r(1-s), r(1+s)] about the case's 
   CHECK(mean == Approx(0.005).margin(2.5e-4));
 }
 
-TEST_CASE("rolling_epsd switches a case to EDEM type C with the fitted damping", "[diagnosis][heap]") {
+TEST_CASE("rolling_epsd switches a case to EDEM type C with the fitted damping and spinning friction",
+          "[diagnosis][heap]") {
   CaseSpec spec = load_case(slot_heap());
   CHECK(spec.contact.rolling == RollingModel::ConstantTorque);
   find_extension("rolling_epsd")->apply(spec, {0.6});
   CHECK(spec.contact.rolling == RollingModel::ElasticPlastic);
   CHECK(spec.contact.rolling_damping == 0.6);
+  // Twisting resistance equal to each pair's rolling friction (grain 0.1, wall 0.15).
+  REQUIRE(spec.interactions.size() == 2);
+  for (const auto& in : spec.interactions) CHECK(in.spinning_friction == in.rolling_friction);
+  CHECK(spec.interactions[1].spinning_friction == 0.15);
 }
