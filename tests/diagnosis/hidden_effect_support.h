@@ -20,7 +20,9 @@ inline double draw(uint64_t seed, double lo, double hi, bool log_scale = false) 
 }
 
 // Writes the truth's data in a temporary folder and diagnoses them; `data_out` gets the CSV path.
-inline Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth, std::string* data_out = nullptr) {
+// `options` (progress and threads are set here): e.g. the calibrated values given (--params).
+inline Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth, std::string* data_out = nullptr,
+                                 DiagnoseOptions options = {}) {
   namespace fs = std::filesystem;
   fs::path dir = fs::temp_directory_path() / ("repose_hidden_" + name);
   fs::create_directories(dir);
@@ -30,7 +32,6 @@ inline Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth, 
   std::string csv = (dir / "data.csv").string();
   write_synthetic_data(truth, csv);
   if (data_out) *data_out = csv;
-  DiagnoseOptions options;
   options.progress = false;
   options.threads = 2;
   return diagnose(group_observations(read_measured_data(csv)), options);
