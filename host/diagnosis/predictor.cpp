@@ -1,5 +1,6 @@
 #include "diagnosis/predictor.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -8,6 +9,7 @@
 
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
+#include "diagnosis/heap_bed.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/repose.h"
 
@@ -155,6 +157,11 @@ Outcome Predictor::run_drop_condition(CaseSpec spec) const {
 
 Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
   Outcome out;
+  const auto& measures = observations().measures;
+  if (std::find(measures.begin(), measures.end(), "repose_angle") == measures.end()) {
+    out.values["bed_height"] = measure_bed_height(spec);  // the bed alone: no lift, no heap
+    return out;
+  }
   try {
     ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
     out.values["repose_angle"] = r.angle_deg;

@@ -10,6 +10,7 @@
 #include "case/particle_factory.h"
 #include "experiments/repose.h"
 #include "diagnosis/extensions.h"
+#include "diagnosis/heap_bed.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/drop.h"
 #include "util/atomic_file.h"
@@ -57,10 +58,16 @@ void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, con
       spec.spheres.clear();
       for (FillSpec& f : spec.fills) f.seed = 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep);
       expand_particles(spec);
-      ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
-      csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
-          << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
-      csv << case_column << "," << value << ",bed_height," << r.bed_height + truth.noise * noise() << "," << rep
+      double bed = 0;
+      if (truth.bed_height_only) {
+        bed = measure_bed_height(spec);
+      } else {
+        ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
+        bed = r.bed_height;
+        csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
+            << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
+      }
+      csv << case_column << "," << value << ",bed_height," << bed + truth.noise * noise() << "," << rep
           << (truth.write_sigma ? "," + text(truth.noise) : "") << "\n";
     }
   }

@@ -25,6 +25,7 @@ struct SyntheticTruth {
                                          // the values of heap_condition_key
   std::string heap_condition_key = "fill.0.count";  // a heap's condition variable (any case key)
   double angle_noise = 0.5;              // heap: SD of one measured angle, deg (bed height: `noise`)
+  bool bed_height_only = false;          // heap: only bed_height rows (the bed alone is simulated)
   int replicates = 5;
   double noise = 0.001;                  // SD of one measured rebound height, m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s

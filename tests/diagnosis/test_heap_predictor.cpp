@@ -7,7 +7,9 @@
 
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
+#include "diagnosis/heap_bed.h"
 #include "diagnosis/predictor.h"
+#include "experiments/repose.h"
 
 using namespace repose;
 namespace fs = std::filesystem;
@@ -93,4 +95,14 @@ TEST_CASE("rolling_epsd switches a case to EDEM type C with the fitted damping a
   REQUIRE(spec.interactions.size() == 2);
   for (const auto& in : spec.interactions) CHECK(in.spinning_friction == in.rolling_friction);
   CHECK(spec.interactions[1].spinning_friction == 0.15);
+}
+
+TEST_CASE("the bed alone (no lift) measures the bed height run_repose measures, to the byte", "[diagnosis][heap]") {
+  CaseSpec spec = load_case(slot_heap(), {{"fill.0.count", "120"}});
+  spec.spheres.clear();
+  expand_particles(spec);
+  double bed = measure_bed_height(spec);
+  ReposeResult heap = run_repose(spec, {}, true);
+  CHECK(bed == heap.bed_height);
+  CHECK(bed > 0.03);  // 120 grains of 10 mm over 80 x 30 mm: ~5 cm at a packing fraction of 0.55
 }

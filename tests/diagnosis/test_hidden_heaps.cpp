@@ -39,3 +39,36 @@ TEST_CASE("hidden rolling_epsd is named from heaps, the calibrated friction give
   CHECK(d.gain_percent > 30);
   CHECK(d.heldout_error_extended < d.heldout_error_baseline);
 }
+
+TEST_CASE("hidden size_spread is named from bed heights alone, the calibrated friction given",
+          "[diagnosis][hidden][heap]") {
+  // A size spread packs the same count of grains into a higher bed (their mean volume grows as
+  // (1 + s^2)): at s = 0.35, +5-9 mm at 150-250 grains where replicate beds scatter by ~1-4 mm,
+  // while the angle moves less than its 2-4 deg scatter. So the data here are bed heights only,
+  // and the diagnosis simulates the bed alone (fill and settle to the lift, a third of a heap).
+  // EPSD, the rival, moves the bed by ~1 mm. Measured with this draw: see the README.
+  SyntheticTruth truth;
+  truth.case_path = case_path("slot_heap");
+  truth.extension = "size_spread";
+  truth.extension_params = {draw(22, 0.25, 0.4)};
+  // Up to 200 grains: at 250 a spread near the fit's 0.4 no longer fits the fill box.
+  truth.heights = {120, 160, 200};
+  truth.replicates = 6;
+  truth.noise = 5e-4;
+  truth.bed_height_only = true;
+  truth.seed = 22;
+  DiagnoseOptions options;
+  options.given = {{"interaction.grain/grain.static_friction", "0.5"}};
+  options.fit_baseline = false;
+  options.candidates = {"size_spread", "rolling_epsd"};
+  options.simulated_replicates = 3;
+  Diagnosis d = diagnose_hidden("size_spread_bed", truth, nullptr, options);
+  INFO("truth: size_spread " << truth.extension_params[0] << "\n" << summary(d));
+  CHECK(d.verdict == "effect");
+  REQUIRE(d.cause.size() == 1);
+  CHECK(d.cause[0] == "size_spread");
+  CHECK(d.gain_percent > 30);
+  const ModelResult& spread = candidate(d, "size_spread");
+  REQUIRE(spread.tested);
+  CHECK(spread.params.back() == Approx(truth.extension_params[0]).margin(0.1));
+}
