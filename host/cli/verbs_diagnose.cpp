@@ -117,6 +117,7 @@ int run_synth_data(int argc, char** argv) {
   app.add_option("--condition", truth.heap_condition_key, "heap case: the key the conditions vary (default fill.0.count)");
   app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth");
   app.add_option("--angle-noise", truth.angle_noise, "heap case: SD of one measured angle, deg (default 0.5)");
+  app.add_flag("--bed-only", truth.bed_height_only, "heap case: bed heights only (the bed alone is simulated, no lift)");
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
   app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
