@@ -33,7 +33,7 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
   fs::create_directories(out_dir);
   RunStore store(db_path, plan, options.fresh);
-  Executor executor(plan, store, mpi, options.jobs, options.quiet);
+  Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
   executor.set_picture_dir(out_dir);
 
   CampaignRecord record;
