@@ -1,5 +1,6 @@
 #include "calibrate/adaptive_loop.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -47,27 +48,21 @@ std::string loop_id(int index) {
   return id;
 }
 
-// Maximises expected improvement over quasi-random candidates, then polishes the best by a
-// shrinking compass search; a point on top of an existing run is never proposed.
-Eigen::VectorXd propose(const GaussianProcess& gp, double target, double best, const Eigen::MatrixXd& done, double& ei_out) {
-  const int k = int(done.cols());
-  auto too_close = [&](const Eigen::VectorXd& p) {
-    for (int i = 0; i < done.rows(); ++i)
-      if ((done.row(i).transpose() - p).norm() < 1e-3) return true;
-    return false;
-  };
-  auto ei = [&](const Eigen::VectorXd& p) {
-    return too_close(p) ? -1.0 : expected_improvement_to_target(gp.mean(p), gp.sd(p), target, best);
-  };
+// Maximises `score` over the given points and quasi-random candidates, then polishes the best by
+// a shrinking compass search inside the coded cube.
+template <class Score>
+Eigen::VectorXd maximise(int k, const Eigen::MatrixXd& extra, Score score, double& top) {
   Eigen::VectorXd arg;
-  double top = -INFINITY;
-  for (const auto& p : halton_points(k, 1, 1024 * k)) {
-    double v = ei(p);
+  top = -INFINITY;
+  auto consider = [&](const Eigen::VectorXd& p) {
+    double v = score(p);
     if (v > top) {
       top = v;
       arg = p;
     }
-  }
+  };
+  for (int i = 0; i < extra.rows(); ++i) consider(extra.row(i).transpose());
+  for (const auto& p : halton_points(k, 1, 1024 * k)) consider(p);
   for (double step = 0.05; step > 1e-4; step *= 0.5) {
     bool moved = true;
     while (moved) {
@@ -76,7 +71,7 @@ Eigen::VectorXd propose(const GaussianProcess& gp, double target, double best, c
         for (double dir : {-1.0, 1.0}) {
           Eigen::VectorXd p = arg;
           p[d] = std::clamp(p[d] + dir * step, -1.0, 1.0);
-          double v = ei(p);
+          double v = score(p);
           if (v > top + 1e-15) {
             top = v;
             arg = p;
@@ -85,8 +80,39 @@ Eigen::VectorXd propose(const GaussianProcess& gp, double target, double best, c
         }
     }
   }
-  ei_out = top;
   return arg;
+}
+
+// Expected improvement towards the target, `best` the smallest |mean - target| at the runs so far
+// (the surrogate's mean, not the noisy runs themselves: the plug-in rule for noisy responses).
+// Unless repeats are allowed (each run its own packing seed), a point on top of an existing run
+// is never proposed: it would give the same bytes.
+Eigen::VectorXd propose(const GaussianProcess& gp, double target, double best, const Eigen::MatrixXd& done,
+                        bool allow_repeat, double& ei_out) {
+  auto too_close = [&](const Eigen::VectorXd& p) {
+    for (int i = 0; i < done.rows(); ++i)
+      if ((done.row(i).transpose() - p).norm() < 1e-3) return true;
+    return false;
+  };
+  auto ei = [&](const Eigen::VectorXd& p) {
+    return !allow_repeat && too_close(p) ? -1.0 : expected_improvement_to_target(gp.mean(p), gp.sd(p), target, best);
+  };
+  return maximise(int(done.cols()), Eigen::MatrixXd(0, done.cols()), ei, ei_out);
+}
+
+// The surrogate's answer: where the expected squared distance of the mean response from the
+// target, (mean - target)^2 + sd^2, is smallest (the runs' own points are candidates too).
+Eigen::VectorXd best_estimate(const GaussianProcess& gp, double target, const Eigen::MatrixXd& done) {
+  double top = 0;
+  return maximise(int(done.cols()), done, [&](const Eigen::VectorXd& p) {
+    const double d = gp.mean(p) - target, s = gp.sd(p);
+    return -(d * d + s * s);
+  }, top);
+}
+
+// The run-to-run noise the surrogate found (its nugget), in the response's units.
+double noise_sd(const GaussianProcess& gp) {
+  return gp.y_scale * std::sqrt(gp.signal_variance * gp.noise_ratio);
 }
 
 }  // namespace
@@ -103,16 +129,46 @@ std::vector<Eigen::VectorXd> halton_points(int k, int first, int count) {
   return pts;
 }
 
+LoopDecision decide(const CampaignPlan& plan, const Eigen::MatrixXd& x, const Eigen::VectorXd& y) {
+  const double target = plan.measured, tol = plan.absolute_tolerance();
+  LoopDecision d;
+  d.gp = std::make_shared<GaussianProcess>(fit_gaussian_process(x, y));
+  const GaussianProcess& gp = *d.gp;
+  d.chosen = best_estimate(gp, target, x);
+  d.mean = gp.mean(d.chosen);
+  d.sd = gp.sd(d.chosen);
+  d.noise_sd = noise_sd(gp);
+  // Met when the surrogate's mean response at its best estimate lies within the tolerance of the
+  // target and is itself known to within the tolerance (one sd): a lucky single run of a noisy
+  // response does not stop the loop, and a noise-free run on target does (its sd is ~0).
+  const bool on_target = std::abs(d.mean - target) <= tol;
+  d.met = on_target && d.sd <= tol;
+  if (plan.adaptive.seed_per_run && on_target) {
+    d.next = d.chosen;  // on target but not yet sure of it: another packing there narrows the sd
+    d.repeat = true;
+  } else {
+    double best = INFINITY;
+    for (int i = 0; i < x.rows(); ++i) best = std::min(best, std::abs(gp.mean(x.row(i).transpose()) - target));
+    d.next = propose(gp, target, best, x, plan.adaptive.seed_per_run, d.expected_improvement);
+  }
+  return d;
+}
+
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet) {
   const int k = int(plan.factors.size());
   const double target = plan.measured, tol = plan.absolute_tolerance();
+  const bool per_run = plan.adaptive.seed_per_run;
+  auto seed_of = [&](int index) {
+    return per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index) : plan.base_seed;
+  };
   AdaptiveOutcome out;
   out.initial = plan.adaptive.initial;
   std::vector<RunSpec> start;
-  std::vector<double> start_ei;
   int index = 0;
-  for (const auto& p : halton_points(k, 1, plan.adaptive.initial))
-    start.push_back({loop_id(++index), "loop", index, 0, plan.base_seed, to_actual(plan, p)});
+  for (const auto& p : halton_points(k, 1, plan.adaptive.initial)) {
+    ++index;
+    start.push_back({loop_id(index), "loop", index, 0, seed_of(index), to_actual(plan, p)});
+  }
   executor.run(start, "loop start");
   std::vector<double> proposal_ei(start.size(), 0.0);
 
@@ -132,24 +188,23 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor
   Eigen::VectorXd y;
   std::vector<RunRecord> runs;
   int count = int(start.size());
+  LoopDecision d;
   for (;;) {
     gather(count, x, y, runs);
-    int best = 0;
-    for (int i = 0; i < count; ++i) {
-      if (std::abs(y[i] - target) < std::abs(y[best] - target)) best = i;
-      if (out.simulations_to_target < 0 && std::abs(y[i] - target) <= tol) out.simulations_to_target = i + 1;
-    }
-    if (std::abs(y[best] - target) <= tol || count >= plan.adaptive.budget) break;
-    GaussianProcess gp = fit_gaussian_process(x, y);
-    double ei = 0;
-    Eigen::VectorXd next = propose(gp, target, std::abs(y[best] - target), x, ei);
-    RunSpec spec{loop_id(count + 1), "loop", count + 1, 0, plan.base_seed, to_actual(plan, next)};
+    d = decide(plan, x, y);
+    if (d.met && out.simulations_to_target < 0) out.simulations_to_target = count;
+    if (d.met || count >= plan.adaptive.budget) break;
+    const Eigen::VectorXd& next = d.next;
+    const double ei = d.expected_improvement;
+    RunSpec spec{loop_id(count + 1), "loop", count + 1, 0, seed_of(count + 1), to_actual(plan, next)};
     if (const RunRecord* stored = store.find(spec.id); stored && stored->spec.x != spec.x)
       throw std::runtime_error(store.path() + " holds a " + spec.id + " at other parameters than the loop proposes now; "
                                "start again with --new");
     if (!quiet) {
-      std::fprintf(stderr, "loop: best |%s - %.6g| = %.3g (tolerance %.3g); GP mean at proposal %.6g +- %.3g, EI %.3g\n",
-                   plan.response.c_str(), target, std::abs(y[best] - target), tol, gp.mean(next), gp.sd(next), ei);
+      std::fprintf(stderr,
+                   "loop: surrogate %s = %.6g +- %.3g at its best estimate (target %.6g, tolerance %.3g, run noise sd %.3g); "
+                   "next: mean %.6g +- %.3g, EI %.3g\n",
+                   plan.response.c_str(), d.mean, d.sd, target, tol, d.noise_sd, d.gp->mean(next), d.gp->sd(next), ei);
     }
     executor.run({spec}, "loop");
     proposal_ei.push_back(ei);
@@ -158,20 +213,20 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor
   for (int i = 0; i < count; ++i)
     out.steps.push_back({runs[i], (y[i] - target) / target, i < int(proposal_ei.size()) ? proposal_ei[i] : 0.0});
 
-  int best = 0;
-  for (int i = 0; i < count; ++i)
-    if (std::abs(y[i] - target) < std::abs(y[best] - target)) best = i;
-  auto gp = std::make_shared<GaussianProcess>(fit_gaussian_process(x, y));
+  const std::shared_ptr<GaussianProcess> gp = d.gp;
+  const Eigen::VectorXd chosen = d.chosen;
   CalibrationResult& res = out.result;
   res.method = "adaptive (Gaussian process + expected improvement)";
-  res.chosen = runs[best].spec.x;
-  res.chosen_coded = x.row(best).transpose();
-  res.predicted = gp->mean(res.chosen_coded);
-  res.target_reached = std::abs(y[best] - target) <= tol;
+  res.chosen_coded = chosen;
+  res.chosen = to_actual(plan, chosen);
+  res.predicted = d.mean;
+  res.predicted_sd = d.sd;
+  res.run_noise_sd = d.noise_sd;
+  res.target_reached = d.met;
   res.predict = [gp](const Eigen::VectorXd& c) { return gp->mean(c); };
   res.predict_sd = [gp](const Eigen::VectorXd& c) { return gp->sd(c); };
-  Eigen::VectorXd grad = gp->gradient(res.chosen_coded);
-  Eigen::VectorXd lo = res.chosen_coded, hi = res.chosen_coded;
+  Eigen::VectorXd grad = gp->gradient(chosen);
+  Eigen::VectorXd lo = chosen, hi = chosen;
   for (const auto& p : halton_points(k, 1, 4096))
     if (std::abs(gp->mean(p) - target) <= tol) {
       lo = lo.cwiseMin(p);
@@ -187,6 +242,11 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor
   for (int j = 0; j < k; ++j) text << " " << plan.factors[j].name << " = " << gp->length_scale[j];
   text << ", nugget/signal variance = " << gp->noise_ratio << ", signal sd = " << gp->y_scale * std::sqrt(gp->signal_variance)
        << ", log marginal likelihood = " << gp->log_likelihood << "\n";
+  text << "At the chosen point the surrogate's mean " << plan.response << " is " << res.predicted << " +- " << res.predicted_sd
+       << " (sd of the mean); run-to-run noise sd " << res.run_noise_sd << " (the nugget). Tolerance " << tol << ".\n";
+  if (res.run_noise_sd > tol)
+    text << "At this noise, knowing the mean to within the tolerance takes about (" << res.run_noise_sd << " / " << tol
+         << ")^2 = " << std::ceil(std::pow(res.run_noise_sd / tol, 2)) << " runs at the point.\n";
   res.model_text = text.str();
   return out;
 }

@@ -24,6 +24,8 @@ struct CalibrationResult {
   Eigen::VectorXd chosen_coded;    // in the plan's factor coding (low -1, high +1)
   std::vector<double> chosen;      // actual
   double predicted = 0;            // model's response at the chosen point
+  double predicted_sd = 0;         // its uncertainty (sd of the mean response; adaptive loop)
+  double run_noise_sd = 0;         // run-to-run scatter the surrogate found (adaptive loop)
   bool target_reached = false;     // the model (or the loop's runs) meet the target
   std::vector<ParameterEstimate> parameters;
   double replicate_sd = 0;         // pooled sd of replicate runs (packing seeds)

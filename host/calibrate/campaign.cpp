@@ -1,6 +1,8 @@
 #include "calibrate/campaign.h"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <set>
 
@@ -31,7 +33,7 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
   fs::create_directories(out_dir);
   RunStore store(db_path, plan, options.fresh);
-  Executor executor(plan, store, mpi, options.jobs, options.quiet);
+  Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
   executor.set_picture_dir(out_dir);
 
   CampaignRecord record;
@@ -63,6 +65,12 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
       }
     for (const auto& r : stored(store, verify)) at_chosen.push_back(r);
     add_verification(plan, at_chosen, {}, record.result);
+    // The calibrated value is where the mean response meets the target; its uncertainty comes
+    // from how well the surrogate knows that mean (the runs' noise averaged) and the lab's sd.
+    for (auto& p : record.result.parameters) {
+      const double s = std::hypot(record.result.predicted_sd, plan.measured_sd);
+      p.uncertainty = std::abs(p.slope) > 0 ? s / std::abs(p.slope) : std::numeric_limits<double>::infinity();
+    }
   }
   mpi.stop_workers();
 
@@ -94,8 +102,14 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
               executor.simulated());
   for (const auto& p : res.parameters)
     std::printf("  %s = %.6g +- %.3g  (target met for %.6g .. %.6g)\n", p.name.c_str(), p.value, p.uncertainty, p.set_low, p.set_high);
-  if (record.loop)
-    std::printf("  target met by simulation %d of the loop (budget %d)\n", loop.simulations_to_target, plan.adaptive.budget);
+  if (record.loop) {
+    std::printf("  surrogate at the chosen point: %s = %.6g +- %.3g (run noise sd %.3g)\n", plan.response.c_str(),
+                res.predicted, res.predicted_sd, res.run_noise_sd);
+    if (loop.simulations_to_target > 0)
+      std::printf("  target met after simulation %d of the loop (budget %d)\n", loop.simulations_to_target, plan.adaptive.budget);
+    else
+      std::printf("  target not met within the loop's budget of %d\n", plan.adaptive.budget);
+  }
   std::printf("  verification: %s = %.6g +- %.3g over %zu runs, measured %.6g, error %+.2f %%%s\n", plan.response.c_str(),
               res.verification_mean, res.verification_sd, res.verification.size(), plan.measured, 100 * res.verification_error,
               res.target_reached ? "" : " (target NOT reached)");

@@ -13,6 +13,7 @@ struct CampaignOptions {
   std::string out_dir;  // default: out/calibrate/PLAN_NAME
   bool fresh = false;   // --new: replace an existing database
   int jobs = 1;         // local simulations at a time
+  unsigned threads = 1; // cpu backend threads of each simulation
   bool quiet = false;
 };
 

@@ -105,9 +105,13 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
   if (rec.loop) {
     const AdaptiveOutcome& loop = *rec.loop;
     md << "\n## Adaptive loop\n\n" << loop.initial << " space-filling runs (Halton), then one proposal at a time.";
+    md << (plan.adaptive.seed_per_run ? " Each run packs with its own seed." : " Every run packs with the same seed.");
     if (loop.simulations_to_target > 0)
-      md << " The target was met by simulation " << loop.simulations_to_target << ".";
+      md << " The target was met after simulation " << loop.simulations_to_target
+         << " (the surrogate's mean within the tolerance and known to within it).";
     else md << " The target was not met within the budget of " << plan.adaptive.budget << ".";
+    md << " At the chosen point the surrogate expects " << plan.response << " = " << num(res.predicted) << " +- "
+       << num(res.predicted_sd, 3) << "; run-to-run noise sd " << num(res.run_noise_sd, 3) << ".";
     md << "\n\n| # | ";
     for (const auto& f : plan.factors) md << f.name << " | ";
     md << plan.response << " | error | expected improvement |\n|---|";
@@ -145,6 +149,8 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
   if (rec.loop) {
     j["simulations_to_target"] = rec.loop->simulations_to_target;
     j["loop_runs"] = int(rec.loop->steps.size());
+    j["predicted_sd"] = res.predicted_sd;
+    j["run_noise_sd"] = res.run_noise_sd;
   }
   for (const auto& p : res.parameters)
     j["parameters"][p.name] = {{"value", p.value}, {"uncertainty", std::isfinite(p.uncertainty) ? nlohmann::ordered_json(p.uncertainty) : nlohmann::ordered_json(nullptr)},

@@ -1,5 +1,6 @@
 #include "calibrate/executor.h"
 
+#include <algorithm>
 #include <mpi.h>
 
 #include <chrono>
@@ -34,8 +35,8 @@ std::string describe(const RunRecord& r, const CampaignPlan& plan) {
 
 }  // namespace
 
-Executor::Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, int jobs, bool quiet)
-    : plan_(plan), store_(store), mpi_(mpi), jobs_(jobs), quiet_(quiet) {
+Executor::Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, int jobs, bool quiet, unsigned threads)
+    : plan_(plan), store_(store), mpi_(mpi), jobs_(jobs), quiet_(quiet), threads_(std::max(1u, threads)) {
   if (jobs_ < 1 && !mpi_.has_workers()) jobs_ = 1;
 }
 
@@ -45,6 +46,7 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
     const RunRecord* stored = store_.find(s.id);
     if (!stored) {
       pending.push_back(make_job(plan_, s));
+      pending.back().options.threads = threads_;
       if (s.phase == "verify" && !picture_dir_.empty()) pending.back().options.picture_path = picture_dir_ + "/" + s.id + ".png";
     }
     else if (stored->spec.x != s.x || stored->spec.seed != s.seed)

@@ -16,7 +16,7 @@ class Executor {
  public:
   // `jobs` local simulations at a time on this rank (0 allowed under MPI: rank 0 coordinates
   // only). `mpi` may be inactive. `quiet` silences the per-run progress lines.
-  Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, int jobs, bool quiet);
+  Executor(const CampaignPlan& plan, RunStore& store, MpiSession& mpi, int jobs, bool quiet, unsigned threads = 1);
 
   // Runs every spec not yet stored. When a run fails, the others in flight finish and are
   // stored, then std::runtime_error names the failed run.
@@ -33,6 +33,7 @@ class Executor {
   MpiSession& mpi_;
   int jobs_;
   bool quiet_;
+  unsigned threads_;
   int simulated_ = 0;
   std::string picture_dir_;
 };

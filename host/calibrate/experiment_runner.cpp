@@ -43,6 +43,8 @@ Responses repose_responses(const CaseSpec& spec, const ExperimentOptions& o) {
   Responses out = {{"angle", r.angle_deg}, {"heap_height", r.heap.heap_height}, {"settle_time", r.settle_time},
                    {"particles_measured", double(r.particles_measured)}};
   if (r.heap_3d && r.heap_3d->valid_sectors > 0) out["angle_3d"] = r.heap_3d->mean_deg;
+  out["angle_front"] = r.heap.mean_deg;  // the single front view, also when the angle is several views' mean
+  if (r.views) out["angle_views_sd"] = r.views->sd_deg;
   return out;
 }
 
@@ -60,7 +62,7 @@ const std::map<std::string, ExperimentType>& experiments() {
     register_experiment(t, {"slide", {"onset_angle_deg", "tan_alpha", "onset_time", "rolled_fraction"}, tilt_responses});
     register_experiment(t, {"roll", {"rolling_distance", "mu_r", "stop_time", "speed_at_foot", "onset_angle_deg", "tan_alpha",
                                      "onset_time", "rolled_fraction"}, roll_responses});
-    register_experiment(t, {"repose", {"angle", "angle_3d", "heap_height", "settle_time", "particles_measured"}, repose_responses});
+    register_experiment(t, {"repose", {"angle", "angle_3d", "angle_front", "angle_views_sd", "heap_height", "settle_time", "particles_measured"}, repose_responses});
     return t;
   }();
   return table;

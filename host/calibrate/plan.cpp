@@ -290,13 +290,18 @@ void read_design(const PlanTable& t, CampaignPlan& plan) {
 }
 
 void read_adaptive(const PlanTable& t, CampaignPlan& plan) {
-  t.allow_only({"initial", "budget"});
+  t.allow_only({"initial", "budget", "seeds"});
   const int k = int(plan.factors.size());
   plan.adaptive.initial = t.integer_at_least("initial", 2 * k + 1, 2);
   plan.adaptive.budget = t.integer_at_least("budget", 20, 2);
   if (plan.adaptive.budget < plan.adaptive.initial)
     t.fail("budget", "budget " + std::to_string(plan.adaptive.budget) + " is below the " +
                          std::to_string(plan.adaptive.initial) + " initial runs");
+  if (auto seeds = t.text("seeds")) {
+    if (*seeds != "same" && *seeds != "per_run")
+      t.fail("seeds", "expected \"same\" (every run packs with base_seed) or \"per_run\", got \"" + *seeds + "\"");
+    plan.adaptive.seed_per_run = *seeds == "per_run";
+  }
 }
 
 // Tries the settings and every factor's extremes on the base case, so an unknown key or a value
@@ -457,6 +462,7 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   } else {
     kv["adaptive.initial"] = std::to_string(p.adaptive.initial);
     kv["adaptive.budget"] = std::to_string(p.adaptive.budget);
+    if (p.adaptive.seed_per_run) kv["adaptive.seeds"] = "per_run";  // absent: plans from before keep their hash
   }
   kv["verification.runs"] = std::to_string(p.verification_runs);
   std::string text;

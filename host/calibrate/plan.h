@@ -44,6 +44,11 @@ struct DesignPlan {
 struct AdaptivePlan {
   int initial = 0;     // space-filling start (0: 2k + 1)
   int budget = 20;     // most simulations of the loop, the start included
+  // false ("same"): every loop run packs with base_seed, so runs differ only by the factors
+  // (right for a smooth response). true ("per_run"): loop run i packs with base_seed +
+  // verification runs + i, so a response that is chaotic in the packing becomes independent
+  // noise the surrogate averages, and the loop may repeat a point.
+  bool seed_per_run = false;
 };
 
 struct CampaignPlan {

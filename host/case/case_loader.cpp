@@ -367,7 +367,7 @@ class CaseReader {
     if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
     if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
     if (type == "repose")
-      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "heap_side", "axisymmetric", "floor_z"});
+      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"});
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
@@ -397,6 +397,12 @@ class CaseReader {
     ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
     ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
     ex.axisymmetric = s->boolean("axisymmetric").value_or(false);
+    if (auto n = s->integer("views")) {
+      if (*n < 1 || *n > 180) s->fail("views", std::to_string(*n) + " must lie between 1 and 180");
+      ex.views = int(*n);
+      if (ex.views > 1 && ex.heap_side != "both")
+        s->fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
+    }
     if (auto z = s->number("floor_z")) ex.heap_floor_z = *z;
   }
 

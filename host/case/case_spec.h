@@ -209,6 +209,8 @@ struct ExperimentSpec {
   std::string view = "y";          // camera looks along +y ("y") or +x ("x")
   std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
   bool axisymmetric = false;       // also the 3D sector fit (bottomless cylinder)
+  int views = 1;                   // > 1: the angle is the mean slope of that many front views
+                                   // over half a turn about the heap axis (needs heap_side both)
   std::optional<double> heap_floor_z;  // default: the lowest sphere bottom
   SourceRef where;
 };

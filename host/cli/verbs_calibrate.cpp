@@ -31,6 +31,9 @@ int run_calibrate(int argc, char** argv) {
   app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)");
   app.add_flag("--new", options.fresh, "discard an existing database and start over");
   app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun)");
+  app.add_option("--threads", options.threads,
+                 "cpu backend threads of each simulation (default 1; a loop that proposes one run at a time can use them)")
+      ->check(CLI::Range(1, 256));
   app.add_flag("--quiet", options.quiet, "no per-run progress lines");
   app.add_flag("--check", check_only, "load and check the plan, print the runs it asks for, run nothing");
   try {

@@ -165,6 +165,20 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   j["particles_measured"] = r.particles_measured;
   j["settle_time"] = r.settle_time;
   j["largest_kinetic_energy"] = r.kinetic_energy;
+  if (r.views) {
+    Json v;
+    v["mean_deg"] = r.views->mean_deg;
+    v["sd_deg"] = r.views->sd_deg;
+    v["valid_slopes"] = r.views->valid_slopes;
+    v["centre"] = {r.views->centre.x, r.views->centre.y};
+    Json per = Json::array();
+    auto angle = [](double a) { return std::isfinite(a) ? Json(a) : Json(nullptr); };
+    for (size_t k = 0; k < r.views->azimuth_deg.size(); ++k)
+      per.push_back({{"azimuth_deg", r.views->azimuth_deg[k]}, {"left_deg", angle(r.views->left_deg[k])},
+                     {"right_deg", angle(r.views->right_deg[k])}});
+    v["per_view"] = per;
+    j["views"] = v;
+  }
   if (r.heap_3d) {
     Json a;
     a["mean_deg"] = r.heap_3d->mean_deg;
@@ -199,6 +213,9 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
               r.heap.left.valid ? (std::to_string(r.heap.left.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.right.valid ? (std::to_string(r.heap.right.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.heap_height, r.particles_measured);
+  if (r.views)
+    std::printf("  %zu views around the heap: mean %.2f deg, sd %.2f deg over %d slopes (the angle)\n",
+                r.views->azimuth_deg.size(), r.views->mean_deg, r.views->sd_deg, r.views->valid_slopes);
   if (r.heap_3d)
     std::printf("  3D sector fit: mean %.2f deg, spread %.2f deg over %d sectors\n", r.heap_3d->mean_deg,
                 r.heap_3d->spread_deg, r.heap_3d->valid_sectors);

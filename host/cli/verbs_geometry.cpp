@@ -16,6 +16,7 @@
 #include "geometry/stl.h"
 #include "geometry/templates.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_views.h"
 #include "measure/heap_png.h"
 
 namespace repose::cli {
@@ -294,6 +295,7 @@ int run_heap_angle(int argc, char** argv) {
   CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
   std::string file, view = "y", png, json;
   bool axisymmetric = false;
+  int views = 1;
   HeapAngleOptions options;
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
@@ -304,6 +306,8 @@ int run_heap_angle(int argc, char** argv) {
   app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
   app.add_option("--json", json, "write the results as JSON to this file");
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
+  app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
+      ->check(CLI::Range(1, 180));
   app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)");
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
@@ -334,6 +338,14 @@ int run_heap_angle(int argc, char** argv) {
   std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
   std::printf("mean angle   %7.3f deg\n", m.mean_deg);
 
+  std::optional<HeapViewsAngle> around;
+  if (views > 1) {
+    around = measure_heap_angle_views(spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
+    std::printf("%d views     about (%.6g, %.6g) m: mean %.3f deg, sd %.3f deg over %d slopes\n", views, around->centre.x,
+                around->centre.y, around->mean_deg, around->sd_deg, around->valid_slopes);
+    for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
+      std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", around->azimuth_deg[k], around->left_deg[k], around->right_deg[k]);
+  }
   std::optional<AxisymmetricHeapAngle> a;
   if (axisymmetric) {
     a = measure_axisymmetric_heap_angle(spheres, axi);
@@ -356,6 +368,14 @@ int run_heap_angle(int argc, char** argv) {
     slope_json(j, "left", m.left);
     slope_json(j, "right", m.right);
     j.number("mean_deg", m.mean_deg);
+    if (around) {
+      j.open("views").number("centre_x", around->centre.x).number("centre_y", around->centre.y);
+      j.integer("valid_slopes", around->valid_slopes).number("mean_deg", around->mean_deg).number("sd_deg", around->sd_deg);
+      j.open("per_view", '[');
+      for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
+        j.open().number("azimuth_deg", around->azimuth_deg[k]).number("left_deg", around->left_deg[k]).number("right_deg", around->right_deg[k]).close();
+      j.close(']').close();
+    }
     if (a) {
       j.open("axisymmetric").number("centre_x", a->centre.x).number("centre_y", a->centre.y);
       j.integer("valid_sectors", a->valid_sectors).number("mean_deg", a->mean_deg).number("spread_deg", a->spread_deg);

@@ -121,6 +121,11 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
       throw std::runtime_error(spec.path + ": the heap has no measurable slope (" + r.heap.left.problem + ")");
     r.angle_deg = r.heap.mean_deg;
   }
+  if (ex.views > 1) {
+    r.views = measure_heap_angle_views(r.spheres, ex.views, opts);
+    if (r.views->valid_slopes == 0) throw std::runtime_error(spec.path + ": no view of the heap shows a measurable slope");
+    r.angle_deg = r.views->mean_deg;
+  }
   if (ex.axisymmetric) {
     AxisymmetricOptions a;
     a.floor_z = floor_z;

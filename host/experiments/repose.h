@@ -10,12 +10,14 @@
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_views.h"
 
 namespace repose {
 
 struct ReposeResult {
   double angle_deg = 0;           // per [experiment] heap_side: left, right or their mean
   HeapAngle heap;                 // the 2D measurement (with its picture)
+  std::optional<HeapViewsAngle> views;  // [experiment] views > 1: then angle_deg is their mean
   std::optional<AxisymmetricHeapAngle> heap_3d;
   double settle_time = 0;         // s when the heap was judged settled
   // The bed before the lift (first sample at or after the lift wall's motion start): twice the

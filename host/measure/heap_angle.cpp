@@ -115,6 +115,30 @@ HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngle
   return out;
 }
 
+glm::dvec2 heap_centre(const std::vector<Sphere>& spheres) {
+  // Volume-weighted medians: a body that rolled far away moves them by at most its share of the
+  // volume, never by its distance.
+  std::vector<std::pair<double, double>> xs, ys;  // (coordinate, weight)
+  double total = 0;
+  for (const Sphere& s : spheres) {
+    const double w = s.radius * s.radius * s.radius;
+    xs.push_back({s.centre.x, w});
+    ys.push_back({s.centre.y, w});
+    total += w;
+  }
+  auto weighted_median = [total](std::vector<std::pair<double, double>>& v) {
+    std::sort(v.begin(), v.end());
+    double running = 0;
+    for (const auto& [value, weight] : v) {
+      running += weight;
+      if (running >= 0.5 * total) return value;
+    }
+    return v.back().first;
+  };
+  if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
+  return {weighted_median(xs), weighted_median(ys)};
+}
+
 AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>& spheres,
                                                       const AxisymmetricOptions& options) {
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
@@ -123,30 +147,7 @@ AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>&
   AxisymmetricHeapAngle out;
   out.floor_z = options.floor_z.value_or(lowest_bottom(spheres));
 
-  if (options.centre) {
-    out.centre = *options.centre;
-  } else {
-    // Volume-weighted medians of x and y: on the axis for an axisymmetric heap, and a body that
-    // rolled far away moves them by at most its share of the volume, never by its distance.
-    std::vector<std::pair<double, double>> xs, ys;  // (coordinate, weight)
-    double total = 0;
-    for (const Sphere& s : spheres) {
-      const double w = s.radius * s.radius * s.radius;
-      xs.push_back({s.centre.x, w});
-      ys.push_back({s.centre.y, w});
-      total += w;
-    }
-    auto weighted_median = [total](std::vector<std::pair<double, double>>& v) {
-      std::sort(v.begin(), v.end());
-      double running = 0;
-      for (const auto& [value, weight] : v) {
-        running += weight;
-        if (running >= 0.5 * total) return value;
-      }
-      return v.back().first;
-    };
-    out.centre = {weighted_median(xs), weighted_median(ys)};
-  }
+  out.centre = options.centre ? *options.centre : heap_centre(spheres);
 
   double top = -HUGE_VAL, largest_radius = 0;
   for (const Sphere& s : spheres) {

@@ -49,6 +49,9 @@ struct HeapAngle {
 // inconsistent options.
 HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options = {});
 
+// The heap's vertical axis: volume-weighted medians of the sphere centres' x and y.
+glm::dvec2 heap_centre(const std::vector<Sphere>& spheres);
+
 struct AxisymmetricOptions {
   int sectors = 8;
   double bin_width = 0.0;         // m; 0: the heap's largest radius / 25

@@ -125,6 +125,27 @@ TEST_CASE("the shipped plans load") {
   CHECK_NOTHROW(load_plan(cases + "drop_restitution.toml"));
   CHECK_NOTHROW(load_plan(cases + "drop_restitution_adaptive.toml"));
   CHECK_NOTHROW(load_plan(cases + "cabbage_repose_adaptive.toml"));  // on the cabbage box rig
+  CampaignPlan cylinder = load_plan(cases + "cabbage_cylinder_adaptive.toml");  // 16 views, seeds per run
+  CHECK(cylinder.adaptive.seed_per_run);
+}
+
+TEST_CASE("the adaptive loop's seeds are \"same\" or \"per_run\", and per_run changes the plan's hash") {
+  const std::string adaptive = "[campaign]\nexperiment = \"drop\"\ncase = \"" + test::drop_case_path() +
+                               "\"\nmode = \"adaptive\"\n[response]\nname = \"restitution\"\nmeasured = 0.44\n"
+                               "[[factor]]\nname = \"e\"\nkey = \"interaction.stalk/steel.restitution\"\nlow = 0.2\nhigh = 0.8\n"
+                               "[adaptive]\nbudget = 10\n";
+  CHECK(plan_error(adaptive, "seeds_default").empty());
+  CHECK(plan_error(adaptive + "seeds = \"same\"\n", "seeds_same").empty());
+  std::string msg = plan_error(adaptive + "seeds = \"fresh\"\n", "seeds_bad");
+  INFO(msg);
+  CHECK(msg.find("plan.toml:15: adaptive.seeds: expected \"same\"") != std::string::npos);
+  std::string dir = test::scratch_dir("plan_seeds");
+  test::write_text(dir + "/same.toml", adaptive + "seeds = \"same\"\n");
+  test::write_text(dir + "/default.toml", adaptive);
+  test::write_text(dir + "/per_run.toml", adaptive + "seeds = \"per_run\"\n");
+  const std::string same = canonical_plan_text(load_plan(dir + "/same.toml"));
+  CHECK(same == canonical_plan_text(load_plan(dir + "/default.toml")));  // plans from before keep their runs
+  CHECK(same != canonical_plan_text(load_plan(dir + "/per_run.toml")));
 }
 
 TEST_CASE("every registered experiment is reachable by name") {

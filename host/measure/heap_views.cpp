@@ -1,0 +1,51 @@
+#include "measure/heap_views.h"
+
+#include <cmath>
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+
+namespace repose {
+
+HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int views, const HeapAngleOptions& options,
+                                        std::optional<glm::dvec2> centre) {
+  if (views < 1) throw std::invalid_argument("heap angle: views must be at least 1");
+  if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
+  constexpr double kPi = 3.14159265358979323846;
+  HeapViewsAngle out;
+  out.centre = centre ? *centre : heap_centre(spheres);
+  HeapAngleOptions front = options;
+  front.view = ViewAxis::Y;
+  if (!front.floor_z) {
+    double lowest = HUGE_VAL;
+    for (const Sphere& s : spheres) lowest = std::min(lowest, s.centre.z - s.radius);
+    front.floor_z = lowest;  // one floor for every view, not each view's own lowest sphere
+  }
+  std::vector<Sphere> turned(spheres.size());
+  std::vector<double> slopes;
+  for (int k = 0; k < views; ++k) {
+    const double azimuth = 180.0 * k / views, a = azimuth * kPi / 180.0;
+    const double c = std::cos(a), s = std::sin(a);
+    // Turning the heap by -a about the axis is the camera turning by +a around it.
+    for (size_t i = 0; i < spheres.size(); ++i) {
+      const double dx = spheres[i].centre.x - out.centre.x, dy = spheres[i].centre.y - out.centre.y;
+      turned[i] = {{c * dx + s * dy, -s * dx + c * dy, spheres[i].centre.z}, spheres[i].radius};
+    }
+    const HeapAngle view = measure_heap_angle(turned, front);
+    out.azimuth_deg.push_back(azimuth);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.left_deg.push_back(view.left.valid ? view.left.angle_deg : nan);
+    out.right_deg.push_back(view.right.valid ? view.right.angle_deg : nan);
+    for (const SlopeFit* f : {&view.left, &view.right})
+      if (f->valid) slopes.push_back(f->angle_deg);
+  }
+  out.valid_slopes = int(slopes.size());
+  double sum = 0, squares = 0;
+  for (double v : slopes) sum += v;
+  out.mean_deg = slopes.empty() ? std::numeric_limits<double>::quiet_NaN() : sum / double(slopes.size());
+  for (double v : slopes) squares += (v - out.mean_deg) * (v - out.mean_deg);
+  out.sd_deg = slopes.size() > 1 ? std::sqrt(squares / double(slopes.size() - 1)) : 0.0;
+  return out;
+}
+
+}  // namespace repose
