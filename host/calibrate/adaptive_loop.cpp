@@ -10,19 +10,11 @@
 
 #include "calibrate/design_runs.h"
 #include "calibrate/gaussian_process.h"
+#include "stats/halton.h"
 
 namespace repose::calibrate {
 
 namespace {
-
-double radical_inverse(int index, int base) {
-  double f = 1, r = 0;
-  for (int i = index; i > 0; i /= base) {
-    f /= base;
-    r += f * (i % base);
-  }
-  return r;
-}
 
 std::vector<double> to_actual(const CampaignPlan& plan, const Eigen::VectorXd& coded) {
   std::vector<double> x;
@@ -123,7 +115,7 @@ std::vector<Eigen::VectorXd> halton_points(int k, int first, int count) {
   std::vector<Eigen::VectorXd> pts;
   for (int i = first; i < first + count; ++i) {
     Eigen::VectorXd p(k);
-    for (int d = 0; d < k; ++d) p[d] = 2 * radical_inverse(i, primes[d]) - 1;
+    for (int d = 0; d < k; ++d) p[d] = 2 * stats::radical_inverse(i, primes[d]) - 1;
     pts.push_back(p);
   }
   return pts;

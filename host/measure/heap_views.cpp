@@ -1,7 +1,6 @@
 #include "measure/heap_views.h"
 
 #include <cmath>
-#include <algorithm>
 #include <limits>
 #include <stdexcept>
 
@@ -14,13 +13,8 @@ HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int 
   constexpr double kPi = 3.14159265358979323846;
   HeapViewsAngle out;
   out.centre = centre ? *centre : heap_centre(spheres);
-  HeapAngleOptions front = options;
+  HeapAngleOptions front = options;  // the turn keeps every z: each view finds the same floor
   front.view = ViewAxis::Y;
-  if (!front.floor_z) {
-    double lowest = HUGE_VAL;
-    for (const Sphere& s : spheres) lowest = std::min(lowest, s.centre.z - s.radius);
-    front.floor_z = lowest;  // one floor for every view, not each view's own lowest sphere
-  }
   std::vector<Sphere> turned(spheres.size());
   std::vector<double> slopes;
   for (int k = 0; k < views; ++k) {

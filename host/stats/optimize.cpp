@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "stats/halton.h"
 #include "stats/errors.h"
 
 namespace repose::stats {
@@ -31,16 +32,6 @@ std::vector<int> free_dims(const Box& box) {
 
 Eigen::VectorXd clamp(const Eigen::VectorXd& x, const Box& box) {
   return x.cwiseMax(box.lower).cwiseMin(box.upper);
-}
-
-// Radical inverse in base b: the i-th Halton coordinate, deterministic and well spread.
-double halton(int index, int base) {
-  double f = 1, r = 0;
-  for (int i = index; i > 0; i /= base) {
-    f /= base;
-    r += f * (i % base);
-  }
-  return r;
 }
 
 // Hooke-Jeeves pattern search on the box: exploratory coordinate moves of h * range, pattern
@@ -121,7 +112,7 @@ Eigen::VectorXd multi_start(const Objective& f, const Box& box, const OptimizeOp
     Eigen::VectorXd p = centre;
     for (int j = 0; j < m; ++j) {
       int i = dims[j];
-      p[i] = box.lower[i] + halton(s, primes[j % 25]) * (box.upper[i] - box.lower[i]);
+      p[i] = box.lower[i] + radical_inverse(s, primes[j % 25]) * (box.upper[i] - box.lower[i]);
     }
     starts.push_back(p);
   }

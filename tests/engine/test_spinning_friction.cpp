@@ -29,7 +29,8 @@ double static_overlap(double load, double r_star, double other_e) {
 
 // A 10 mm sphere resting on a steel plate at its static overlap, spinning about the vertical.
 // No rolling friction: the constant rolling torque would resist the spin as well.
-CaseBuilder spinning_on_plate(double mu_spin, double omega_z) {
+// Grain (material 0) and steel (material 1), friction 0.5, spinning friction mu_spin, gravity.
+CaseBuilder grain_and_steel(double mu_spin) {
   CaseBuilder b;
   int grain = b.material(kDensity, 1e7, 0.3);
   int steel = b.material(7800, 8e10, 0.3);
@@ -38,6 +39,13 @@ CaseBuilder spinning_on_plate(double mu_spin, double omega_z) {
   for (auto& in : b.spec.interactions) in.spinning_friction = mu_spin;
   b.spec.gravity = {0, 0, -kG};
   b.spec.time.rayleigh_fraction = 0.2;
+  return b;
+}
+constexpr int kGrain = 0, kSteel = 1;
+
+CaseBuilder spinning_on_plate(double mu_spin, double omega_z) {
+  CaseBuilder b = grain_and_steel(mu_spin);
+  const int grain = kGrain, steel = kSteel;
   double overlap = static_overlap(sphere_mass() * kG, kR, 2 * 8e10 * 1.3);
   b.sphere({0, 0, kR - overlap}, kR, grain, {0, 0, 0}, {0, 0, omega_z});
   b.plane({0, 0, 0}, {0, 0, 1}, steel);
@@ -86,14 +94,8 @@ TEST_CASE("spinning friction: on another sphere the torque uses R* = R/2 (0.1 %)
   // mu_spin (R/2) m g / (2/5 m R^2) = 1.25 mu_spin g / R; the bottom one is held by the plate
   // (whose cap, mu_spin R 2 m g, is four times the torque it receives).
   const double mu_spin = 0.2, omega0 = 30.0;
-  CaseBuilder b;
-  int grain = b.material(kDensity, 1e7, 0.3);
-  int steel = b.material(7800, 8e10, 0.3);
-  b.interaction(grain, grain, 0.5, 0.5, 0.0);
-  b.interaction(grain, steel, 0.5, 0.5, 0.0);
-  for (auto& in : b.spec.interactions) in.spinning_friction = mu_spin;
-  b.spec.gravity = {0, 0, -kG};
-  b.spec.time.rayleigh_fraction = 0.2;
+  CaseBuilder b = grain_and_steel(mu_spin);
+  const int grain = kGrain, steel = kSteel;
   double m = sphere_mass();
   double floor_overlap = static_overlap(2 * m * kG, kR, 2 * 8e10 * 1.3);
   double pair_overlap = static_overlap(m * kG, kR / 2, 2e7 * 1.3);
