@@ -104,22 +104,26 @@ int run_diagnose(int argc, char** argv) {
 }
 
 int run_synth_data(int argc, char** argv) {
-  CLI::App app{"Simulate measured drop data with a known (hidden) model extension and replicate noise."};
+  CLI::App app{"Simulate measured data with a known (hidden) model extension and replicate noise."};
   SyntheticTruth truth;
   std::string out, extension;
-  double restitution = -1, grain_friction = -1;
-  app.add_option("case", truth.case_path, "drop case (TOML)")->required();
+  double restitution = -1, grain_friction = -1, plate_friction = -1;
+  app.add_option("case", truth.case_path, "drop, heap, slide or roll case (TOML)")->required();
   app.add_option("--extension", extension, "hidden effect ID=VALUE[,VALUE] (e.g. air_drag=0.8); none by default");
   app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)");
-  app.add_option("--heights", truth.heights, "drop heights, m; for a heap case the values of --condition")
+  app.add_option("--heights", truth.heights, "drop heights, m; for a heap, slide or roll case the values of --condition")
       ->delimiter(',')
       ->required();
-  app.add_option("--condition", truth.heap_condition_key, "heap case: the key the conditions vary (default fill.0.count)");
+  app.add_option("--condition", truth.condition_key,
+                 "heap, slide or roll case: the key the conditions vary (default fill.0.count, "
+                 "experiment.slope_distance, material.0.density)");
   app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth");
-  app.add_option("--angle-noise", truth.angle_noise, "heap case: SD of one measured angle, deg (default 0.5)");
+  app.add_option("--plate-friction", plate_friction,
+                 "slide case: the body-plate sliding friction of the truth; roll case: its rolling friction");
+  app.add_option("--angle-noise", truth.angle_noise, "heap, slide, tilt-roll case: SD of one measured angle, deg (default 0.5)");
   app.add_flag("--bed-only", truth.bed_height_only, "heap case: bed heights only (the bed alone is simulated, no lift)");
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
-  app.add_option("--noise", truth.noise, "SD of one rebound height, m (default 0.001)");
+  app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
   app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
   app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
@@ -129,6 +133,7 @@ int run_synth_data(int argc, char** argv) {
   try {
     if (restitution > 0) truth.restitution = restitution;
     if (grain_friction > 0) truth.grain_friction = grain_friction;
+    if (plate_friction > 0) truth.plate_friction = plate_friction;
     if (!extension.empty()) {
       auto eq = extension.find('=');
       if (eq == std::string::npos) throw std::runtime_error("--extension: write ID=VALUE");

@@ -220,9 +220,7 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
     std::string fitted;
     for (size_t k = 0; k < base.params.size(); ++k)
       fitted += (k ? ", " : "") + base.parameters[k].name + " = " + num(base.params[k]);
-    d.statements.push_back(std::string(predictor.experiment() == "drop"
-                                           ? "Baseline (Hertz-Mindlin, constant restitution): "
-                                           : "Baseline (Hertz-Mindlin, one grain size, constant rolling torque): ") +
+    d.statements.push_back("Baseline (" + predictor.diagnosed().baseline_model + "): " +
                            (fitted.empty() ? std::string("parameters as given") : "fitted " + fitted) +
                            "; chi^2 = " + num(base.chi2) + " over " + std::to_string(obs.groups.size()) +
                            " measured means, weighed by their replicate scatter" +
@@ -378,6 +376,10 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
                        : "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two "
                          "fitted models differ there by up to " + num(worst * 1000, 3) + " mm at t = " + num(at, 3) +
                          " s in condition " + obs.conditions[far].label + ", while their rebound heights agree";
+      } else if (predictor.experiment() != "repose") {
+        d.separating_measurement = "more replicates, or a wider range of the condition (" +
+                                   (obs.variables.empty() ? std::string("none varies yet") : obs.variables.front()) +
+                                   ")";
       } else {
         bool has_bed = std::find(obs.measures.begin(), obs.measures.end(), "bed_height") != obs.measures.end();
         d.separating_measurement =

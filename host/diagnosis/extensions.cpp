@@ -4,15 +4,26 @@
 #include <stdexcept>
 
 #include "diagnosis/elongated_body.h"
+#include "experiments/body_frame.h"
 
 namespace repose {
 
-Interaction& drop_interaction(CaseSpec& spec) {
-  if (spec.spheres.empty()) throw std::runtime_error(spec.path + ": the case has no body to drop");
-  auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
-                            [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
-  if (plate == spec.walls.end()) throw std::runtime_error(spec.path + ": the case has no plane wall (plate)");
-  int a = spec.spheres[0].material, b = plate->material;
+Interaction& body_plate_interaction(CaseSpec& spec) {
+  int a = 0;
+  if (!spec.spheres.empty()) a = spec.spheres[0].material;
+  else if (!spec.bodies.empty()) a = spec.bodies[0].material;
+  else throw std::runtime_error(spec.path + ": the case has no body");
+  // A drop's plate is its first plane wall; a tilt or roll test names its plate (default the first wall).
+  const WallSpec* plate = nullptr;
+  if (spec.experiment.type == "drop") {
+    auto it = std::find_if(spec.walls.begin(), spec.walls.end(),
+                           [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
+    if (it == spec.walls.end()) throw std::runtime_error(spec.path + ": the case has no plane wall (plate)");
+    plate = &*it;
+  } else {
+    plate = &spec.walls.at(find_wall(spec, spec.experiment.plate, "plate"));
+  }
+  int b = plate->material;
   for (auto& in : spec.interactions)
     if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;
   throw std::runtime_error(spec.path + ": no [[interaction]] between the body and the plate");
@@ -34,11 +45,11 @@ const std::vector<ModelExtension>& model_extensions() {
        {{"viscoelastic_time", "s", 1e-6, 3e-2, true}},
        {"rebound_height", "restitution", "height"},
        "",
-       [](CaseSpec& s, const std::vector<double>& p) { drop_interaction(s).viscoelastic_time = p.at(0); }},
+       [](CaseSpec& s, const std::vector<double>& p) { body_plate_interaction(s).viscoelastic_time = p.at(0); }},
       {"air_drag",
        "quadratic air drag 0.5 rho C_d A v^2 on the body (A its projected area, rho = 1.2 kg/m^3)",
        {{"drag_coefficient", "1", 1e-3, 2.0, true}},  // 2: a flat plate broadside, the bluffest body
-       {"rebound_height", "restitution", "height"},
+       {"rebound_height", "restitution", "height", "roll_distance"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          s.air_drag.drag_coefficient = p.at(0);
@@ -49,7 +60,7 @@ const std::vector<ModelExtension>& model_extensions() {
        {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
        {"rebound_height", "restitution", "height"},
        "",
-       [](CaseSpec& s, const std::vector<double>& p) { drop_interaction(s).cohesion_energy_density = p.at(0); }},
+       [](CaseSpec& s, const std::vector<double>& p) { body_plate_interaction(s).cohesion_energy_density = p.at(0); }},
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
        "k_r = 2.25 mu_r^2 R*^2 k_n capped at mu_r R* |Fn|, with a dashpot of rolling_damping (fraction of "

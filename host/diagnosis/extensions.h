@@ -35,9 +35,11 @@ struct ModelExtension {
 const std::vector<ModelExtension>& model_extensions();
 const ModelExtension* find_extension(const std::string& id);
 
-// The interaction between a drop case's body (its first sphere) and its plate (the first plane
-// wall): the contact every drop-test extension acts on. Throws naming the case when absent.
-Interaction& drop_interaction(CaseSpec& spec);
+// The interaction between a drop, tilt or roll case's body (its first sphere, else its first
+// clump) and its plate (a drop's first plane wall; a tilt or roll test's [experiment] plate,
+// default the first wall): the contact those tests calibrate and the extensions act on. Throws
+// naming the case when absent.
+Interaction& body_plate_interaction(CaseSpec& spec);
 
 // The grains' contact with each other in a heap case: the first [[fill]]'s material with itself.
 // Throws naming the case when absent.

@@ -12,15 +12,10 @@
 #include "diagnosis/heap_bed.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/repose.h"
+#include "experiments/roll.h"
+#include "experiments/tilt.h"
 
 namespace repose {
-
-namespace {
-
-bool is_drop_measure(const std::string& m) { return m == "rebound_height" || m == "restitution" || m == "height"; }
-bool is_heap_measure(const std::string& m) { return m == "repose_angle" || m == "bed_height"; }
-
-}  // namespace
 
 Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, bool fit_baseline,
                      unsigned threads, int simulated_replicates)
@@ -30,21 +25,21 @@ Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, b
     std::vector<CaseOverride> sets = given;
     sets.insert(sets.end(), c.sets.begin(), c.sets.end());
     CaseSpec spec = load_case(c.case_path, sets);
-    const std::string& type = spec.experiment.type;
-    if (type != "drop" && type != "repose")
-      throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + type +
-                      "': diagnose simulates drop tests and angle-of-repose heaps (slide and roll are not wired yet)");
-    if (experiment_.empty()) experiment_ = type;
-    if (type != experiment_)
-      throw DataError(obs.path + ": case " + c.case_path + " runs '" + type + "' but an earlier row's case runs '" +
-                      experiment_ + "': one diagnosis compares one experiment");
-    if (type == "drop") {
+    const DiagnosedExperiment* kind = diagnosed_experiment(spec);
+    if (!kind)
+      throw DataError(obs.path + ": case " + c.case_path + " runs experiment '" + spec.experiment.type +
+                      "': diagnose simulates drop, slide, roll (incline or tilt) and repose (heap) tests");
+    if (!experiment_) experiment_ = kind;
+    if (kind != experiment_)
+      throw DataError(obs.path + ": case " + c.case_path + " runs '" + kind->id + "' but an earlier row's case runs '" +
+                      experiment_->id + "': one diagnosis compares one experiment");
+    if (kind->id == "drop") {
       if (!spec.bodies.empty() || spec.spheres.size() != 1)
         throw DataError(obs.path + ": case " + c.case_path +
                         ": diagnose drops one sphere (a clump body is what the `shape` extension tests; the other "
                         "extensions' drop physics and the impact-time alignment are written for a sphere)");
-      drop_interaction(spec);  // the body-plate contact must exist
-    } else {
+      body_plate_interaction(spec);  // the body-plate contact must exist
+    } else if (kind->id == "repose") {
       bool sphere_fills = !spec.fills.empty();
       size_t filled = 0;
       for (const FillSpec& f : spec.fills) {
@@ -57,45 +52,50 @@ Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, b
                         "so that replicates and size spreads can refill them");
       heap_interaction(spec);  // the grain-grain contact must exist
       spec.spheres.clear();    // refilled per model and replicate (model_spec)
+    } else {
+      bool one_body = spec.fills.empty() && spec.lattices.empty() &&
+                      ((spec.spheres.size() == 1 && spec.bodies.empty()) || (spec.spheres.empty() && spec.bodies.size() == 1));
+      if (!one_body)
+        throw DataError(obs.path + ": case " + c.case_path + ": diagnose tilts or rolls one body (one [[sphere]] or one "
+                        "[[clump]], no fills or lattices)");
+      body_plate_interaction(spec);  // the body-plate contact must exist
     }
     specs_.push_back(std::move(spec));
   }
   for (const auto& g : obs.groups) {
-    bool ok = experiment_ == "drop" ? is_drop_measure(g.measure) : is_heap_measure(g.measure);
-    if (!ok)
-      throw DataError(obs.path + ":" + std::to_string(g.line) + ": measure '" + g.measure + "' is not reported by the " +
-                      experiment_ + " experiment diagnose simulates (drop: rebound_height, restitution, height; "
-                      "repose: repose_angle, bed_height)");
-  }
-  if (experiment_ == "drop") {
-    baseline_ = {"restitution", "1", 0.05, 0.95, false};
-    baseline_value_ = [](CaseSpec& s) -> double& { return drop_interaction(s).restitution; };
-  } else {
-    baseline_ = {"static_friction", "1", 0.05, 1.2, false};
-    baseline_value_ = [](CaseSpec& s) -> double& { return heap_interaction(s).static_friction; };
+    const auto& ms = experiment_->measures;
+    if (std::find(ms.begin(), ms.end(), g.measure) != ms.end()) continue;
+    std::string list;
+    for (const auto& e : diagnosed_experiments()) {
+      std::string names;
+      for (const auto& m : e.measures) names += (names.empty() ? "" : ", ") + m;
+      list += (list.empty() ? "" : "; ") + e.id + ": " + names;
+    }
+    throw DataError(obs.path + ":" + std::to_string(g.line) + ": measure '" + g.measure + "' is not reported by the " +
+                    experiment_->id + " experiment diagnose simulates (" + list + ")");
   }
 }
 
 std::vector<FreeParameter> Predictor::parameters(const ModelExtension* extension) const {
   std::vector<FreeParameter> p;
-  if (fit_baseline_) p.push_back(baseline_);
+  if (fit_baseline_) p.push_back(experiment_->baseline);
   if (extension) p.insert(p.end(), extension->parameters.begin(), extension->parameters.end());
   return p;
 }
 
 double Predictor::case_baseline_value() const {
   CaseSpec spec = specs_.front();
-  return baseline_value_(spec);
+  return experiment_->baseline_value(spec);
 }
 
 CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
                                int replicate) const {
   CaseSpec spec = specs_[condition];
   size_t k = 0;
-  if (fit_baseline_) baseline_value_(spec) = params.at(k++);
+  if (fit_baseline_) experiment_->baseline_value(spec) = params.at(k++);
   if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
   spec.seed += uint64_t(replicate);  // a clump's orientation (run_drop draws it from the seed)
-  if (experiment_ == "repose") {
+  if (experiment() == "repose") {
     for (FillSpec& f : spec.fills) f.seed += uint64_t(replicate);
     expand_particles(spec);
   }
@@ -103,7 +103,8 @@ CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension
 }
 
 bool Predictor::stochastic(const ModelExtension* extension, const std::vector<double>& params) const {
-  if (experiment_ == "repose") return true;
+  if (experiment() == "repose") return true;
+  if (experiment() != "drop") return false;  // a tilt or roll test places its body as the case says
   return !model_spec(0, extension, params, 0).bodies.empty();
 }
 
@@ -122,7 +123,9 @@ Outcome Predictor::simulate(size_t condition, const ModelExtension* extension, c
     if (it != cache_.end()) return it->second;
   }
   CaseSpec spec = model_spec(condition, extension, params, replicate);
-  Outcome r = experiment_ == "drop" ? run_drop_condition(std::move(spec)) : run_heap_condition(spec);
+  Outcome r = experiment() == "drop"     ? run_drop_condition(std::move(spec))
+              : experiment() == "repose" ? run_heap_condition(spec)
+                                         : run_tilt_or_roll_condition(spec);
   std::lock_guard<std::mutex> lock(mutex_);
   ++simulations_;
   cache_[key] = r;
@@ -173,6 +176,27 @@ Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
     out.values["repose_angle"] = 0;
     out.values["bed_height"] = 0;
   }
+  return out;
+}
+
+Outcome Predictor::run_tilt_or_roll_condition(const CaseSpec& spec) const {
+  Outcome out;
+  if (experiment() == "roll") {
+    // A model far from the data (met while searching) may roll on past max_time: predict the
+    // distance reached by then, so the search moves away from it.
+    RollResult r = run_roll(spec, {}, false);
+    out.values["roll_distance"] = r.rolling_distance;
+    return out;
+  }
+  double angle = 0;
+  try {
+    angle = run_tilt(spec).onset_angle_deg;
+  } catch (const std::runtime_error& e) {
+    // The body held on up to max_angle: predict max_angle, the most the rig can tell.
+    if (std::string(e.what()).find("did not move") == std::string::npos) throw;
+    angle = spec.experiment.max_angle_deg;
+  }
+  out.values[experiment() == "slide" ? "slide_angle" : "roll_angle"] = angle;
   return out;
 }
 

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "diagnosis/diagnosed_experiments.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/observations.h"
 #include "experiments/drop.h"
@@ -33,7 +34,7 @@ struct Prediction {
 // One simulated experiment: its scalar measures and, for a drop, the camera's trajectory.
 struct Outcome {
   std::map<std::string, double> values;
-  std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
+  std::vector<std::pair<double, double>> trajectory;  // drop: (t, height of the lowest point)
 };
 
 class Predictor {
@@ -48,9 +49,10 @@ class Predictor {
   std::vector<FreeParameter> parameters(const ModelExtension* extension) const;
   bool fits_baseline() const { return fit_baseline_; }
   double case_baseline_value() const;  // of the first condition's case (the start of a fit)
-  const std::string& experiment() const { return experiment_; }  // "drop" or "repose"
+  const std::string& experiment() const { return experiment_->id; }  // "drop", "repose", ...
+  const DiagnosedExperiment& diagnosed() const { return *experiment_; }
   // A heap costs ~1000 drops: fits then spend fewer evaluations (model_fit.cpp).
-  bool expensive() const { return experiment_ == "repose"; }
+  bool expensive() const { return experiment() == "repose"; }
   // Whether the model's result depends on the replicate's seed (a clump body, a filled heap).
   bool stochastic(const ModelExtension* extension, const std::vector<double>& params) const;
 
@@ -71,11 +73,10 @@ class Predictor {
                       int replicate) const;
   Outcome run_drop_condition(CaseSpec spec) const;
   Outcome run_heap_condition(const CaseSpec& spec) const;
+  Outcome run_tilt_or_roll_condition(const CaseSpec& spec) const;
   const Observations& obs_;
-  std::string experiment_;
+  const DiagnosedExperiment* experiment_ = nullptr;
   std::vector<CaseSpec> specs_;  // per condition, loaded once (a heap's with its fills unexpanded)
-  FreeParameter baseline_;
-  std::function<double&(CaseSpec&)> baseline_value_;
   bool fit_baseline_;
   unsigned threads_;
   int replicates_;

@@ -9,10 +9,13 @@
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
 #include "experiments/repose.h"
+#include "diagnosis/diagnosed_experiments.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/heap_bed.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/drop.h"
+#include "experiments/roll.h"
+#include "experiments/tilt.h"
 #include "util/atomic_file.h"
 
 namespace repose {
@@ -40,19 +43,19 @@ std::string text(double v) {
   return s.str();
 }
 
-void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, const std::string& csv_path) {
+void write_heap_data(const SyntheticTruth& truth, const std::string& condition_key, const ModelExtension* ext,
+                     const std::string& csv_path) {
   namespace fs = std::filesystem;
   fs::path folder = fs::absolute(csv_path).parent_path();
   std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);
   std::ostringstream csv;
-  csv << "case,set:" << truth.heap_condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "")
-      << "\n";
+  csv << "case,set:" << condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "") << "\n";
   csv.precision(7);
   for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
     std::string value = text(truth.heights[ci]);
     for (int rep = 1; rep <= truth.replicates; ++rep) {
-      CaseSpec spec = load_case(truth.case_path, {{truth.heap_condition_key, value}});
+      CaseSpec spec = load_case(truth.case_path, {{condition_key, value}});
       if (truth.grain_friction) heap_interaction(spec).static_friction = *truth.grain_friction;
       if (ext) ext->apply(spec, truth.extension_params);
       spec.spheres.clear();
@@ -74,6 +77,36 @@ void write_heap_data(const SyntheticTruth& truth, const ModelExtension* ext, con
   write_file_atomically(csv_path, csv.str());
 }
 
+// One body tilted or rolled per condition (deterministic), its replicates the measurement noise.
+void write_tilt_or_roll_data(const SyntheticTruth& truth, const std::string& condition_key,
+                             const ModelExtension* ext, const std::string& csv_path) {
+  namespace fs = std::filesystem;
+  fs::path folder = fs::absolute(csv_path).parent_path();
+  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
+  Gaussian noise(truth.seed);
+  std::ostringstream csv;
+  csv << "case,set:" << condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "") << "\n";
+  for (double condition : truth.heights) {
+    std::string value = text(condition);
+    CaseSpec spec = load_case(truth.case_path, {{condition_key, value}});
+    const DiagnosedExperiment* kind = diagnosed_experiment(spec);
+    if (truth.plate_friction) kind->baseline_value(spec) = *truth.plate_friction;
+    if (ext) ext->apply(spec, truth.extension_params);
+    std::string measure = kind->measures.front();
+    double simulated = 0, sd = truth.angle_noise;
+    if (kind->id == "roll") {
+      simulated = run_roll(spec).rolling_distance;
+      sd = truth.noise;
+    } else {
+      simulated = run_tilt(spec).onset_angle_deg;
+    }
+    for (int rep = 1; rep <= truth.replicates; ++rep)
+      csv << case_column << "," << value << "," << measure << "," << text(simulated + sd * noise()) << "," << rep
+          << (truth.write_sigma ? "," + text(sd) : "") << "\n";
+  }
+  write_file_atomically(csv_path, csv.str());
+}
+
 }  // namespace
 
 void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
@@ -86,8 +119,19 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
       throw std::runtime_error(truth.extension + " takes " + std::to_string(ext->parameters.size()) + " parameter(s)");
   }
   if (truth.heights.empty()) throw std::runtime_error("synthetic data needs at least one condition (drop height)");
-  if (load_case(truth.case_path).experiment.type == "repose") {
-    write_heap_data(truth, ext, csv_path);
+  CaseSpec plain = load_case(truth.case_path);
+  const DiagnosedExperiment* kind = diagnosed_experiment(plain);
+  if (!kind) throw std::runtime_error(truth.case_path + ": diagnose does not simulate experiment '" +
+                                      plain.experiment.type + "'");
+  std::string key = truth.condition_key;
+  if (key.empty())
+    key = kind->id == "repose" ? "fill.0.count" : kind->id == "roll" ? "experiment.slope_distance" : "material.0.density";
+  if (kind->id == "repose") {
+    write_heap_data(truth, key, ext, csv_path);
+    return;
+  }
+  if (kind->id != "drop") {
+    write_tilt_or_roll_data(truth, key, ext, csv_path);
     return;
   }
   fs::path folder = fs::absolute(csv_path).parent_path();
@@ -107,7 +151,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     std::ostringstream hs;
     hs << h;
     CaseSpec spec = load_case(truth.case_path, {{"experiment.drop_height", hs.str()}});
-    if (truth.restitution) drop_interaction(spec).restitution = *truth.restitution;
+    if (truth.restitution) body_plate_interaction(spec).restitution = *truth.restitution;
     if (ext) ext->apply(spec, truth.extension_params);
     align_impact_phase(spec);  // as the diagnosis simulates (impact_phase.h)
     bool stochastic = !spec.bodies.empty();

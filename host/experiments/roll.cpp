@@ -17,7 +17,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }
 
-RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) {
+RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
   CaseSpec spec = input;
   const ExperimentSpec& ex = spec.experiment;
   int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
@@ -78,6 +78,12 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options) 
   bool on_floor = false;
   double previous_x = -1e300;
   while (true) {
+    if (sim.time() >= ex.max_time && !require_stop) {
+      r.rolling_distance = std::max(0.0, previous_x);
+      r.stop_time = sim.time();
+      r.stopped = false;
+      break;
+    }
     if (sim.time() >= ex.max_time)
       throw std::runtime_error(spec.path + ": the body had not stopped on the floor after max_time = " +
                                std::to_string(ex.max_time) + " s");

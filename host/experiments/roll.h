@@ -22,6 +22,7 @@ struct RollResult {
   double mu_r = 0;              // the seed's formula
   double stop_time = 0;
   double speed_at_foot = 0;     // m/s when the centre passed the foot
+  bool stopped = true;          // false: still rolling at max_time (only when not required)
   std::vector<RollSample> trajectory;
   WallForceSeries wall_forces;
 };
@@ -29,7 +30,7 @@ struct RollResult {
 // The case's particles are the body and its first [[wall]] gives the plates' material; the rig
 // (an incline rectangle and a floor plane meeting at x = 0, rolling towards +x, z up) replaces
 // the case's walls. Throws std::runtime_error naming the case when the body does not stop on
-// the floor by max_time.
-RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options = {});
+// the floor by max_time, unless `require_stop` is false: then L is where it got to by then.
+RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_stop = true);
 
 }  // namespace repose
