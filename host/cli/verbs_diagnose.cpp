@@ -126,6 +126,9 @@ int run_synth_data(int argc, char** argv) {
   app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
   app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
+  app.add_option("--series-correlation", truth.series_correlation,
+                 "lag-1 correlation of a track's noise from frame to frame, AR(1) (default 0: independent)")
+      ->check(CLI::Range(0.0, 0.99));
   app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
   app.add_flag("--sigma", truth.write_sigma, "write a sigma column (the noise SDs): diagnose then scores the replicate scatter too");
   app.add_option("--out", out, "CSV to write")->required();

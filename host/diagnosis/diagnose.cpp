@@ -72,7 +72,8 @@ std::vector<Trend> residual_trends(const Observations& obs, const std::vector<do
         else if (vars.count(v)) x.push_back(vars.at(v));
         else continue;
         r.push_back(grp.mean - predicted[g]);
-        w.push_back(grp.weight());
+        // Correlated frames of a series carry (1 + rho) / (1 - rho) times less information.
+        w.push_back(grp.weight() / (grp.series ? obs.noise.at(m).inflation : 1.0));
       }
       if (x.size() < 3) continue;
       Trend t = slope_of(x, r, w);
@@ -194,10 +195,11 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
       // normal distributions of one value, sqrt((mean error)^2 + (SD error)^2), in the same unit.
       double se = 0, sz = 0;
       int ne = 0;
+      std::vector<double> held_terms = group_chi_squares(obs, held);
       for (size_t g = 0; g < obs.groups.size(); ++g) {
         const ObservationGroup& grp = obs.groups[g];
         double e = grp.mean - held.mean[g];
-        sz += group_chi_square(grp, g, held);
+        sz += held_terms[g];
         if (grp.measure != d.primary_measure) continue;
         double e2 = e * e;
         if (grp.sigma_given && grp.values.size() >= 2) {
@@ -229,6 +231,12 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
                                              : std::string()) +
                            ".");
   }
+  for (const auto& [m, n] : obs.noise)
+    if (n.inflation > 1.2)
+      d.statements.push_back("The " + m + " series' noise is correlated from frame to frame (lag-1 correlation " +
+                             num(n.lag1, 2) + " of the replicates' deviations along t): the residuals are whitened as AR(1) "
+                             "in the score, and the trend tests count " + num(n.inflation, 3) +
+                             " frames as one.");
   LackOfFit overall;
   overall.measure = "all";
   overall.chi2 = base.chi2;
@@ -237,12 +245,13 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   overall.noise_df = noise_df;
   overall.p = stats::f_upper_tail(overall.chi2 / overall.df, overall.df, noise_df);
   d.lack_of_fit.push_back(overall);
+  std::vector<double> base_terms = group_chi_squares(obs, base.prediction);
   for (const std::string& m : obs.measures) {
     LackOfFit l;
     l.measure = m;
     for (size_t g = 0; g < obs.groups.size(); ++g) {
       if (obs.groups[g].measure != m) continue;
-      l.chi2 += group_chi_square(obs.groups[g], g, base.prediction);
+      l.chi2 += base_terms[g];
       l.groups += 1 + (obs.groups[g].sigma_given && obs.groups[g].values.size() >= 2 ? 1 : 0);
     }
     l.df = l.groups;

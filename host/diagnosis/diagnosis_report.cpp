@@ -228,7 +228,8 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   if (d.separation_chi2 >= 0) j["separation_chi2"] = d.separation_chi2;
   if (!d.separating_measurement.empty()) j["separating_measurement"] = d.separating_measurement;
   j["noise"] = json::object();
-  for (const auto& [m, n] : obs.noise) j["noise"][m] = {{"sd", n.sd}, {"df", n.df}, {"given", n.given}};
+  for (const auto& [m, n] : obs.noise)
+    j["noise"][m] = {{"sd", n.sd}, {"df", n.df}, {"given", n.given}, {"lag1", n.lag1}, {"rho", n.rho}, {"inflation", n.inflation}};
   j["conditions"] = json::array();
   for (const auto& c : obs.conditions) j["conditions"].push_back(c.label);
   j["statements"] = d.statements;
@@ -249,7 +250,11 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   md << "\n\n" << obs.conditions.size() << " conditions, " << obs.groups.size() << " measured means; noise from the "
      << "replicate scatter:";
   for (const auto& [m, n] : obs.noise)
-    md << " " << m << " SD " << n.sd << (n.given ? " (given)" : " (pooled, df " + std::to_string(n.df) + ")") << ";";
+    md << " " << m << " SD " << n.sd << (n.given ? " (given)" : " (pooled, df " + std::to_string(n.df) + ")")
+       << (n.inflation > 1 ? ", lag-1 correlation along t " + std::to_string(n.lag1).substr(0, 5) +
+                                 " (whitened, AR(1))"
+                           : std::string())
+       << ";";
   md << "\n\n## Findings\n\n";
   for (const auto& s : d.statements) md << "- " << s << "\n";
   md << "\n## Candidates\n\n| model | fitted parameters | chi^2 | AIC | F test p | held-out error (" << d.primary_unit

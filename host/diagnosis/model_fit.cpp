@@ -18,27 +18,39 @@ double from_unit(const FreeParameter& p, double u) {
 
 }  // namespace
 
-double group_chi_square(const ObservationGroup& grp, size_t g, const Prediction& predicted, const Prediction* target) {
-  double n = double(grp.values.size());
-  double v = predicted.var.empty() ? 0.0 : predicted.var[g];
-  double V = grp.sigma_given ? grp.sd * grp.sd + v : grp.sd * grp.sd;
-  double var_mean = V / n + (predicted.replicates > 1 ? v / predicted.replicates : 0.0);
-  double mean = target ? target->mean[g] : grp.mean;
-  double r = mean - predicted.mean[g];
-  double chi2 = r * r / var_mean;
-  if (grp.sigma_given && grp.values.size() >= 2) {
-    double s2 = target ? grp.sd * grp.sd + (target->var.empty() ? 0.0 : target->var[g]) : grp.s2;
-    double q = std::max(s2, 1e-300) / V;
-    chi2 += (n - 1) * (q - 1 - std::log(q));
+std::vector<double> group_chi_squares(const Observations& obs, const Prediction& predicted, const Prediction* target) {
+  size_t groups = obs.groups.size();
+  std::vector<double> z(groups), out(groups);
+  for (size_t g = 0; g < groups; ++g) {
+    const ObservationGroup& grp = obs.groups[g];
+    double n = double(grp.values.size());
+    double v = predicted.var.empty() ? 0.0 : predicted.var[g];
+    double V = grp.sigma_given ? grp.sd * grp.sd + v : grp.sd * grp.sd;
+    double var_mean = V / n + (predicted.replicates > 1 ? v / predicted.replicates : 0.0);
+    double mean = target ? target->mean[g] : grp.mean;
+    z[g] = (mean - predicted.mean[g]) / std::sqrt(var_mean);
+    if (grp.sigma_given && grp.values.size() >= 2) {
+      double s2 = target ? grp.sd * grp.sd + (target->var.empty() ? 0.0 : target->var[g]) : grp.s2;
+      double q = std::max(s2, 1e-300) / V;
+      out[g] = (n - 1) * (q - 1 - std::log(q));
+    }
   }
-  return chi2;
+  for (size_t g = 0; g < groups; ++g) {
+    const ObservationGroup& grp = obs.groups[g];
+    double rho = grp.series ? obs.noise.at(grp.measure).rho : 0.0;
+    double w = z[g];
+    if (grp.previous >= 0 && rho > 0) w = (z[g] - rho * z[size_t(grp.previous)]) / std::sqrt(1 - rho * rho);
+    out[g] += w * w;
+  }
+  return out;
 }
 
 double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
                   const Prediction* target) {
+  std::vector<double> terms = group_chi_squares(obs, predicted, target);
   double chi2 = 0;
   for (size_t g = 0; g < obs.groups.size(); ++g)
-    if (use[obs.groups[g].condition]) chi2 += group_chi_square(obs.groups[g], g, predicted, target);
+    if (use[obs.groups[g].condition]) chi2 += terms[g];
   return chi2;
 }
 

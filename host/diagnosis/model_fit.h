@@ -7,7 +7,10 @@
 // sigma^2 + v when sigma is given, else the pooled replicate scatter (which then holds any
 // scatter the body itself causes). The second sum is the deviance of s^2 against V ((n-1) s^2/V
 // is chi^2 with n-1 degrees of freedom): a model that predicts the wrong scatter pays for it,
-// one chi^2 term per group.
+// one chi^2 term per group. A series' mean terms are whitened as AR(1) with the correlation
+// its tracks show (observations.h): z = residual / its SD, w = (z_t - rho z_prev) / sqrt(1 - rho^2)
+// (the first point unchanged), so that correlated frames count as the independent information
+// they hold (a generalised least-squares score; rho = 0 leaves it as above).
 #pragma once
 #include <vector>
 
@@ -23,11 +26,11 @@ struct ModelFit {
   int evaluations = 0;
 };
 
-// One group's terms of the score (above): against the measured mean and scatter or, when
+// Every group's terms of the score (above): against the measured means and scatter or, when
 // `target` is given, against another model's prediction as if it were the truth (mean, and
 // sample variance sd^2 + its replicate variance).
-double group_chi_square(const ObservationGroup& grp, size_t g, const Prediction& predicted,
-                        const Prediction* target = nullptr);
+std::vector<double> group_chi_squares(const Observations& obs, const Prediction& predicted,
+                                      const Prediction* target = nullptr);
 // The score over the groups of the conditions marked in `use`.
 double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
                   const Prediction* target = nullptr);

@@ -12,6 +12,47 @@ int Observations::noise_df() const {
   return df;
 }
 
+namespace {
+
+constexpr double kMaxLag1 = 0.95;  // beyond this a track is one measurement, not many: cap it
+
+std::string condition_key(const Measurement& m) {
+  std::string key = m.case_path;
+  for (const auto& s : m.sets) key += "|" + s.key + "=" + s.value;
+  return key;
+}
+
+// Lag-1 correlation of the deviations from the replicate mean along each replicate's track of a
+// series measure (pooled over tracks), and the AR(1) variance inflation it implies.
+void serial_correlation(const MeasuredData& data, const Observations& obs, const std::string& measure,
+                        const std::map<std::string, size_t>& condition_of, NoiseEstimate& n) {
+  std::map<std::pair<size_t, double>, double> mean_at;  // (condition, t) -> replicate mean
+  for (const auto& g : obs.groups)
+    if (g.measure == measure && g.series) mean_at[{g.condition, g.t}] = g.mean;
+  if (mean_at.empty()) return;
+  std::map<std::pair<size_t, int>, std::vector<std::pair<double, double>>> tracks;  // (condition, replicate)
+  for (const Measurement& m : data.rows) {
+    if (m.measure != measure || !m.t) continue;
+    size_t c = condition_of.at(condition_key(m));
+    tracks[{c, m.replicate}].push_back({*m.t, m.value - mean_at.at({c, *m.t})});
+  }
+  double lagged = 0, squared = 0;
+  for (auto& [key, track] : tracks) {
+    std::sort(track.begin(), track.end());
+    for (size_t k = 0; k < track.size(); ++k) {
+      squared += track[k].second * track[k].second;
+      if (k > 0) lagged += track[k].second * track[k - 1].second;
+    }
+  }
+  if (!(squared > 0)) return;
+  n.lag1 = lagged / squared;
+  n.rho = std::clamp(n.lag1, 0.0, kMaxLag1);
+  n.inflation = (1 + n.rho) / (1 - n.rho);
+  n.df = std::max(1, int(n.df / n.inflation));
+}
+
+}  // namespace
+
 Observations group_observations(const MeasuredData& data) {
   Observations obs;
   obs.path = data.path;
@@ -19,8 +60,7 @@ Observations group_observations(const MeasuredData& data) {
   std::map<std::string, size_t> group_of;
   std::map<std::string, std::vector<double>> given_sigma;
   for (const Measurement& m : data.rows) {
-    std::string ckey = m.case_path;
-    for (const auto& s : m.sets) ckey += "|" + s.key + "=" + s.value;
+    std::string ckey = condition_key(m);
     if (!condition_of.count(ckey)) {
       Condition c;
       c.case_path = m.case_path;
@@ -87,12 +127,22 @@ Observations group_observations(const MeasuredData& data) {
       throw DataError(data.path + ": measure '" + measure +
                       "' has no replicate scatter (give several replicates per condition or a sigma column)");
     }
+    serial_correlation(data, obs, measure, condition_of, n);
     obs.noise[measure] = n;
     for (auto& g : obs.groups)
       if (g.measure == measure) {
         g.sd = n.sd;
         g.sigma_given = n.given;
       }
+  }
+
+  // Each series point's predecessor in time (the AR(1) whitening of the score).
+  std::map<std::pair<size_t, std::string>, std::vector<std::pair<double, size_t>>> series;
+  for (size_t g = 0; g < obs.groups.size(); ++g)
+    if (obs.groups[g].series) series[{obs.groups[g].condition, obs.groups[g].measure}].push_back({obs.groups[g].t, g});
+  for (auto& [key, points] : series) {
+    std::sort(points.begin(), points.end());
+    for (size_t k = 1; k < points.size(); ++k) obs.groups[points[k].second].previous = long(points[k - 1].second);
   }
 
   // Condition variables that take more than one value.

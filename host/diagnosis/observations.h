@@ -29,6 +29,7 @@ struct ObservationGroup {
   double s2 = 0;                // sample variance of the replicates (n - 1 in the denominator)
   bool sigma_given = false;     // sd is the file's measurement error: the scatter itself is data
   int line = 0;                 // first CSV line of the group
+  long previous = -1;           // series: the group at the previous t (same condition and measure)
   double weight() const { return double(values.size()) / (sd * sd); }  // 1 / var(mean)
 };
 
@@ -36,6 +37,13 @@ struct NoiseEstimate {
   double sd = 0;   // pooled replicate standard deviation (or the given sigma)
   int df = 0;      // degrees of freedom of the pooled estimate (large when sigma is given)
   bool given = false;
+  // A series (camera track): the lag-1 correlation of each replicate's deviations from the
+  // replicate mean along t, pooled. Neighbouring frames of one track are not independent
+  // measurements: the score whitens the series' residuals as AR(1) (model_fit.h) and the trend
+  // tests and the noise's df count (1 + rho) / (1 - rho) frames as one.
+  double lag1 = 0;
+  double rho = 0;        // the correlation the score whitens the series with: lag1 in [0, 0.95]
+  double inflation = 1;  // (1 + rho) / (1 - rho): how much a smooth deviation's noise is understated
 };
 
 struct Observations {

@@ -169,12 +169,14 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
       for (int rep = 1; rep <= truth.replicates; ++rep) {
         const auto& tr = drop_of(rep).trajectory;
         size_t k = 1;
+        double rho = truth.series_correlation, error = 0;
         for (int i = 0; i * truth.series_dt <= tr.back().first; ++i) {
+          error = i == 0 ? noise() : rho * error + std::sqrt(1 - rho * rho) * noise();
           double t = i * truth.series_dt;
           while (k + 1 < tr.size() && tr[k].first < t) ++k;
           double w = (t - tr[k - 1].first) / (tr[k].first - tr[k - 1].first);
           double z = tr[k - 1].second + w * (tr[k].second - tr[k - 1].second);
-          csv << case_column << "," << hs.str() << ",height," << z + truth.series_noise * noise() << "," << rep << ","
+          csv << case_column << "," << hs.str() << ",height," << z + truth.series_noise * error << "," << rep << ","
               << t << sigma(truth.series_noise) << "\n";
         }
       }

@@ -36,6 +36,8 @@ struct SyntheticTruth {
   double noise = 0.001;                  // SD of one measured length (rebound height, bed height, L), m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s
   double series_noise = 0.001;           // SD of one tracked height, m
+  double series_correlation = 0;         // lag-1 correlation of a track's noise (AR(1); a camera's
+                                         // tracking error drifts from frame to frame)
   bool write_sigma = false;              // a sigma column (the noise SDs): the scatter becomes data
   uint64_t seed = 1;                     // noise; and the orientations of a clump body (shape)
 };
