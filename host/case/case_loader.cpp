@@ -362,7 +362,8 @@ class CaseReader {
       s->fail("type", "unknown experiment '" + type + "' (drop, slide, roll or repose)" + did_you_mean(type, types));
     ex.type = type;
     std::vector<std::string> allowed{"type", "max_time"};
-    std::vector<std::string> tilt{"plate", "tilt_rate", "tilt_axis", "settle_time", "onset_distance", "max_angle"};
+    std::vector<std::string> tilt{"plate",          "tilt_rate",   "tilt_axis", "settle_time",
+                                  "onset_distance", "onset_speed", "max_angle"};
     if (type == "drop") allowed.insert(allowed.end(), {"drop_height", "camera_fps"});
     if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
     if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
@@ -378,6 +379,7 @@ class CaseReader {
     if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit(*s, "tilt_axis", *a);
     if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
     if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
+    if (auto v = s->number("onset_speed")) ex.onset_speed = non_negative(*s, "onset_speed", *v);
     if (auto a = s->number("max_angle")) {
       if (!(*a > 0 && *a < 90)) s->fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
       ex.max_angle_deg = *a;

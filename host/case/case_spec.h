@@ -196,6 +196,8 @@ struct ExperimentSpec {
   Vec3d tilt_axis{0, 1, 0};
   double settle_time = 0.5;     // s at rest before the tilt starts
   double onset_distance = 1e-3; // m the body moves relative to the plate: it slides (or rolls)
+  double onset_speed = 0;       // m/s > 0: the onset is where its speed relative to the plate first
+                                // reaches this instead (a soft body creeps its first mm early)
   double max_angle_deg = 60;    // give up beyond this tilt
   // roll
   std::string method = "incline";  // "incline" (release, roll onto the floor) or "tilt"

@@ -76,12 +76,15 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
       rolling_radius = std::max(rolling_radius, dot(sub(c, {p.x, p.y, p.z}), up) + p.w);
   }
   TiltSample previous{sim.time(), 0, 0};
+  double previous_speed = 0;
   r.trajectory.push_back(previous);
   r.wall_forces.sample(sim);
   while (true) {
     if (sim.time() >= end_time)
-      throw std::runtime_error(spec.path + ": the body did not move by " + std::to_string(ex.onset_distance) +
-                               " m up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
+      throw std::runtime_error(spec.path + ": the body did not move by " +
+                               (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
+                                                   : std::to_string(ex.onset_distance) + " m") +
+                               " up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
                                " degrees (max_angle, max_time)");
     sim.advance(sample_steps);
     Vec3d w = first_body_spin(sim.state());
@@ -94,9 +97,15 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
     r.trajectory.push_back(s);
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "tilt " + std::to_string(s.angle_deg).substr(0, 5) + " deg");
-    if (s.displacement >= ex.onset_distance) {
-      // The angle where the displacement crossed the threshold, between the two samples.
-      double f = (ex.onset_distance - previous.displacement) / (s.displacement - previous.displacement);
+    // Speed relative to the plate over the last sample interval.
+    double speed = (s.displacement - previous.displacement) / (s.time - previous.time);
+    bool moving = ex.onset_speed > 0 ? speed >= ex.onset_speed : s.displacement >= ex.onset_distance;
+    if (moving) {
+      // Where the criterion was met, between the two samples: the displacement crossing its
+      // threshold, or the speed (an interval's mean, taken at its middle) crossing its.
+      double f = ex.onset_speed > 0
+                     ? std::clamp((ex.onset_speed - previous_speed) / (speed - previous_speed), 0.0, 1.0) - 0.5
+                     : (ex.onset_distance - previous.displacement) / (s.displacement - previous.displacement);
       r.onset_angle_deg = previous.angle_deg + f * (s.angle_deg - previous.angle_deg);
       r.onset_time = previous.time + f * (s.time - previous.time);
       // Relative to the plate, which turned the body with it.
@@ -106,6 +115,7 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
       break;
     }
     previous = s;
+    previous_speed = speed;
   }
   progress.finish();
   r.tan_alpha = std::tan(r.onset_angle_deg * kPi / 180);
