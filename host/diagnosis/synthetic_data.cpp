@@ -43,15 +43,35 @@ std::string text(double v) {
   return s.str();
 }
 
+// The case column: the case's path relative to the CSV's folder.
+std::string case_column_of(const SyntheticTruth& truth, const std::string& csv_path) {
+  namespace fs = std::filesystem;
+  return fs::relative(fs::absolute(truth.case_path), fs::absolute(csv_path).parent_path()).generic_string();
+}
+
+// A file whose conditions vary one key and whose rows are scalars (heap, slide, roll).
+class ScalarRows {
+ public:
+  ScalarRows(const SyntheticTruth& truth, const std::string& condition_key, const std::string& csv_path)
+      : case_column_(case_column_of(truth, csv_path)), sigma_(truth.write_sigma) {
+    csv_ << "case,set:" << condition_key << ",measure,value,replicate" << (sigma_ ? ",sigma" : "") << "\n";
+  }
+  void add(const std::string& condition, const std::string& measure, double value, int replicate, double sd) {
+    csv_ << case_column_ << "," << condition << "," << measure << "," << text(value) << "," << replicate
+         << (sigma_ ? "," + text(sd) : "") << "\n";
+  }
+  std::string str() const { return csv_.str(); }
+
+ private:
+  std::string case_column_;
+  bool sigma_;
+  std::ostringstream csv_;
+};
+
 void write_heap_data(const SyntheticTruth& truth, const std::string& condition_key, const ModelExtension* ext,
                      const std::string& csv_path) {
-  namespace fs = std::filesystem;
-  fs::path folder = fs::absolute(csv_path).parent_path();
-  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);
-  std::ostringstream csv;
-  csv << "case,set:" << condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "") << "\n";
-  csv.precision(7);
+  ScalarRows rows(truth, condition_key, csv_path);
   for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
     std::string value = text(truth.heights[ci]);
     for (int rep = 1; rep <= truth.replicates; ++rep) {
@@ -67,25 +87,19 @@ void write_heap_data(const SyntheticTruth& truth, const std::string& condition_k
       } else {
         ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
         bed = r.bed_height;
-        csv << case_column << "," << value << ",repose_angle," << r.angle_deg + truth.angle_noise * noise() << ","
-            << rep << (truth.write_sigma ? "," + text(truth.angle_noise) : "") << "\n";
+        rows.add(value, "repose_angle", r.angle_deg + truth.angle_noise * noise(), rep, truth.angle_noise);
       }
-      csv << case_column << "," << value << ",bed_height," << bed + truth.noise * noise() << "," << rep
-          << (truth.write_sigma ? "," + text(truth.noise) : "") << "\n";
+      rows.add(value, "bed_height", bed + truth.noise * noise(), rep, truth.noise);
     }
   }
-  write_file_atomically(csv_path, csv.str());
+  write_file_atomically(csv_path, rows.str());
 }
 
 // One body tilted or rolled per condition (deterministic), its replicates the measurement noise.
 void write_tilt_or_roll_data(const SyntheticTruth& truth, const std::string& condition_key,
                              const ModelExtension* ext, const std::string& csv_path) {
-  namespace fs = std::filesystem;
-  fs::path folder = fs::absolute(csv_path).parent_path();
-  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
   Gaussian noise(truth.seed);
-  std::ostringstream csv;
-  csv << "case,set:" << condition_key << ",measure,value,replicate" << (truth.write_sigma ? ",sigma" : "") << "\n";
+  ScalarRows rows(truth, condition_key, csv_path);
   for (double condition : truth.heights) {
     std::string value = text(condition);
     CaseSpec spec = load_case(truth.case_path, {{condition_key, value}});
@@ -100,17 +114,14 @@ void write_tilt_or_roll_data(const SyntheticTruth& truth, const std::string& con
     } else {
       simulated = run_tilt(spec).onset_angle_deg;
     }
-    for (int rep = 1; rep <= truth.replicates; ++rep)
-      csv << case_column << "," << value << "," << measure << "," << text(simulated + sd * noise()) << "," << rep
-          << (truth.write_sigma ? "," + text(sd) : "") << "\n";
+    for (int rep = 1; rep <= truth.replicates; ++rep) rows.add(value, measure, simulated + sd * noise(), rep, sd);
   }
-  write_file_atomically(csv_path, csv.str());
+  write_file_atomically(csv_path, rows.str());
 }
 
 }  // namespace
 
 void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
-  namespace fs = std::filesystem;
   const ModelExtension* ext = nullptr;
   if (!truth.extension.empty()) {
     ext = find_extension(truth.extension);
@@ -134,8 +145,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     write_tilt_or_roll_data(truth, key, ext, csv_path);
     return;
   }
-  fs::path folder = fs::absolute(csv_path).parent_path();
-  std::string case_column = fs::relative(fs::absolute(truth.case_path), folder).generic_string();
+  std::string case_column = case_column_of(truth, csv_path);
   Gaussian noise(truth.seed);
   std::ostringstream csv;
   csv << "case,set:experiment.drop_height,measure,value,replicate,t" << (truth.write_sigma ? ",sigma" : "") << "\n";
