@@ -22,12 +22,12 @@ const std::vector<DiagnosedExperiment>& diagnosed_experiments() {
       // Rolling friction spans decades between a ball bearing and a cabbage: searched in log.
       {"roll",
        {"roll_distance"},
-       {"rolling_friction", "1", 0.002, 0.3, true},
+       {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true},
        [](CaseSpec& s) -> double& { return body_plate_interaction(s).rolling_friction; },
        "Hertz-Mindlin, constant rolling torque, no air"},
       {"roll_tilt",
        {"roll_angle"},
-       {"rolling_friction", "1", 0.002, 0.3, true},
+       {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true},
        [](CaseSpec& s) -> double& { return body_plate_interaction(s).rolling_friction; },
        "Hertz-Mindlin, constant rolling torque, no cohesion"},
   };

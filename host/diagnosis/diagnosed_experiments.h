@@ -14,6 +14,10 @@
 
 namespace repose {
 
+// The smallest rolling friction a fit tries (a ball bearing): also what bounds a believable
+// rolling distance when the data are read (measured_data.cpp).
+constexpr double kSmallestRollingFriction = 0.002;
+
 struct DiagnosedExperiment {
   std::string id;                      // "drop", "repose", "slide", "roll", "roll_tilt"
   std::vector<std::string> measures;   // what its rows may measure

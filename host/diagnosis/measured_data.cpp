@@ -1,5 +1,7 @@
 #include "diagnosis/measured_data.h"
 
+#include "diagnosis/diagnosed_experiments.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -170,6 +172,17 @@ MeasuredData read_measured_data(const std::string& path) {
       fail(path, line_no, cell("value"), "value",
            std::to_string(m.value) + " m is more than ten times the fill region's height " +
                std::to_string(fill_height) + " m: millimetres? Values are in SI units (m)");
+    if (m.measure == "roll_distance" && spec.experiment.type == "roll" && spec.experiment.method == "incline") {
+      // Energy: a body rolling against mu_r m g R stops within S sin(beta) / mu_r; at the
+      // smallest rolling friction diagnose fits that bounds any honest L.
+      double beta = spec.experiment.incline_deg * 3.14159265358979323846 / 180;
+      double longest = spec.experiment.slope_distance * std::sin(beta) / kSmallestRollingFriction;
+      if (m.value > longest)
+        fail(path, line_no, cell("value"), "value",
+             std::to_string(m.value) + " m is farther than the body can roll from S = " +
+                 std::to_string(spec.experiment.slope_distance) + " m at rolling friction " + std::to_string(kSmallestRollingFriction).substr(0, 5) + " (" +
+                 std::to_string(longest) + " m): millimetres? Values are in SI units (m)");
+    }
     if (std::string(info->unit) == "deg" && (m.value <= 0 || m.value >= 90))
       fail(path, line_no, cell("value"), "value", "an angle in degrees must lie in (0, 90)");
     data.rows.push_back(std::move(m));

@@ -16,6 +16,8 @@ fs::path data_dir() {
   fs::create_directories(d);
   fs::copy_file(fs::path(REPOSE_SOURCE_DIR) / "cases/drop_sphere.toml", d / "drop.toml",
                 fs::copy_options::overwrite_existing);
+  fs::copy_file(fs::path(REPOSE_SOURCE_DIR) / "cases/diagnosis/foam_ball_roll.toml", d / "roll.toml",
+                fs::copy_options::overwrite_existing);
   return d;
 }
 
@@ -76,4 +78,13 @@ TEST_CASE("measured data: mistakes are reported with file, line and column", "[d
 
   e = error_of("case,measure,value\ndrop.toml,rebound_height,0.05\n");
   CHECK(e.find("missing column 'replicate'") != std::string::npos);
+
+  // A rolling distance in millimetres: 474 m from S = 0.2 m on 10 deg, farther than rolling
+  // friction 0.002 allows (17.4 m); 0.474 m loads.
+  std::string roll = "case,set:experiment.slope_distance,measure,value,replicate\n";
+  e = error_of(roll + "roll.toml,0.2,roll_distance,474,1\n");
+  INFO(e);
+  CHECK(e.find("data.csv:2:") != std::string::npos);
+  CHECK(e.find("millimetres") != std::string::npos);
+  CHECK(error_of(roll + "roll.toml,0.2,roll_distance,0.474,1\n").empty());
 }
