@@ -81,6 +81,7 @@ REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean 
 REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of rigid bodies (bodies.h)
 REPOSE_CONST kFlagRollingSpring = 256u;       // EDEM type C (EPSD) rolling resistance, full entries only
 REPOSE_CONST kFlagSpinningFriction = 512u;    // some pair has spinning friction (PairParams::c.x), full entries only
+REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling lever on the force before cohesion
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;

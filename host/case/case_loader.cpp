@@ -309,7 +309,7 @@ class CaseReader {
   void read_contact() {
     auto s = table("contact");
     if (!s) return;
-    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_damping"}, "[contact]");
+    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_damping", "cohesion_friction"}, "[contact]");
     ContactOptions& c = spec_.contact;
     c.coulomb_cap = s->choice<CoulombCap>(
         "coulomb_cap", {{"spring_and_damper", CoulombCap::SpringAndDamper}, {"spring", CoulombCap::SpringOnly}},
@@ -323,6 +323,9 @@ class CaseReader {
         c.rolling);
     c.rolling_omega = s->choice<RollingOmega>(
         "rolling_omega", {{"own", RollingOmega::Own}, {"relative", RollingOmega::Relative}}, c.rolling_omega);
+    c.cohesion_friction = s->choice<CohesionFriction>(
+        "cohesion_friction", {{"net", CohesionFriction::Net}, {"contact", CohesionFriction::Contact}},
+        c.cohesion_friction);
     if (auto eta = s->number("rolling_damping")) {
       c.rolling_damping = non_negative(*s, "rolling_damping", *eta);
       if (c.rolling != RollingModel::ElasticPlastic)

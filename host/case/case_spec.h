@@ -156,6 +156,10 @@ enum class NormalAttraction { Allow, Clip };
 // ElasticPlastic: EDEM type C, the elastic-plastic spring-dashpot (EPSD) of Ai et al. 2011.
 enum class RollingModel { None, ConstantTorque, ElasticPlastic };
 enum class RollingOmega { Own, Relative };  // EDEM uses each body's own w, LIGGGHTS the relative w
+// What the Coulomb cap and the rolling torque's lever see when cohesion pulls a contact together:
+// the net normal force (LIGGGHTS sjkr's default, tangential_reduce off) or the contact's own
+// repulsion, which cohesion raises (tangential_reduce on; JKR-like: wet contacts grip harder).
+enum class CohesionFriction { Net, Contact };
 
 struct ContactOptions {
   CoulombCap coulomb_cap = CoulombCap::SpringAndDamper;
@@ -163,6 +167,7 @@ struct ContactOptions {
   RollingModel rolling = RollingModel::ConstantTorque;
   RollingOmega rolling_omega = RollingOmega::Own;
   double rolling_damping = 0.3;  // ElasticPlastic: eta_r, fraction of critical (Ai et al. 2011 use 0.3)
+  CohesionFriction cohesion_friction = CohesionFriction::Net;
 };
 
 struct TimeSpec {

@@ -56,11 +56,15 @@ const std::vector<ModelExtension>& model_extensions() {
          s.air_drag.air_density = 1.2;
        }},
       {"cohesion",
-       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture)",
+       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture), with friction and "
+       "rolling resistance on the contact's repulsion, which the attraction raises (wet contacts grip harder)",
        {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
-       {"rebound_height", "restitution", "height"},
+       {"rebound_height", "restitution", "height", "slide_angle", "roll_angle"},
        "",
-       [](CaseSpec& s, const std::vector<double>& p) { body_plate_interaction(s).cohesion_energy_density = p.at(0); }},
+       [](CaseSpec& s, const std::vector<double>& p) {
+         body_plate_interaction(s).cohesion_energy_density = p.at(0);
+         s.contact.cohesion_friction = CohesionFriction::Contact;
+       }},
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
        "k_r = 2.25 mu_r^2 R*^2 k_n capped at mu_r R* |Fn|, with a dashpot of rolling_damping (fraction of "

@@ -356,6 +356,7 @@ Model build_model(const CaseSpec& spec) {
   m.integrator = spec.integrator;
   if (spec.contact.coulomb_cap == CoulombCap::SpringOnly) m.flags |= gpu::kFlagCoulombSpringOnly;
   if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
+  if (spec.contact.cohesion_friction == CohesionFriction::Contact) m.flags |= gpu::kFlagCohesionContactFriction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
   if (spec.contact.rolling == RollingModel::ElasticPlastic) {

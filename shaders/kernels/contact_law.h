@@ -12,6 +12,7 @@ struct ContactOut {
   vec3 torque_i;
   vec3 torque_j;
   float normal_force;  // signed scalar normal force (negative = attractive)
+  float grip_force;    // what friction, rolling and spinning resistance scale with (kFlagCohesionContactFriction)
   vec3 n_x_ft;         // n x Ft: the tangential force's moment per unit lever arm
   float roll_arm;      // mu_r |Fn| when a rolling torque applies, else -1
   float normal_stiffness;  // Hertz secant stiffness Fn_elastic / overlap = 4/3 E* sqrt(R* dn)
@@ -151,14 +152,17 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   precise float fn = fn_elastic - gamma_n * vn;
   fn = fn - viscoelastic_damping(pp.b.z, sn, vn);
   if ((flags & kFlagClipAttraction) != 0u) fn = max(fn, 0.0f);
+  // What friction and the rolling lever see: the net force, or the repulsion before cohesion.
+  precise float fn_grip = fn;
   fn = fn - linear_cohesion(pp.b.w, radius_star, overlap);
+  if ((flags & kFlagCohesionContactFriction) == 0u) fn_grip = fn;
 
   // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.
   precise vec3 spring = turn_into_tangent_plane(shear, n) + scale3(v_t, dt);
 
   precise vec3 f_spring = scale3(spring, -st);
   precise vec3 f_damp = scale3(v_t, -gamma_t);
-  precise float ft_max = mu_s * abs(fn);
+  precise float ft_max = mu_s * abs(fn_grip);
   precise vec3 ft;
   if ((flags & kFlagCoulombSpringOnly) != 0u) {
     // LIGGGHTS: the cap acts on the spring alone; damping is dropped while sliding.
@@ -186,10 +190,11 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   precise vec3 n_x_ft = cross3(n, ft);
   o.force_i = scale3(n, fn) + ft;
   o.normal_force = fn;
+  o.grip_force = fn_grip;
   o.n_x_ft = n_x_ft;
   bool rolling = (flags & kFlagRollingConstTorque) != 0u && mu_r > 0.0f;
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
-  precise float arm = rolling ? mu_r * abs(fn) : -1.0f;
+  precise float arm = rolling ? mu_r * abs(fn_grip) : -1.0f;
   o.roll_arm = arm;
   o.normal_stiffness = (4.0f * e_star * sqrt_rd) / 3.0f;
   o.torque_i = vec3(0.0f);

@@ -113,7 +113,7 @@ KFN(void, process_contact) uint i, uint c) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
     vec3 spring = xyz(B_rolling_spring[c]);
     vec3 w_other = is_wall ? w_wall : wj;
-    vec3 tr = epsd_rolling_torque(n, wi, w_other, radius_star, o.normal_force, o.normal_stiffness, pp.b.x,
+    vec3 tr = epsd_rolling_torque(n, wi, w_other, radius_star, o.grip_force, o.normal_stiffness, pp.b.x,
                                   1.0f / inv_inertia_r, PC.rolling_damping, PC.dt, spring);
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
@@ -124,7 +124,7 @@ KFN(void, process_contact) uint i, uint c) {
     vec3 w_other = is_wall ? w_wall : wj;
     precise float share = spin_stop_share(KB i, n);
     if (!is_wall) share = share + spin_stop_share(KB p, n);
-    vec3 ts = spinning_friction_torque(n, wi, w_other, pp.c.x, radius_star, o.normal_force, share, PC.dt);
+    vec3 ts = spinning_friction_torque(n, wi, w_other, pp.c.x, radius_star, o.grip_force, share, PC.dt);
     o.torque_i = o.torque_i + ts;
     if (!is_wall) o.torque_j = o.torque_j - ts;
   }

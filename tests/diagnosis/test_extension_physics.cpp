@@ -5,6 +5,7 @@
 
 #include "../engine/engine_test_support.h"
 #include "case/case_loader.h"
+#include "experiments/tilt.h"
 
 using namespace repose;
 using namespace repose::test;
@@ -82,6 +83,74 @@ TEST_CASE("restitution_velocity: 1 - e follows Schwager and Poeschel's viscoelas
   }
 }
 
+namespace {
+
+// Four 20 mm soft spheres bonded in a square on a steel rectangle that tilts at 1 deg/s; cohesion
+// k between them and the plate, the Coulomb cap on the net force or on the contact's repulsion.
+double cohesive_slide_angle(double mu_s, double k_coh, CohesionFriction grip) {
+  CaseBuilder b;
+  int grain = b.material(1000, 1e6, 0.3);
+  int steel = b.material(7800, 8e10, 0.3);
+  b.interaction(grain, steel, 0.5, mu_s, 0.05);
+  b.spec.interactions[0].cohesion_energy_density = k_coh;
+  b.spec.contact.cohesion_friction = grip;
+  b.spec.gravity = {0, 0, -9.81};
+  b.spec.time.rayleigh_fraction = 0.2;
+  const double r = 0.02;
+  int t = b.clump_template("four", {{{-r, -r, 0}, r}, {{r, -r, 0}, r}, {{-r, r, 0}, r}, {{r, r, 0}, r}});
+  b.clump(t, {0, 0, r * 0.999}, grain);
+  WallSpec plate;
+  plate.type = WallSpec::Type::Rectangle;
+  plate.name = "plate";
+  plate.point = {0, 0, 0};
+  plate.normal = {0, 0, 1};
+  plate.edge_axis = {1, 0, 0};
+  plate.size = {0.6, 0.6};
+  plate.material = steel;
+  b.spec.walls.push_back(plate);
+  b.spec.experiment.type = "slide";
+  b.spec.experiment.settle_time = 0.3;
+  b.spec.experiment.max_time = 60;
+  return run_tilt(b.spec).onset_angle_deg;
+}
+
+}  // namespace
+
+TEST_CASE("cohesion raises the slide angle when friction grips on the contact's repulsion (theory within 0.1 deg)",
+          "[diagnosis][physics]") {
+  // Each of the four contacts carries W/4 cos(a) = F_H(d) - k pi R d (Hertz less cohesion); the
+  // cap on the repulsion is mu F_H, so the body slides when W sin(a) = mu (W cos(a) + 4 k pi R d(a)).
+  // With the cap on the net force cohesion cancels out at rest: the angle stays atan(mu).
+  const double mu = 0.3, k_coh = 1.5e4, R = 0.02, nu = 0.3;
+  double E = 2 * 1e6 * (1 + nu), Es = 2 * 8e10 * (1 + nu);
+  double E_star = 1 / ((1 - nu * nu) / E + (1 - nu * nu) / Es);
+  double W = 4 * 1000 * 4.0 / 3.0 * kPi * R * R * R * 9.81;
+  auto overlap = [&](double load) {  // F_H(d) - k pi R d = load, by bisection
+    double lo = 0, hi = R;
+    for (int i = 0; i < 200; ++i) {
+      double d = 0.5 * (lo + hi);
+      (4.0 / 3.0 * E_star * std::sqrt(R) * d * std::sqrt(d) - k_coh * kPi * R * d > load ? hi : lo) = d;
+    }
+    return lo;
+  };
+  double lo = 0, hi = 1.4;
+  for (int i = 0; i < 100; ++i) {
+    double a = 0.5 * (lo + hi);
+    double d = overlap(W / 4 * std::cos(a));
+    (W * std::sin(a) > mu * (W * std::cos(a) + 4 * k_coh * kPi * R * d) ? hi : lo) = a;
+  }
+  double theory_rise = lo * 180 / kPi - std::atan(mu) * 180 / kPi;
+  double plain = cohesive_slide_angle(mu, 0, CohesionFriction::Net);
+  double gripping = cohesive_slide_angle(mu, k_coh, CohesionFriction::Contact);
+  double net = cohesive_slide_angle(mu, k_coh, CohesionFriction::Net);
+  INFO("slide angle without cohesion " << plain << " deg, with it on the repulsion " << gripping << " (theory +"
+                                       << theory_rise << "), on the net force " << net);
+  CHECK(theory_rise > 1.0);  // strong enough to matter
+  // The 1 mm onset lands a few tenths of a degree past slip in both runs; the difference cancels it.
+  CHECK(gripping - plain == Approx(theory_rise).margin(0.1));  // measured 0.04 deg off
+  CHECK(net - plain == Approx(0).margin(0.1));
+}
+
 TEST_CASE("cohesion: a sphere resting on a plate settles where Hertz balances weight plus k pi R dn (0.5 %)",
           "[diagnosis][physics]") {
   const double R = 0.01, rho = 1000, G = 1e6, nu = 0.3, k_coh = 5e4;
@@ -114,30 +183,50 @@ TEST_CASE("cohesion: a sphere resting on a plate settles where Hertz balances we
 }
 
 TEST_CASE("all extensions on: lavapipe and the CPU twin identical after 200 steps", "[diagnosis][bitexact]") {
-  CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml");
-  double tr = build_model(spec).rayleigh_time;
-  for (auto& in : spec.interactions) {
-    in.viscoelastic_time = 0.02 * tr;
-    in.cohesion_energy_density = 5e3;
+  // Cohesion's grip on the net force and on the repulsion (with the constant torque, and with
+  // EPSD and spinning friction, which scale with it too; those need full contact entries).
+  struct Variant {
+    CohesionFriction grip;
+    RollingModel rolling;
+  };
+  for (Variant v : {Variant{CohesionFriction::Net, RollingModel::ConstantTorque},
+                    Variant{CohesionFriction::Contact, RollingModel::ConstantTorque},
+                    Variant{CohesionFriction::Contact, RollingModel::ElasticPlastic}}) {
+    CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml");
+    double tr = build_model(spec).rayleigh_time;
+    for (auto& in : spec.interactions) {
+      in.viscoelastic_time = 0.02 * tr;
+      in.cohesion_energy_density = 5e3;
+      if (v.rolling == RollingModel::ElasticPlastic) in.spinning_friction = in.rolling_friction;
+    }
+    spec.air_drag.drag_coefficient = 0.8;
+    spec.contact.cohesion_friction = v.grip;
+    spec.contact.rolling = v.rolling;
+    bool epsd = v.rolling == RollingModel::ElasticPlastic;
+    INFO("cohesion grips on " << (v.grip == CohesionFriction::Net ? "the net force" : "the repulsion")
+                              << (epsd ? ", EPSD rolling" : ", constant torque"));
+    auto cpu = simulate(spec, "cpu", 2);
+    auto gpu = simulate(spec, "vulkan");
+    cpu->advance(200);
+    gpu->advance(200);
+    std::string which;
+    bool same = same_state(cpu->state(), gpu->state(), &which);
+    INFO("cpu vs vulkan differ in " << which);
+    CHECK(same);
+    if (!epsd) {
+      auto lean = simulate(spec, "vulkan", 1, KernelVariant::parse("contact,lean"));
+      lean->advance(200);
+      std::string which_lean;
+      bool same_lean = same_state(cpu->state(), lean->state(), &which_lean);
+      INFO("cpu vs vulkan lean differ in " << which_lean);
+      CHECK(same_lean);
+    }
+    // The extensions act: the same run without them ends elsewhere.
+    CaseSpec plain = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml");
+    auto off = simulate(plain, "cpu", 2);
+    off->advance(200);
+    CHECK_FALSE(same_state(cpu->state(), off->state()));
   }
-  spec.air_drag.drag_coefficient = 0.8;
-  auto cpu = simulate(spec, "cpu", 2);
-  auto gpu = simulate(spec, "vulkan");
-  auto lean = simulate(spec, "vulkan", 1, KernelVariant::parse("contact,lean"));
-  cpu->advance(200);
-  gpu->advance(200);
-  lean->advance(200);
-  std::string which, which_lean;
-  bool same = same_state(cpu->state(), gpu->state(), &which);
-  bool same_lean = same_state(cpu->state(), lean->state(), &which_lean);
-  INFO("cpu vs vulkan differ in " << which << "; cpu vs vulkan lean differ in " << which_lean);
-  CHECK(same);
-  CHECK(same_lean);
-  // The extensions act: the same run without them ends elsewhere.
-  CaseSpec plain = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml");
-  auto off = simulate(plain, "cpu", 2);
-  off->advance(200);
-  CHECK_FALSE(same_state(cpu->state(), off->state()));
 }
 
 TEST_CASE("extension case keys load, default off, and bad values name file, key and line", "[diagnosis][case]") {
@@ -189,4 +278,13 @@ position = [0.0, 0.0, 0.0]
   e = error_of(base + "[air_drag]\ndrag_coeficient = 0.4\n");
   CHECK(e.find("bad.toml:14: air_drag.drag_coeficient") != std::string::npos);
   CHECK(e.find("drag_coefficient") != std::string::npos);
+
+  // Where cohesion's friction grips: the net force by default (no flag), or the repulsion.
+  CHECK((build_model(on).flags & gpu::kFlagCohesionContactFriction) == 0u);
+  CaseSpec grip = load_case_from_string(on_text + "[contact]\ncohesion_friction = \"contact\"\n", "grip.toml");
+  CHECK(grip.contact.cohesion_friction == CohesionFriction::Contact);
+  CHECK((build_model(grip).flags & gpu::kFlagCohesionContactFriction) != 0u);
+  e = error_of(base + "[contact]\ncohesion_friction = \"wet\"\n");
+  CHECK(e.find("bad.toml:14: contact.cohesion_friction") != std::string::npos);
+  CHECK(e.find("not one of") != std::string::npos);
 }
