@@ -97,7 +97,7 @@ TEST_CASE("slide angles without a hidden effect: the friction is fitted, the bas
   }
 }
 
-TEST_CASE("hidden cohesion is named from slide angles at four densities", "[diagnosis][hidden][slide]") {
+TEST_CASE("hidden cohesion is named from slide angles at five densities", "[diagnosis][hidden][slide]") {
   // k 1e4-2e4 J/m^3 raises the angle by 1.5-3 deg at 300 kg/m^3 and half that at 1200; the
   // means carry 0.22 deg. Measured at 4 densities: 1e4 -> fitted 8,750 (friction 0.408 for 0.4),
   // held-out 0.56 -> 0.07 deg (88 %); 2e4 -> 18,800 (94 %); but this draw gained only 25 % there,
