@@ -83,6 +83,24 @@ struct CaseBuilder {
     w.name = "plane" + std::to_string(spec.walls.size());
     spec.walls.push_back(w);
   }
+  // A level square plate at the origin, the plate of the tilting tests.
+  void level_plate(const std::string& name, double side, int mat) {
+    WallSpec w;
+    w.type = WallSpec::Type::Rectangle;
+    w.name = name;
+    w.point = {0, 0, 0};
+    w.normal = {0, 0, 1};
+    w.edge_axis = {1, 0, 0};
+    w.size = {side, side};
+    w.material = mat;
+    spec.walls.push_back(w);
+  }
+  // Four spheres of radius r bonded in a square (the seed's trick against rolling), resting
+  // on z = 0.
+  void four_sphere_body(double r, int mat) {
+    int t = clump_template("four", {{{-r, -r, 0}, r}, {{r, -r, 0}, r}, {{-r, r, 0}, r}, {{r, r, 0}, r}});
+    clump(t, {0, 0, r * 0.999}, mat);
+  }
 };
 
 // n spheres of ~4 mm on a grid of `spacing` radii (jittered by `jitter` radii) above a floor

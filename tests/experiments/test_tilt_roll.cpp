@@ -20,21 +20,9 @@ CaseSpec tilt_case(double mu_s, double mu_r, bool four_spheres) {
   b.spec.gravity = {0, 0, -9.81};
   b.spec.time.rayleigh_fraction = 0.2;
   const double r = 0.02;
-  if (four_spheres) {
-    int t = b.clump_template("four", {{{-r, -r, 0}, r}, {{r, -r, 0}, r}, {{-r, r, 0}, r}, {{r, r, 0}, r}});
-    b.clump(t, {0, 0, r * 0.999}, grain);
-  } else {
-    b.sphere({0, 0, r * 0.999}, r, grain);
-  }
-  WallSpec plate;
-  plate.type = WallSpec::Type::Rectangle;
-  plate.name = "plate";
-  plate.point = {0, 0, 0};
-  plate.normal = {0, 0, 1};
-  plate.edge_axis = {1, 0, 0};
-  plate.size = {0.6, 0.6};
-  plate.material = steel;
-  b.spec.walls.push_back(plate);
+  if (four_spheres) b.four_sphere_body(r, grain);
+  else b.sphere({0, 0, r * 0.999}, r, grain);
+  b.level_plate("plate", 0.6, steel);
   b.spec.experiment.type = four_spheres ? "slide" : "roll";
   b.spec.experiment.method = "tilt";
   b.spec.experiment.settle_time = 0.3;
