@@ -24,6 +24,7 @@ struct DiagnosedExperiment {
   FreeParameter baseline;              // the baseline's free parameter and its search range
   double& (*baseline_value)(CaseSpec&);
   std::string baseline_model;          // for reports: "Hertz-Mindlin, constant restitution"
+  std::string condition;               // the case key synthetic data vary by default
 };
 
 const std::vector<DiagnosedExperiment>& diagnosed_experiments();

@@ -134,9 +134,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
   const DiagnosedExperiment* kind = diagnosed_experiment(plain);
   if (!kind) throw std::runtime_error(truth.case_path + ": diagnose does not simulate experiment '" +
                                       plain.experiment.type + "'");
-  std::string key = truth.condition_key;
-  if (key.empty())
-    key = kind->id == "repose" ? "fill.0.count" : kind->id == "roll" ? "experiment.slope_distance" : "material.0.density";
+  std::string key = truth.condition_key.empty() ? kind->condition : truth.condition_key;
   if (kind->id == "repose") {
     write_heap_data(truth, key, ext, csv_path);
     return;
@@ -148,7 +146,8 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
   std::string case_column = case_column_of(truth, csv_path);
   Gaussian noise(truth.seed);
   std::ostringstream csv;
-  csv << "case,set:experiment.drop_height,measure,value,replicate,t" << (truth.write_sigma ? ",sigma" : "") << "\n";
+  // A drop varies its height (the impact alignment and the trajectories are written around it).
+  csv << "case,set:" << kind->condition << ",measure,value,replicate,t" << (truth.write_sigma ? ",sigma" : "") << "\n";
   csv.precision(7);
   auto sigma = [&](double sd) {
     std::ostringstream s;
@@ -160,7 +159,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     double h = truth.heights[hi];
     std::ostringstream hs;
     hs << h;
-    CaseSpec spec = load_case(truth.case_path, {{"experiment.drop_height", hs.str()}});
+    CaseSpec spec = load_case(truth.case_path, {{kind->condition, hs.str()}});
     if (truth.restitution) body_plate_interaction(spec).restitution = *truth.restitution;
     if (ext) ext->apply(spec, truth.extension_params);
     align_impact_phase(spec);  // as the diagnosis simulates (impact_phase.h)

@@ -27,8 +27,9 @@ struct SyntheticTruth {
   std::optional<double> plate_friction;  // slide: body-plate sliding friction; roll: rolling friction
   std::vector<double> heights;           // drop heights, m (the condition variable); other cases:
                                          // the values of condition_key
-  // The key the conditions vary in a heap, slide or roll case (any case key); empty: fill.0.count
-  // (heap), experiment.slope_distance (roll, incline), material.0.density (slide, tilt roll).
+  // The key the conditions vary in a heap, slide or roll case (any case key); empty: the
+  // experiment's own (diagnosed_experiments.cpp: fill.0.count, experiment.slope_distance,
+  // material.0.density).
   std::string condition_key;
   double angle_noise = 0.5;              // SD of one measured angle, deg (lengths: `noise`)
   bool bed_height_only = false;          // heap: only bed_height rows (the bed alone is simulated)
