@@ -309,7 +309,9 @@ class CaseReader {
   void read_contact() {
     auto s = table("contact");
     if (!s) return;
-    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_damping", "cohesion_friction"}, "[contact]");
+    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_lever", "rolling_damping",
+                   "cohesion_friction"},
+                  "[contact]");
     ContactOptions& c = spec_.contact;
     c.coulomb_cap = s->choice<CoulombCap>(
         "coulomb_cap", {{"spring_and_damper", CoulombCap::SpringAndDamper}, {"spring", CoulombCap::SpringOnly}},
@@ -323,6 +325,14 @@ class CaseReader {
         c.rolling);
     c.rolling_omega = s->choice<RollingOmega>(
         "rolling_omega", {{"own", RollingOmega::Own}, {"relative", RollingOmega::Relative}}, c.rolling_omega);
+    // LIGGGHTS's relative torque takes R* of the touching spheres: its lever is the sphere's.
+    RollingLever lever_default =
+        c.rolling_omega == RollingOmega::Relative ? RollingLever::Sphere : c.rolling_lever;
+    c.rolling_lever = s->choice<RollingLever>(
+        "rolling_lever", {{"centre", RollingLever::Centre}, {"sphere", RollingLever::Sphere}}, lever_default);
+    if (c.rolling_omega == RollingOmega::Relative && c.rolling_lever == RollingLever::Centre)
+      s->fail("rolling_lever", "\"centre\" belongs to EDEM's torque against each body's own spin; "
+                               "rolling_omega = \"relative\" (LIGGGHTS cdt) takes R* of the touching spheres");
     c.cohesion_friction = s->choice<CohesionFriction>(
         "cohesion_friction", {{"net", CohesionFriction::Net}, {"contact", CohesionFriction::Contact}},
         c.cohesion_friction);

@@ -156,6 +156,10 @@ enum class NormalAttraction { Allow, Clip };
 // ElasticPlastic: EDEM type C, the elastic-plastic spring-dashpot (EPSD) of Ai et al. 2011.
 enum class RollingModel { None, ConstantTorque, ElasticPlastic };
 enum class RollingOmega { Own, Relative };  // EDEM uses each body's own w, LIGGGHTS the relative w
+// The constant torque's lever on a multi-sphere body: the distance from the contact point to the
+// body's centre of mass (EDEM, DEM-Engine) or the touching sub-sphere's radius (LIGGGHTS-PUBLIC's
+// multisphere). Equal for a lone sphere.
+enum class RollingLever { Centre, Sphere };
 // What the Coulomb cap and the rolling torque's lever see when cohesion pulls a contact together:
 // the net normal force (LIGGGHTS sjkr's default, tangential_reduce off) or the contact's own
 // repulsion, which cohesion raises (tangential_reduce on; JKR-like: wet contacts grip harder).
@@ -166,6 +170,7 @@ struct ContactOptions {
   NormalAttraction normal_attraction = NormalAttraction::Allow;
   RollingModel rolling = RollingModel::ConstantTorque;
   RollingOmega rolling_omega = RollingOmega::Own;
+  RollingLever rolling_lever = RollingLever::Centre;  // with rolling_omega Relative: Sphere (R*)
   double rolling_damping = 0.3;  // ElasticPlastic: eta_r, fraction of critical (Ai et al. 2011 use 0.3)
   CohesionFriction cohesion_friction = CohesionFriction::Net;
 };

@@ -359,6 +359,7 @@ Model build_model(const CaseSpec& spec) {
   if (spec.contact.cohesion_friction == CohesionFriction::Contact) m.flags |= gpu::kFlagCohesionContactFriction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+  if (spec.contact.rolling_lever == RollingLever::Sphere) m.flags |= gpu::kFlagRollingLeverSphere;
   if (spec.contact.rolling == RollingModel::ElasticPlastic) {
     m.flags |= gpu::kFlagRollingSpring;
     m.rolling_damping = spec.contact.rolling_damping;

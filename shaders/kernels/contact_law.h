@@ -18,19 +18,35 @@ struct ContactOut {
   float normal_stiffness;  // Hertz secant stiffness Fn_elastic / overlap = 4/3 E* sqrt(R* dn)
 };
 
-// Torque on one body of a contact: the tangential force's moment about its centre (r from the
-// centre to the contact point), plus EDEM's standard rolling torque against the body's own spin
-// when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once per body). The lean gather
-// calls it again on stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
-FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, vec3 w, float lw) {
+// Torque on one body of a contact: the tangential force's moment about its sphere's centre (r
+// from that centre to the contact point), plus EDEM's standard rolling torque mu_r |Fn| x lever
+// against the body's own spin when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once
+// per body). The lever is r for a sphere; for a clump, |contact point - centre of mass| (EDEM) or
+// r (rolling_lever = "sphere"; rolling_lever() in contacts.h). The lean gather calls it again on
+// stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
+FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, float lw) {
   precise vec3 t = scale3(n_x_ft, -r);
   if (roll_arm >= 0.0f) {
     if (lw > 0.0f) {
-      precise float k = -(roll_arm * r) / lw;
+      precise float k = -(roll_arm * lever) / lw;
       t = t + scale3(w, k);
     }
   }
   return t;
+}
+
+// The contact point: i's surface point along -n (ri = its radius less half the overlap).
+FN vec3 contact_point(vec3 xi, vec3 n, float ri) {
+  precise vec3 cp = xi - scale3(n, ri);
+  return cp;
+}
+
+// Whether a rolling torque's lever must be measured from a clump's centre of mass: EDEM's
+// constant torque against each body's own spin (the relative torque of LIGGGHTS uses R*).
+FN bool centre_lever(uint flags) {
+  uint need = kFlagRollingConstTorque | kFlagBodies;
+  uint never = kFlagRollingRelativeOmega | kFlagRollingLeverSphere;
+  return (flags & need) == need && (flags & never) == 0u;
 }
 
 // LIGGGHTS cdt rolling torque on i (j receives minus it): against the relative rotation, lever
@@ -128,9 +144,11 @@ FN vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, floa
   return scale3(n, k);
 }
 
+// ri, rj: each sphere's centre to the contact point (the tangential force's moment arm);
+// lever_i, lever_j: the rolling torque's levers (body_torque).
 FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
-                            float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
-                            PairParams pp, float dt, uint flags, INOUT(vec3) shear) {
+                            float rj, float lever_i, float lever_j, vec3 v_rel, vec3 w_i, vec3 w_j,
+                            bool j_is_wall, PairParams pp, float dt, uint flags, INOUT(vec3) shear) {
   ContactOut o;
   float e_star = pp.a.x;
   float g_star = pp.a.y;
@@ -200,13 +218,13 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   o.torque_i = vec3(0.0f);
   o.torque_j = vec3(0.0f);
   if ((flags & kFlagLeanContacts) != 0u) return o;  // the gather derives the torques
-  // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
+  // EDEM standard: each body's torque opposes its own rotation, lever arm its own R_i.
   float own_arm = relative ? -1.0f : arm;
   float arm_j = j_is_wall ? -1.0f : own_arm;
   precise float lw_i = own_arm >= 0.0f ? length3(w_i) : 0.0f;
   precise float lw_j = arm_j >= 0.0f ? length3(w_j) : 0.0f;
-  o.torque_i = body_torque(n_x_ft, ri, own_arm, w_i, lw_i);
-  o.torque_j = body_torque(n_x_ft, rj, arm_j, w_j, lw_j);
+  o.torque_i = body_torque(n_x_ft, ri, own_arm, lever_i, w_i, lw_i);
+  o.torque_j = body_torque(n_x_ft, rj, arm_j, lever_j, w_j, lw_j);
   if (rolling && relative) {
     // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
     vec3 tr;

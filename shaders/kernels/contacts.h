@@ -85,8 +85,7 @@ KFN(void, process_contact) uint i, uint c) {
       radius_star = rad_i;
       mass_star = 1.0f / vi.w;
       ri = rad_i - 0.5f * overlap;
-      precise vec3 contact_point = xi - scale3(n, ri);
-      precise vec3 v_wall = wall_point_velocity(ws, contact_point);
+      precise vec3 v_wall = wall_point_velocity(ws, contact_point(xi, n, ri));
       v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
       w_wall = xyz(ws.omega);
       inv_inertia_r = vi.w / (1.4f * (ri * ri));
@@ -106,8 +105,15 @@ KFN(void, process_contact) uint i, uint c) {
     return;
   }
   PairParams pp = B_pairs[mi * PC.n_materials + mj];
-  ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
-                               pp, PC.dt, PC.flags, shear);
+  float lever_i = ri;
+  float lever_j = rj;
+  if (centre_lever(PC.flags) && (PC.flags & kFlagLeanContacts) == 0u) {  // lean: the gather's job
+    vec3 cp = contact_point(xi, n, ri);
+    lever_i = rolling_lever(KB i, cp, ri);
+    if (!is_wall) lever_j = rolling_lever(KB p, cp, rj);
+  }
+  ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, lever_i, lever_j, v_rel, wi, wj,
+                               is_wall, pp, PC.dt, PC.flags, shear);
   if ((PC.flags & kFlagKeepHistory) == 0u) B_history[c] = vec4(shear, hist.w + 1.0f);
   if (rolling_spring) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
