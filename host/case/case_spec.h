@@ -50,6 +50,7 @@ struct SphereSpec {
   Vec3d angular_velocity{};
   double radius = 0;
   int material = 0;
+  bool fixed = false;  // takes part in contacts, never moves (infinite mass; LIGGGHTS fix freeze)
   SourceRef where;  // the [[sphere]], [[fill]] or [[lattice]] entry that made it
 };
 
@@ -72,6 +73,7 @@ struct BodySpec {
   std::array<double, 4> orientation{1, 0, 0, 0};  // unit quaternion (w, x, y, z), template -> world
   Vec3d velocity{};                               // of the centre of mass
   Vec3d angular_velocity{};
+  bool fixed = false;                             // never moves (see SphereSpec::fixed)
   SourceRef where;
 };
 
@@ -88,6 +90,7 @@ struct FillSpec {
   int material = 0;
   uint64_t seed = 0;
   Vec3d velocity{};
+  bool fixed = false;                     // every sphere or body of the fill is fixed
   SourceRef where;
 };
 
@@ -106,6 +109,7 @@ struct LatticeSpec {
   Vec3d spacing_xyz{};
   std::array<double, 4> orientation{1, 0, 0, 0};
   double scale = 1;
+  bool fixed = false;  // every site's sphere or body is fixed
   SourceRef where;
 };
 
@@ -164,6 +168,9 @@ enum class RollingLever { Centre, Sphere };
 // the net normal force (LIGGGHTS sjkr's default, tangential_reduce off) or the contact's own
 // repulsion, which cohesion raises (tangential_reduce on; JKR-like: wet contacts grip harder).
 enum class CohesionFriction { Net, Contact };
+// The area linear cohesion pulls on: EDEM's Hertz contact area pi R* dn, or LIGGGHTS sjkr's disc
+// where the two sphere surfaces intersect (about 2 pi R* dn).
+enum class CohesionArea { Hertz, Intersection };
 
 struct ContactOptions {
   CoulombCap coulomb_cap = CoulombCap::SpringAndDamper;
@@ -173,6 +180,7 @@ struct ContactOptions {
   RollingLever rolling_lever = RollingLever::Centre;  // with rolling_omega Relative: Sphere (R*)
   double rolling_damping = 0.3;  // ElasticPlastic: eta_r, fraction of critical (Ai et al. 2011 use 0.3)
   CohesionFriction cohesion_friction = CohesionFriction::Net;
+  CohesionArea cohesion_area = CohesionArea::Hertz;
 };
 
 struct TimeSpec {

@@ -16,6 +16,7 @@ FN vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
 // v += kick dt (F/m + g [+ drag]); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
 KFN(void, kick_and_drift) uint i, vec3 force, vec3 torque) {
   vec4 v4 = B_vel[i];
+  if (v4.w == 0.0f) return;  // fixed (neighbour.h): never moves
   vec4 w4 = B_omega[i];
   precise float h = PC.kick * PC.dt;
   precise vec3 accel = scale3(force, v4.w) + vec3(PC.gx, PC.gy, PC.gz);
@@ -124,14 +125,14 @@ KFN(vec3, lean_torque) uint c, uint self, bool owner_side, float rad, vec3 w, fl
     vec4 pi = B_pos[i];
     vec3 wi = xyz(B_omega[i]);
     vec3 wj = vec3(0.0f);
-    float radius_star = pi.w;
+    precise float lever = pi.w - 0.5f * b.w;  // a wall: LIGGGHTS's contact radius r_i - dn/2
     if (p < PC.n_particles) {
       float rad_j = B_pos[p].w;
       wj = xyz(B_omega[p]);
-      radius_star = (pi.w * rad_j) / (pi.w + rad_j);
+      lever = (pi.w * rad_j) / (pi.w + rad_j);  // R*
     }
     vec3 tr;
-    if (relative_rolling(wi, wj, a.w, radius_star, tr)) t = owner_side ? t + tr : t - tr;
+    if (relative_rolling(wi, wj, a.w, lever, stored_contact_normal(KB c), tr)) t = owner_side ? t + tr : t - tr;
   }
   return t;
 }
