@@ -16,9 +16,11 @@
 
 #include "case/body_pose.h"
 #include "case/case_override.h"
+#include "case/experiment_keys.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
 #include "case/spelling.h"
+#include "case/toml_section.h"
 #include "case/time_step.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
@@ -27,26 +29,6 @@
 namespace repose {
 namespace {
 
-std::string quoted_list(const std::vector<std::string>& words) {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "'" : ", '") + word + "'";
-  return text;
-}
-
-const char* type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date or time";
-  }
-}
-
-int line_of(const toml::node& node) { return int(node.source().begin.line); }
-
 // Names usable in override keys ("material.cabbage.density"): no dots, no slashes, and not all
 // digits (those are indices).
 bool usable_name(const std::string& name) {
@@ -54,151 +36,6 @@ bool usable_name(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [](unsigned char c) {
     return std::isalnum(c) || c == '_' || c == '-';
   });
-}
-
-// One TOML table being read: knows its key path for messages ("fill[2].box") and reports
-// problems at the line of the offending value, or of the table when the value is missing.
-class Section {
- public:
-  Section(const toml::table& table, std::string prefix, const std::string& file)
-      : table_(table), prefix_(std::move(prefix)), file_(file) {}
-
-  std::string key(std::string_view k) const {
-    return prefix_.empty() ? std::string(k) : prefix_ + "." + std::string(k);
-  }
-  SourceRef where() const { return {file_, prefix_, line_of(table_)}; }
-  SourceRef where(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    return {file_, key(k), line_of(node ? *node : table_)};
-  }
-  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
-    throw CaseError(where(k), problem);
-  }
-  [[noreturn]] void fail(const std::string& problem) const { throw CaseError(where(), problem); }
-
-  // Unknown keys are reported first, the earliest in the file, with the nearest allowed key.
-  void allow_only(const std::vector<std::string>& allowed, const std::string& context) const {
-    const toml::key* unknown = nullptr;
-    for (auto&& [k, node] : table_) {
-      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
-      if (!unknown || k.source().begin.line < unknown->source().begin.line) unknown = &k;
-    }
-    if (!unknown) return;
-    throw CaseError({file_, key(unknown->str()), int(unknown->source().begin.line)},
-                    "unknown key in " + context + did_you_mean(unknown->str(), allowed) +
-                        " (allowed: " + quoted_list(allowed) + ")");
-  }
-
-  bool has(std::string_view k) const { return table_.contains(k); }
-  const toml::table& table() const { return table_; }
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void missing(std::string_view k, const std::string& hint = "") const {
-    fail(k, "missing required value" + hint);
-  }
-  [[noreturn]] void wrong_type(std::string_view k, const std::string& expected) const {
-    fail(k, "expected " + expected + ", got " + type_name(*table_.get(k)));
-  }
-
-  std::optional<double> number(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_number()) wrong_type(k, "a number");
-    double value = node->is_integer() ? double(node->as_integer()->get()) : node->as_floating_point()->get();
-    if (!std::isfinite(value)) fail(k, "must be a finite number");
-    return value;
-  }
-  double required_number(std::string_view k, const std::string& hint = "") const {
-    if (auto value = number(k)) return *value;
-    missing(k, hint);
-  }
-  std::optional<int64_t> integer(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_integer()) wrong_type(k, "an integer");
-    return node->as_integer()->get();
-  }
-  std::optional<std::string> text(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_string()) wrong_type(k, "a string");
-    return node->as_string()->get();
-  }
-  std::string required_text(std::string_view k, const std::string& hint = "") const {
-    if (auto value = text(k)) return *value;
-    missing(k, hint);
-  }
-  std::optional<bool> boolean(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_boolean()) wrong_type(k, "true or false");
-    return node->as_boolean()->get();
-  }
-  std::optional<Vec3d> vector3(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    const toml::array* array = node->as_array();
-    if (!array || array->size() != 3 || !all_numbers(*array))
-      fail(k, std::string("expected an array of 3 numbers [x, y, z], got ") +
-                  (array ? std::to_string(array->size()) + "-element array" : type_name(*node)));
-    Vec3d value;
-    for (size_t i = 0; i < 3; ++i) {
-      const toml::node& element = *array->get(i);
-      value[i] = element.is_integer() ? double(element.as_integer()->get())
-                                      : element.as_floating_point()->get();
-      if (!std::isfinite(value[i])) fail(k, "must hold finite numbers");
-    }
-    return value;
-  }
-  Vec3d required_vector3(std::string_view k) const {
-    if (auto value = vector3(k)) return *value;
-    missing(k, " (an array of 3 numbers [x, y, z])");
-  }
-  std::optional<Section> sub(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_table()) wrong_type(k, "a table such as { key = value, ... }");
-    return Section(*node->as_table(), key(k), file_);
-  }
-
-  // One of a fixed set of words, mapped to an enum.
-  template <class Enum>
-  Enum choice(std::string_view k, const std::vector<std::pair<std::string, Enum>>& options,
-              Enum fallback) const {
-    auto value = text(k);
-    if (!value) return fallback;
-    std::vector<std::string> words;
-    for (const auto& [word, option] : options) {
-      if (word == *value) return option;
-      words.push_back(word);
-    }
-    fail(k, "'" + *value + "' is not one of " + quoted_list(words) + did_you_mean(*value, words));
-  }
-
- private:
-  static bool all_numbers(const toml::array& array) {
-    return std::all_of(array.begin(), array.end(), [](const toml::node& n) { return n.is_number(); });
-  }
-
-  const toml::table& table_;
-  std::string prefix_;
-  const std::string& file_;
-};
-
-// A checked value, failing with a message that states the rule it broke.
-double positive(const Section& s, std::string_view k, double value) {
-  if (!(value > 0)) s.fail(k, format_number(value) + " must be greater than 0");
-  return value;
-}
-double non_negative(const Section& s, std::string_view k, double value) {
-  if (value < 0) s.fail(k, format_number(value) + " must not be negative");
-  return value;
-}
-
-Vec3d unit(const Section& s, std::string_view k, const Vec3d& v) {
-  double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(length > 0)) s.fail(k, "must not be the zero vector");
-  return {v[0] / length, v[1] / length, v[2] / length};
 }
 
 class CaseReader {
@@ -368,60 +205,30 @@ class CaseReader {
     spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
   }
 
+  // [experiment]: its type picks the experiment that reads the rest (case/experiment_keys.h).
   void read_experiment() {
     auto s = table("experiment");
     if (!s) return;
     ExperimentSpec& ex = spec_.experiment;
-    std::vector<std::string> types{"drop", "slide", "roll", "repose"};
-    std::string type = s->required_text("type", " (drop, slide, roll or repose)");
-    if (std::find(types.begin(), types.end(), type) == types.end())
-      s->fail("type", "unknown experiment '" + type + "' (drop, slide, roll or repose)" + did_you_mean(type, types));
+    const auto& readers = experiment_key_readers();
+    if (readers.empty())
+      s->fail("the program has not installed the experiments that read [experiment] (install_experiments())");
+    std::vector<std::string> types;
+    for (const auto& r : readers) types.push_back(r.type);
+    std::string listed;
+    for (size_t k = 0; k < types.size(); ++k)
+      listed += (k == 0 ? "" : k + 1 == types.size() ? " or " : ", ") + types[k];
+    std::string type = s->required_text("type", " (" + listed + ")");
+    auto reader = std::find_if(readers.begin(), readers.end(), [&](const auto& r) { return r.type == type; });
+    if (reader == readers.end())
+      s->fail("type", "unknown experiment '" + type + "' (" + listed + ")" + did_you_mean(type, types));
     ex.type = type;
     std::vector<std::string> allowed{"type", "max_time"};
-    std::vector<std::string> tilt{"plate",          "tilt_rate",   "tilt_axis", "settle_time",
-                                  "onset_distance", "onset_speed", "max_angle"};
-    if (type == "drop") allowed.insert(allowed.end(), {"drop_height", "camera_fps"});
-    if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
-    if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
-    if (type == "repose")
-      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"});
+    allowed.insert(allowed.end(), reader->keys.begin(), reader->keys.end());
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
-    if (auto h = s->number("drop_height")) ex.drop_height = positive(*s, "drop_height", *h);
-    if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
-    ex.plate = s->text("plate").value_or("");
-    if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
-    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit(*s, "tilt_axis", *a);
-    if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
-    if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
-    if (auto v = s->number("onset_speed")) ex.onset_speed = non_negative(*s, "onset_speed", *v);
-    if (auto a = s->number("max_angle")) {
-      if (!(*a > 0 && *a < 90)) s->fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
-      ex.max_angle_deg = *a;
-    }
-    ex.method = s->choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
-    if (auto b = s->number("incline_angle")) {
-      if (!(*b > 0 && *b < 60)) s->fail("incline_angle", format_number(*b) + " must lie between 0 and 60 degrees");
-      ex.incline_deg = *b;
-    }
-    if (auto d = s->number("slope_distance")) ex.slope_distance = positive(*s, "slope_distance", *d);
-    if (auto v = s->number("stop_speed")) ex.stop_speed = positive(*s, "stop_speed", *v);
-    ex.lift_wall = s->text("lift_wall").value_or("");
-    if (type == "repose" && ex.lift_wall.empty())
-      s->missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
-    if (auto t = s->number("lift_end")) ex.lift_end = non_negative(*s, "lift_end", *t);
-    if (auto e = s->number("settle_energy")) ex.settle_energy = positive(*s, "settle_energy", *e);
-    ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
-    ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
-    ex.axisymmetric = s->boolean("axisymmetric").value_or(false);
-    if (auto n = s->integer("views")) {
-      if (*n < 1 || *n > 180) s->fail("views", std::to_string(*n) + " must lie between 1 and 180");
-      ex.views = int(*n);
-      if (ex.views > 1 && ex.heap_side != "both")
-        s->fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
-    }
-    if (auto z = s->number("floor_z")) ex.heap_floor_z = *z;
+    reader->read(*s, ex);
   }
 
   // [experiment] names walls; they must exist (checked once all walls are read).
@@ -745,7 +552,7 @@ class CaseReader {
       cylinder->allow_only({"base", "axis", "radius", "height"}, "a fill cylinder");
       fill.shape = FillSpec::Shape::Cylinder;
       fill.cyl_base = cylinder->required_vector3("base");
-      fill.cyl_axis = unit(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
+      fill.cyl_axis = unit_vector(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
       fill.cyl_radius = cylinder->required_number("radius", " (m)");
       fill.cyl_height = cylinder->required_number("height", " (m)");
       if (!(fill.cyl_radius >= reach))
@@ -882,7 +689,7 @@ class CaseReader {
     switch (wall.type) {
       case WallSpec::Type::Plane:
         wall.point = s.required_vector3("point");
-        wall.normal = unit(s, "normal", s.required_vector3("normal"));
+        wall.normal = unit_vector(s, "normal", s.required_vector3("normal"));
         break;
       case WallSpec::Type::Box:
         wall.box_min = s.required_vector3("min");
@@ -896,7 +703,7 @@ class CaseReader {
       case WallSpec::Type::Mesh: read_mesh(s, wall); break;
       case WallSpec::Type::Cylinder:
         wall.base = s.required_vector3("base");
-        wall.axis = unit(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
+        wall.axis = unit_vector(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
         wall.radius = positive(s, "radius", s.required_number("radius", " (m)"));
         wall.height = positive(s, "height", s.required_number("height", " (m)"));
         break;
@@ -926,8 +733,8 @@ class CaseReader {
 
   void read_rectangle(const Section& s, WallSpec& wall) {
     wall.point = s.required_vector3("centre");
-    wall.normal = unit(s, "normal", s.required_vector3("normal"));
-    Vec3d u = unit(s, "edge_axis", s.required_vector3("edge_axis"));
+    wall.normal = unit_vector(s, "normal", s.required_vector3("normal"));
+    Vec3d u = unit_vector(s, "edge_axis", s.required_vector3("edge_axis"));
     double along = u[0] * wall.normal[0] + u[1] * wall.normal[1] + u[2] * wall.normal[2];
     if (std::abs(along) > 1e-6)
       s.fail("edge_axis", "must be perpendicular to the normal (their dot product is " + format_number(along) + ")");
@@ -974,7 +781,7 @@ class CaseReader {
     if (!(motion.stop_time > motion.start_time))
       s.fail("stop", format_number(motion.stop_time) + " must be later than start " + format_number(motion.start_time));
     motion.rotation_axis_point = s.vector3("axis_point").value_or(motion.rotation_axis_point);
-    motion.rotation_axis = unit(s, "axis", s.vector3("axis").value_or(motion.rotation_axis));
+    motion.rotation_axis = unit_vector(s, "axis", s.vector3("axis").value_or(motion.rotation_axis));
     motion.angular_rate = s.number("rate").value_or(0);
   }
 
