@@ -109,6 +109,21 @@ double noise_sd(const GaussianProcess& gp) {
 
 }  // namespace
 
+std::uint64_t loop_seed(const CampaignPlan& plan, int index) {
+  return plan.adaptive.seed_per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index)
+                                    : plan.base_seed;
+}
+
+std::vector<RunSpec> adaptive_start_runs(const CampaignPlan& plan) {
+  std::vector<RunSpec> start;
+  int index = 0;
+  for (const auto& p : halton_points(int(plan.factors.size()), 1, plan.adaptive.initial)) {
+    ++index;
+    start.push_back({loop_id(index), "loop", index, 0, loop_seed(plan, index), to_actual(plan, p)});
+  }
+  return start;
+}
+
 std::vector<Eigen::VectorXd> halton_points(int k, int first, int count) {
   static const int primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
   if (k > 12) throw std::runtime_error("the adaptive loop takes at most 12 factors");
@@ -149,18 +164,10 @@ LoopDecision decide(const CampaignPlan& plan, const Eigen::MatrixXd& x, const Ei
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet) {
   const int k = int(plan.factors.size());
   const double target = plan.measured, tol = plan.absolute_tolerance();
-  const bool per_run = plan.adaptive.seed_per_run;
-  auto seed_of = [&](int index) {
-    return per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index) : plan.base_seed;
-  };
+  auto seed_of = [&](int index) { return loop_seed(plan, index); };
   AdaptiveOutcome out;
   out.initial = plan.adaptive.initial;
-  std::vector<RunSpec> start;
-  int index = 0;
-  for (const auto& p : halton_points(k, 1, plan.adaptive.initial)) {
-    ++index;
-    start.push_back({loop_id(index), "loop", index, 0, seed_of(index), to_actual(plan, p)});
-  }
+  std::vector<RunSpec> start = adaptive_start_runs(plan);
   executor.run(start, "loop start");
   std::vector<double> proposal_ei(start.size(), 0.0);
 

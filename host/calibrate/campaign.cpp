@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <filesystem>
+#include <sstream>
 #include <set>
 
 #include "calibrate/adaptive_loop.h"
@@ -115,6 +116,29 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
               res.target_reached ? "" : " (target NOT reached)");
   std::printf("  report: %s, database: %s\n", summary.report_path.c_str(), db_path.c_str());
   return summary;
+}
+
+std::string describe_planned_runs(const CampaignPlan& plan) {
+  std::ostringstream out;
+  auto line = [&](const RunSpec& r) {
+    out << "  " << r.id << "  seed " << r.seed;
+    for (size_t i = 0; i < plan.factors.size(); ++i) out << "  " << plan.factors[i].name << " = " << r.x[i];
+    out << "\n";
+  };
+  if (plan.mode == CampaignMode::design) {
+    std::vector<RunSpec> design = design_runs(plan);
+    out << design.size() << " design runs, in run order:\n";
+    for (const auto& r : design) line(r);
+  } else {
+    std::vector<RunSpec> start = adaptive_start_runs(plan);
+    out << start.size() << " start runs of the adaptive loop (space-filling):\n";
+    for (const auto& r : start) line(r);
+    out << "then up to " << plan.adaptive.budget - int(start.size())
+        << " runs where the surrogate expects the largest improvement (budget " << plan.adaptive.budget << ")\n";
+  }
+  out << "then " << plan.verification_runs << " verification run" << (plan.verification_runs == 1 ? "" : "s")
+      << " at the calibrated parameters\n";
+  return out.str();
 }
 
 }  // namespace repose::calibrate

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <algorithm>
+#include <iterator>
 #include <sstream>
 
 #include "calibrate/design_runs.h"
@@ -17,6 +19,8 @@
 #include "stats/errors.h"
 #include "stats/model_terms.h"
 #include "stats/regression.h"
+#include "util/hash.h"
+#include "util/input_file.h"
 
 namespace repose::calibrate {
 
@@ -124,6 +128,7 @@ bool valid_name(const std::string& n) {
 }
 
 std::string read_text(const std::string& path) {
+  if (!why_not_input_file(path, 16u << 20).empty()) return {};
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
   std::ostringstream s;
@@ -306,7 +311,7 @@ void read_adaptive(const PlanTable& t, CampaignPlan& plan) {
 
 // Tries the settings and every factor's extremes on the base case, so an unknown key or a value
 // the case refuses is reported at the plan line that asks for it, before anything runs.
-void check_against_case(const CampaignPlan& plan, const SourceRef& set_where) {
+void check_against_case(CampaignPlan& plan, const SourceRef& set_where) {
   std::vector<CaseOverride> base;
   for (const auto& s : plan.settings) base.push_back({s.key, s.value});
   CaseSpec spec;
@@ -315,6 +320,7 @@ void check_against_case(const CampaignPlan& plan, const SourceRef& set_where) {
   } catch (const CaseError& e) {
     throw CaseError(set_where, std::string("the base case refuses the settings: ") + e.what());
   }
+  plan.case_identity = spec.identity;
   if (!spec.experiment.type.empty() && spec.experiment.type != plan.experiment)
     throw CaseError({plan.path, "campaign.experiment", 0},
                     "the base case " + plan.case_path + " is a '" + spec.experiment.type + "' experiment, not '" + plan.experiment + "'");
@@ -353,7 +359,8 @@ std::string exact_number(double value) {
 CampaignPlan load_plan(const std::string& path) {
   CampaignPlan plan;
   plan.path = path;
-  if (!fs::is_regular_file(path)) throw CaseError({path, "", 0}, "no such plan file");
+  if (!fs::exists(path)) throw CaseError({path, "", 0}, "no such plan file");
+  if (auto why = why_not_input_file(path, 16u << 20); !why.empty()) throw CaseError({path, "", 0}, "not a plan file: " + why);
   toml::table root;
   try {
     root = toml::parse_file(path);
@@ -425,7 +432,9 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   kv["campaign.seed_key"] = p.seed_key;
   kv["campaign.base_seed"] = std::to_string(p.base_seed);
   kv["campaign.case"] = fs::path(p.case_path).filename().string();
-  kv["campaign.case_content_hash"] = plan_hash(p.case_text);
+  // What the base case parsed to and the files it reads, not its text: a comment does not
+  // change the runs, an edited template or mesh does.
+  kv["campaign.case_hash"] = plan_hash(p.case_identity);
   kv["response.name"] = p.response;
   kv["response.measured"] = exact_number(p.measured);
   kv["response.measured_sd"] = exact_number(p.measured_sd);
@@ -467,41 +476,67 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   kv["verification.runs"] = std::to_string(p.verification_runs);
   std::string text;
   for (const auto& [k, v] : kv) text += k + " = " + v + "\n";
+  // The base case as parsed, line by line, so a change can be named (describe_plan_change).
+  std::istringstream identity(p.case_identity);
+  for (std::string line; std::getline(identity, line);)
+    if (!line.empty()) text += kCaseLinePrefix + line + "\n";
   return text;
 }
 
-std::string plan_hash(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a offset basis
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
+std::string plan_hash(const std::string& text) { return fnv1a_hex(text); }
+
+namespace {
+
+struct CanonicalParts {
+  std::map<std::string, std::string> settings;  // "key = value" lines
+  std::multiset<std::string> case_lines;        // the base case as parsed
+};
+
+CanonicalParts split_canonical(const std::string& text) {
+  CanonicalParts parts;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(kCaseLinePrefix, 0) == 0) {
+      parts.case_lines.insert(line.substr(std::string(kCaseLinePrefix).size()));
+      continue;
+    }
+    auto eq = line.find(" = ");
+    if (eq != std::string::npos) parts.settings[line.substr(0, eq)] = line.substr(eq + 3);
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
-  return hex;
+  return parts;
 }
 
-std::string describe_plan_change(const std::string& stored, const std::string& current) {
-  auto parse = [](const std::string& text) {
-    std::map<std::string, std::string> kv;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line)) {
-      auto eq = line.find(" = ");
-      if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
-    }
-    return kv;
+// "base case: `a = 1` -> `a = 2`" from the lines only one side has (at most four shown).
+std::string describe_case_change(const std::multiset<std::string>& a, const std::multiset<std::string>& b) {
+  std::vector<std::string> gone, added;
+  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(gone));
+  std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(added));
+  auto list = [](const std::vector<std::string>& lines) {
+    std::string s;
+    for (size_t k = 0; k < lines.size() && k < 4; ++k) s += (k ? ", `" : "`") + lines[k] + "`";
+    if (lines.size() > 4) s += " and " + std::to_string(lines.size() - 4) + " more";
+    return s.empty() ? std::string("(nothing)") : s;
   };
-  auto a = parse(stored), b = parse(current);
+  return "base case (as parsed, files by content): " + list(gone) + " -> " + list(added);
+}
+
+}  // namespace
+
+std::string describe_plan_change(const std::string& stored, const std::string& current) {
+  auto a = split_canonical(stored), b = split_canonical(current);
   std::string out;
   auto add = [&](const std::string& s) { out += (out.empty() ? "" : "; ") + s; };
-  for (const auto& [k, v] : a) {
-    auto it = b.find(k);
-    if (it == b.end()) add(k + ": " + v + " -> (removed)");
+  bool case_lines = !a.case_lines.empty() && !b.case_lines.empty();
+  for (const auto& [k, v] : a.settings) {
+    if (case_lines && k == "campaign.case_hash") continue;  // named line by line below
+    auto it = b.settings.find(k);
+    if (it == b.settings.end()) add(k + ": " + v + " -> (removed)");
     else if (it->second != v) add(k + ": " + v + " -> " + it->second);
   }
-  for (const auto& [k, v] : b)
-    if (!a.count(k)) add(k + ": (new) " + v);
+  for (const auto& [k, v] : b.settings)
+    if (!a.settings.count(k)) add(k + ": (new) " + v);
+  if (case_lines && a.case_lines != b.case_lines) add(describe_case_change(a.case_lines, b.case_lines));
   return out.empty() ? "no difference" : out;
 }
 

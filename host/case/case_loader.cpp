@@ -23,6 +23,8 @@
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
 #include "geometry/templates.h"
+#include "util/hash.h"
+#include "util/input_file.h"
 
 namespace repose {
 namespace {
@@ -206,6 +208,7 @@ class CaseReader {
   CaseReader(const toml::table& root, const std::string& path) : root_(root), file_(path) {}
 
   CaseSpec read() {
+    spec_.identity = toml_identity(root_);
     Section top(root_, "", file_);
     top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "air_drag", "material",
                     "interaction", "template", "sphere", "clump", "fill", "lattice", "wall"},
@@ -239,6 +242,22 @@ class CaseReader {
   }
 
  private:
+  // The parsed tables as TOML text: keys sorted, no comments or layout of the source.
+  static std::string toml_identity(const toml::table& root) {
+    std::ostringstream text;
+    text << toml::toml_formatter(root, toml::format_flags::none);
+    return text.str() + "\n";
+  }
+
+  // A file the case reads goes into its identity by content, so an edited template or mesh is
+  // a different case (a campaign does not mix two geometries).
+  void note_input_file(const std::string& as_written, const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    spec_.identity += "# file " + as_written + " fnv1a " + fnv1a_hex(bytes.str()) + "\n";
+  }
+
   // The elements of an array of tables ([[material]] ...), each as a Section "material[i]".
   std::vector<Section> entries(const std::string& name) {
     std::vector<Section> sections;
@@ -350,8 +369,10 @@ class CaseReader {
   void read_output() {
     auto s = table("output");
     if (!s) return;
-    s->allow_only({"interval", "vtk"}, "[output]");
+    s->allow_only({"interval", "vtk", "checkpoint_interval"}, "[output]");
     if (auto interval = s->number("interval")) spec_.output.interval = non_negative(*s, "interval", *interval);
+    if (auto every = s->number("checkpoint_interval"))
+      spec_.output.checkpoint_interval = non_negative(*s, "checkpoint_interval", *every);
     spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
   }
 
@@ -637,6 +658,7 @@ class CaseReader {
       } catch (const std::exception& error) {
         s.fail("file", error.what());
       }
+      note_input_file(file, path);
     }
     t.clump.name = t.name;
     if (auto mass = s.number("mass")) t.mass = positive(s, "mass", *mass);
@@ -933,6 +955,7 @@ class CaseReader {
     } catch (const std::exception& e) {
       s.fail("file", e.what());
     }
+    note_input_file(file, path);
     auto mesh = std::make_shared<WallMesh>();
     mesh->file = path.string();
     for (const auto& v : stl.mesh.vertices)
@@ -1036,7 +1059,12 @@ CaseSpec load_case_from_string(const std::string& toml_text, const std::string& 
   return CaseReader(root, virtual_path).read();
 }
 
+std::string case_hash(const CaseSpec& spec) { return fnv1a_hex(spec.identity); }
+
 CaseSpec load_case(const std::string& path, const std::vector<CaseOverride>& overrides) {
+  // A case is a short TOML text; particles and meshes go in the CSV and STL files it names.
+  if (auto why = why_not_input_file(path, 16u << 20); !why.empty())
+    throw CaseError({path, "", 0}, "not a case file: " + why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CaseError({path, "", 0}, std::string("cannot read the case file: ") + std::strerror(errno));
   std::ostringstream text;

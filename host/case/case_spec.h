@@ -186,6 +186,7 @@ struct NeighbourSpec {
 struct OutputSpec {
   double interval = 0;  // s between VTK frames; 0: no frames
   bool vtk = true;
+  double checkpoint_interval = 0;  // s between checkpoint.state files of `repose run`; 0: none
 };
 
 // The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]).
@@ -250,6 +251,9 @@ struct CaseSpec {
   std::vector<FillSpec> fills;
   std::vector<LatticeSpec> lattices;
   std::vector<WallSpec> walls;
+  // What the case is, for hashing (case_hash): the parsed TOML with overrides applied, without
+  // comments or layout, then every file it read (templates, STL meshes) with a hash of its bytes.
+  std::string identity;
 };
 
 }  // namespace repose

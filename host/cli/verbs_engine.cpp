@@ -8,14 +8,15 @@
 #include <sstream>
 
 #include "cli/cli_case.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "engine/backend_factory.h"
 #include "engine/bench_bed.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
-#include "io/run_summary.h"
+#include "io/case_run.h"
+#include "io/output_dir.h"
 #include "io/state_file.h"
-#include "io/vtk_writer.h"
 #include "util/progress.h"
 #include "vk/context.h"
 
@@ -46,105 +47,49 @@ int run_devices(int argc, char** argv) {
 }
 
 int run_case(int argc, char** argv) {
-  CLI::App app{"Run a case file: progress on stderr, VTK frames and summary.json in --out."};
-  std::string case_path, backend = "vulkan", out_dir, state_out, variant_text;
-  int device = -1;
-  unsigned threads = 0;
-  int64_t steps = -1;
-  double sim_time = -1;
-  bool quiet = false;
-  std::vector<std::string> sets;
+  CLI::App app{"Run a case file: progress on stderr; VTK frames, wall forces and summary.json in --out."};
+  std::string case_path;
+  CaseRunOptions o;
+  uint64_t steps = 0;
+  double sim_time = 0;
   app.add_option("case", case_path, "case file (TOML)")->required();
-  app.add_option("--backend", backend, "vulkan (default) or cpu")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--device", device, "Vulkan device index (see `repose devices`)");
-  app.add_option("--threads", threads, "cpu backend threads (default: all cores)");
-  auto* steps_opt = app.add_option("--steps", steps, "run this many steps instead of the case's end time");
-  app.add_option("--time", sim_time, "run this much simulated time (s)")->excludes(steps_opt);
-  app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
-  app.add_option("--state-out", state_out, "write the final state here (docs/state-format.md)");
-  app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--variant", variant_text,
+  app.add_option("--backend", o.backend, "vulkan (default) or cpu")->check(CLI::IsMember({"vulkan", "cpu"}));
+  app.add_option("--device", o.device, "Vulkan device index (see `repose devices`)")->check(whole_number(0, 63));
+  app.add_option("--threads", o.threads, "cpu backend threads (default: all cores)")->check(thread_count());
+  auto* steps_opt = app.add_option("--steps", steps, "run this many steps instead of the case's end time (with --restart: this many more)")
+                        ->check(whole_number(0, 1000000000000LL));
+  auto* time_opt = app.add_option("--time", sim_time, "run this much simulated time, s (with --restart: this much more)")
+                       ->excludes(steps_opt)->check(finite_positive());
+  app.add_option("--out", o.out_dir, "output folder, new or empty (default out/CASE_NAME)");
+  app.add_flag("--overwrite", o.overwrite, "delete what --out holds before the run");
+  app.add_option("--state-out", o.state_out, "write the final state here (docs/state-format.md)");
+  app.add_option("--restart", o.restart,
+                 "continue from a state file (--state-out or a checkpoint): same bytes as a run that never stopped");
+  app.add_option("--set", o.overrides, "override a case key: KEY=VALUE (repeatable)");
+  app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N (default: vulkan contact,lean; cpu contact)");
-  app.add_flag("--quiet", quiet, "no progress output");
+  app.add_flag("--quiet", o.quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
+  if (o.backend == "vulkan" && app.count("--threads"))
+    return usage_error("--threads applies to the cpu backend (the vulkan backend uses the device)");
+  if (o.backend == "cpu" && app.count("--device")) return usage_error("--device applies to the vulkan backend");
+  if (steps_opt->count()) o.steps = steps;
+  if (time_opt->count()) o.time = sim_time;
+  try {
+    KernelVariant::parse(o.variant);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(std::string("--variant: ") + e.what());
+  }
 
   // Everything that can fail on bad input happens before anything is written.
-  auto loaded = load_case_or_report(case_path, sets);
+  auto loaded = load_case_or_report(case_path, o.overrides);
   if (!loaded) return 2;
-  CaseSpec& spec = *loaded;
-  // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
-  // EPSD rolling springs and spinning friction need the full entry (torques stored per contact).
-  bool springs = needs_full_contact_entries(spec);
-  if (variant_text.empty()) variant_text = backend == "vulkan" && !springs ? "contact,lean" : "contact";
-  KernelVariant variant = parse_variant(variant_text);
-  Model model = build_model(spec);
-  uint64_t total_steps = steps >= 0 ? uint64_t(steps)
-                       : uint64_t(std::llround((sim_time >= 0 ? sim_time : model.end_time) / model.dt));
-  if (out_dir.empty()) out_dir = "out/" + spec.name;
-  auto engine = make_backend(backend, device, threads, variant.workgroup);
-  std::string backend_name = engine->describe();
-
-  // Frames at the output interval: batches end exactly on frame steps.
-  uint64_t frame_every = model.output_interval > 0
-                             ? std::max<uint64_t>(1, std::llround(model.output_interval / model.dt))
-                             : 0;
-  uint32_t batch = frame_every ? uint32_t(std::min<uint64_t>(frame_every, 200)) : 200;
-  while (frame_every && frame_every % batch) --batch;
-  Simulation sim(std::move(model), std::move(engine), variant, batch);
-  const Model& m = sim.model();
-
-  fs::create_directories(out_dir);
-  bool frames = m.vtk && frame_every > 0;
-  if (frames) fs::create_directories(out_dir + "/frames");
-  unsigned frame_count = 0;
-  std::ofstream walls_csv;
-  if (!m.walls.empty()) {
-    walls_csv.open(out_dir + "/wall_forces.csv");
-    walls_csv << "time";
-    for (const auto& name : m.wall_group_names()) walls_csv << "," << name << ".fx," << name << ".fy," << name << ".fz";
-    walls_csv << "\n";
+  try {
+    return run_case_to_folder(*loaded, o);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose run: %s\n", e.what());
+    return 2;
   }
-  // Every output interval: a VTK frame (unless vtk = false) and a row of wall forces.
-  auto write_frame = [&](Simulation& s) {
-    if (frames) {
-      char name[64];
-      std::snprintf(name, sizeof name, "/frames/%s_%05u.vtk", spec.name.c_str(), frame_count++);
-      write_vtk_frame(out_dir + name, s.state(), s.time());
-    }
-    if (walls_csv.is_open()) {
-      walls_csv << s.time();
-      for (const auto& w : s.wall_forces()) walls_csv << "," << w.fx << "," << w.fy << "," << w.fz;
-      walls_csv << "\n";
-    }
-  };
-  if (!quiet)
-    std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), %llu steps on %s\n",
-                 spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time,
-                 m.rayleigh_time, (unsigned long long)total_steps, backend_name.c_str());
-  if (frame_every) write_frame(sim);
-  Progress progress(spec.name, total_steps, m.dt, !quiet);
-  auto t0 = std::chrono::steady_clock::now();
-  sim.advance(total_steps, [&](const Simulation& s) {
-    if (frame_every && s.step() % frame_every == 0) write_frame(const_cast<Simulation&>(s));
-    progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
-  });
-  progress.finish();
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-
-  RunInfo info{backend_name, variant.name(), wall, frame_count, sim.wall_forces()};
-  write_run_summary(out_dir + "/summary.json", sim, info);
-  if (!state_out.empty()) write_state_file(state_out, sim.state(), sim.step(), sim.time());
-  auto e = sim.kinetic_energy();
-  std::printf("%s: %llu steps, t = %.4g s, %u contacts, kinetic energy %.6g J, %.3g particle-steps/s (%s)\n",
-              spec.name.c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
-              wall > 0 ? double(m.n_particles) * sim.step() / wall : 0.0, format_duration(wall).c_str());
-  for (const auto& w : info.wall_forces)
-    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
-      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
-  std::printf("wrote %s/summary.json%s%s\n", out_dir.c_str(),
-              frames ? (", " + std::to_string(frame_count) + " VTK frames in " + out_dir + "/frames").c_str() : "",
-              state_out.empty() ? "" : (", state " + state_out).c_str());
-  return 0;
 }
 
 int run_bench(int argc, char** argv) {

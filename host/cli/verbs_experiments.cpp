@@ -4,12 +4,17 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_case.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "engine/backend_factory.h"
 #include "experiments/drop.h"
+#include "io/output_dir.h"
+#include "io/provenance.h"
 #include "experiments/repose.h"
 #include "experiments/roll.h"
 #include "experiments/tilt.h"
@@ -66,12 +71,12 @@ Json drop_replicates(const CaseSpec& spec, const ExperimentRunOptions& run, cons
   return {{"runs", list}, {"restitution_mean", mean}, {"restitution_sd", std::sqrt(var)}};
 }
 
-int run_drop_verb(const CaseSpec& spec, const std::string& case_path, const ExperimentRunOptions& run,
+int run_drop_verb(const CaseSpec& spec, const Json& provenance, const ExperimentRunOptions& run,
                   const std::string& out_dir, int replicates) {
   DropResult r = run_drop(spec, {run.backend, run.device, run.threads});
   Json j;
   j["experiment"] = "drop";
-  j["case"] = case_path;
+  j["case"] = spec.path;
   j["drop_height"] = r.drop_height;
   j["rebound_height"] = r.rebound_height;
   j["rebound_height_exact"] = r.rebound_height_exact;
@@ -79,6 +84,7 @@ int run_drop_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   j["impact_speed"] = r.impact_speed;
   j["contact_time"] = r.contact_time;
   j["camera_fps"] = spec.experiment.camera_fps;
+  j["provenance"] = provenance;
   write_json(out_dir + "/drop.json", j);
   write_file_atomically(out_dir + "/trajectory.csv", [&](std::ostream& o) {
     o << "t,height\n";
@@ -95,7 +101,7 @@ int run_drop_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   return 0;
 }
 
-int run_tilt_verb(const CaseSpec& spec, const std::string& case_path, const ExperimentRunOptions& run,
+int run_tilt_verb(const CaseSpec& spec, const Json& provenance, const ExperimentRunOptions& run,
                   const std::string& out_dir) {
   TiltResult r = run_tilt(spec, run);
   bool rolling = spec.experiment.type == "roll";
@@ -103,13 +109,14 @@ int run_tilt_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   Json j;
   j["experiment"] = spec.experiment.type;
   j["method"] = "tilt";
-  j["case"] = case_path;
+  j["case"] = spec.path;
   j["tilt_rate_deg_per_s"] = spec.experiment.tilt_rate_deg;
   j["onset_distance"] = spec.experiment.onset_distance;
   j["onset_angle_deg"] = r.onset_angle_deg;
   j["onset_time"] = r.onset_time;
   j[quantity] = r.tan_alpha;
   j["rolled_fraction"] = r.rolled_fraction;
+  j["provenance"] = provenance;
   std::string name = rolling ? "roll" : "slide";
   write_json(out_dir + "/" + name + ".json", j);
   write_file_atomically(out_dir + "/trajectory.csv", [&](std::ostream& o) {
@@ -124,19 +131,20 @@ int run_tilt_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   return 0;
 }
 
-int run_roll_verb(const CaseSpec& spec, const std::string& case_path, const ExperimentRunOptions& run,
+int run_roll_verb(const CaseSpec& spec, const Json& provenance, const ExperimentRunOptions& run,
                   const std::string& out_dir) {
   RollResult r = run_roll(spec, run);
   Json j;
   j["experiment"] = "roll";
   j["method"] = "incline";
-  j["case"] = case_path;
+  j["case"] = spec.path;
   j["incline_deg"] = r.incline_deg;
   j["slope_distance"] = r.slope_distance;
   j["rolling_distance"] = r.rolling_distance;
   j["mu_r"] = r.mu_r;
   j["speed_at_foot"] = r.speed_at_foot;
   j["stop_time"] = r.stop_time;
+  j["provenance"] = provenance;
   write_json(out_dir + "/roll.json", j);
   write_file_atomically(out_dir + "/trajectory.csv", [&](std::ostream& o) {
     o << "t,x,speed\n";
@@ -149,12 +157,12 @@ int run_roll_verb(const CaseSpec& spec, const std::string& case_path, const Expe
   return 0;
 }
 
-int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const ExperimentRunOptions& run,
+int run_repose_verb(const CaseSpec& spec, const Json& provenance, const ExperimentRunOptions& run,
                     const std::string& out_dir) {
   ReposeResult r = run_repose(spec, run);
   Json j;
   j["experiment"] = "repose";
-  j["case"] = case_path;
+  j["case"] = spec.path;
   j["heap_side"] = spec.experiment.heap_side;
   j["angle_deg"] = r.angle_deg;
   j["left"] = slope_json(r.heap.left);
@@ -197,6 +205,7 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
     a["sectors"] = sectors;
     j["axisymmetric"] = a;
   }
+  j["provenance"] = provenance;
   write_json(out_dir + "/repose.json", j);
   write_file_atomically(out_dir + "/energy.csv", [&](std::ostream& o) {
     o << "t,largest_kinetic_energy\n";
@@ -223,6 +232,26 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   return 0;
 }
 
+// The shortest text that reads back as exactly `value`.
+std::string exact_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  for (int digits = 1; digits <= 17; ++digits) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", digits, value);
+    if (std::strtod(shorter, nullptr) == value) return shorter;
+  }
+  return text;
+}
+
+// What produced an experiment's result (io/provenance.h); creating the backend names its device.
+Json experiment_provenance(const CaseSpec& spec, const std::vector<std::string>& sets, const ExperimentRunOptions& run) {
+  Provenance p = provenance_of(spec, sets);
+  p.backend = run.backend;
+  p.device = make_backend(run.backend, run.device, run.threads, gpu::kDefaultWorkgroup)->describe();
+  return provenance_json(p);
+}
+
 int run_experiment(int argc, char** argv) {
   CLI::App app{"Run a virtual experiment: drop (restitution), slide (static friction on a tilting plate), "
                "roll (rolling friction: incline + floor, or tilt), repose (angle of repose of a rig)."};
@@ -230,27 +259,34 @@ int run_experiment(int argc, char** argv) {
   unsigned threads = 1;
   int device = -1;
   std::vector<std::string> sets;
-  double height = -1;
-  bool quiet = false;
+  double height = 0;
+  bool quiet = false, overwrite = false;
   app.add_option("type", type, "experiment: drop, slide, roll, repose")
       ->required()
       ->check(CLI::IsMember({"drop", "slide", "roll", "repose"}));
   app.add_option("case", case_path, "case file (TOML) with an [experiment] table")->required();
-  app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case");
+  auto* height_opt = app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case")
+                         ->check(finite_positive());
   app.add_option("--backend", backend, "cpu (default) or vulkan")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--threads", threads, "cpu backend threads (default 1)");
-  app.add_option("--device", device, "Vulkan device index");
+  app.add_option("--threads", threads, "cpu backend threads (default 1)")->check(thread_count());
+  app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
+  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)");
+  app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
   app.add_flag("--quiet", quiet, "no progress output");
   int replicates = 1;
   app.add_option("--replicates", replicates,
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
-      ->check(CLI::Range(1, 1000));
+      ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
+  if (replicates > 1 && type != "drop") return usage_error("--replicates applies to the drop experiment");
+  if (height_opt->count() && type != "drop") return usage_error("--height applies to the drop experiment");
 
   std::vector<CaseOverride> extra;
-  if (height > 0) extra.push_back({"experiment.drop_height", std::to_string(height)});
+  if (height_opt->count()) {
+    extra.push_back({"experiment.drop_height", exact_text(height)});
+    sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
+  }
   auto loaded = load_case_or_report(case_path, sets, extra);
   if (!loaded) return 2;
   CaseSpec& spec = *loaded;
@@ -259,15 +295,22 @@ int run_experiment(int argc, char** argv) {
                  spec.experiment.type.c_str(), type.c_str());
     return 2;
   }
-  if (out_dir.empty()) out_dir = "out/" + spec.name;
+  // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
+  if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
   ExperimentRunOptions run{backend, device, threads, !quiet};
   try {
-    std::filesystem::create_directories(out_dir);
-    if (type == "drop") return run_drop_verb(spec, case_path, run, out_dir, replicates);
+    prepare_output_dir(out_dir, overwrite, {case_path});
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose experiment: %s\n", e.what());
+    return 2;
+  }
+  try {
+    Json provenance = experiment_provenance(spec, sets, run);
+    if (type == "drop") return run_drop_verb(spec, provenance, run, out_dir, replicates);
     if (type == "slide" || (type == "roll" && spec.experiment.method == "tilt"))
-      return run_tilt_verb(spec, case_path, run, out_dir);
-    if (type == "roll") return run_roll_verb(spec, case_path, run, out_dir);
-    return run_repose_verb(spec, case_path, run, out_dir);
+      return run_tilt_verb(spec, provenance, run, out_dir);
+    if (type == "roll") return run_roll_verb(spec, provenance, run, out_dir);
+    return run_repose_verb(spec, provenance, run, out_dir);
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 1;

@@ -181,6 +181,7 @@ int run_fit(int argc, char** argv) {
     for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
     return out;
   };
+  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
   DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
   if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
   const int k = static_cast<int>(factors.size());

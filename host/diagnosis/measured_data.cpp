@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "case/case_error.h"
+#include "util/input_file.h"
 
 namespace repose {
 
@@ -81,6 +82,7 @@ const std::vector<MeasureInfo>& known_measures() {
 }
 
 MeasuredData read_measured_data(const std::string& path) {
+  if (auto why = why_not_input_file(path, 256u << 20); !why.empty()) throw DataError(path + ": " + why);
   std::ifstream in(path);
   if (!in) throw DataError(path + ": cannot read the measured-data file");
   MeasuredData data;

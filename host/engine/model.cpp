@@ -351,6 +351,7 @@ Model build_model(const CaseSpec& spec) {
   m.dt = resolve_dt(spec);
   m.end_time = spec.time.end_time;
   m.output_interval = spec.output.interval;
+  m.checkpoint_interval = spec.output.checkpoint_interval;
   m.vtk = spec.output.vtk;
   m.gravity = spec.gravity;
   m.integrator = spec.integrator;

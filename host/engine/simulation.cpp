@@ -129,6 +129,30 @@ void Simulation::set_state(const HostState& s) {
   backend_->upload_state(state_);
 }
 
+void Simulation::restore(const HostState& s, uint64_t step) {
+  auto refuse = [](const std::string& what) { throw std::invalid_argument("the state does not fit the case: " + what); };
+  auto count = [](size_t k) { return std::to_string(k); };
+  if (s.pos.size() != model_.n_particles)
+    refuse(count(s.pos.size()) + " particles in the state, " + count(model_.n_particles) + " in the case");
+  if (s.bodies.size() != model_.bodies.size())
+    refuse(count(s.bodies.size()) + " bodies in the state, " + count(model_.bodies.size()) + " in the case");
+  if (layout_.rolling_springs != !s.rolling_spring.empty() && !s.partner.empty())
+    refuse(layout_.rolling_springs ? "the case has EPSD rolling springs, the state none"
+                                   : "the state has EPSD rolling springs, the case none");
+  if (s.control.size() != gpu::kControlWords || s.pos_at_build.size() != s.pos.size())
+    refuse("the state holds no neighbour-list bookkeeping (written by an older version)");
+  state_ = s;
+  // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
+  // early past the contact count, so only coverage matters).
+  uint32_t contacts = state_.control[gpu::kCtlContacts];
+  state_.control[gpu::kCtlArgsContacts] = (contacts + variant_.workgroup - 1) / variant_.workgroup;
+  state_.control[gpu::kCtlArgsContacts + 1] = 1;
+  state_.control[gpu::kCtlArgsContacts + 2] = 1;
+  uint32_t needed = std::max(contacts, state_.control[gpu::kCtlMaxContacts]);
+  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
+  step_ = step;
+}
+
 EnergySummary Simulation::kinetic_energy() const {
   EnergySummary e;
   if (!state_.bodies.empty()) {

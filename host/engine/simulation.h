@@ -51,6 +51,10 @@ class Simulation {
   std::vector<WallForce> wall_forces();
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
+  // Continues from a state written by write_state_file after `step` steps of this same model:
+  // the following steps give the bytes of a run that never stopped. Throws std::invalid_argument
+  // when the state does not fit the model (particle, body or rolling-spring counts).
+  void restore(const HostState& s, uint64_t step);
   // Times each kernel of the next `steps` steps (for `repose bench`); state advances too.
   KernelTimes time_kernels(uint64_t steps);
 
