@@ -242,11 +242,51 @@ class CaseReader {
   }
 
  private:
-  // The parsed tables as TOML text: keys sorted, no comments or layout of the source.
+  // The parsed document as sorted "dotted.key = value" lines ("material.0.density = 850"),
+  // numbers in their shortest exact form: no comments or layout of the source.
   static std::string toml_identity(const toml::table& root) {
+    std::string lines;
+    flatten(root, "", lines);
+    return lines;
+  }
+
+  static std::string value_text(const toml::node& node) {
+    if (auto a = node.as_array()) {
+      std::string text = "[";
+      for (size_t k = 0; k < a->size(); ++k) text += (k ? ", " : "") + value_text(*a->get(k));
+      return text + "]";
+    }
+    if (auto t = node.as_table()) {
+      std::string text;
+      flatten(*t, "", text);
+      return "{" + text + "}";
+    }
+    if (node.is_floating_point()) return shortest_number(node.as_floating_point()->get());
     std::ostringstream text;
-    text << toml::toml_formatter(root, toml::format_flags::none);
-    return text.str() + "\n";
+    text << toml::toml_formatter(node, toml::format_flags::none);
+    return text.str();
+  }
+
+  static void flatten(const toml::table& table, const std::string& prefix, std::string& lines) {
+    for (const auto& [key, node] : table) {
+      std::string path = prefix + std::string(key.str());
+      if (auto t = node.as_table()) {
+        flatten(*t, path + ".", lines);
+      } else if (auto a = node.as_array(); a && a->is_array_of_tables()) {
+        for (size_t k = 0; k < a->size(); ++k) flatten(*a->get(k)->as_table(), path + "." + std::to_string(k) + ".", lines);
+      } else {
+        lines += path + " = " + value_text(node) + "\n";
+      }
+    }
+  }
+
+  static std::string shortest_number(double v) {
+    char text[32];
+    for (int digits = 1; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, v);
+      if (std::strtod(text, nullptr) == v) break;
+    }
+    return text;
   }
 
   // A file the case reads goes into its identity by content, so an edited template or mesh is
