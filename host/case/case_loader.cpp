@@ -18,6 +18,7 @@
 #include "case/case_override.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
+#include "case/physical_ranges.h"
 #include "case/spelling.h"
 #include "case/time_step.h"
 #include "geometry/sphere_csv.h"
@@ -238,6 +239,7 @@ class CaseReader {
     check_interactions_cover_use();
     expand_particles(spec_);
     check_time_step();
+    check_case_ranges(spec_);
     return std::move(spec_);
   }
 
@@ -342,6 +344,7 @@ class CaseReader {
 
     TimeSpec& time = spec_.time;
     time.end_time = s->required_number("end_time", " (simulated time in s)");
+    time.end_where = s->where("end_time");
     if (!(time.end_time > 0)) s->fail("end_time", format_number(time.end_time) + " must be greater than 0");
     bool has_dt = s->has("dt"), has_fraction = s->has("rayleigh_fraction");
     if (has_dt && has_fraction) {
@@ -436,7 +439,10 @@ class CaseReader {
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
-    if (auto h = s->number("drop_height")) ex.drop_height = positive(*s, "drop_height", *h);
+    if (auto h = s->number("drop_height")) {
+      ex.drop_height = positive(*s, "drop_height", *h);
+      if (ex.drop_height > 20) s->fail("drop_height", format_number(*h) + " m is no lab drop: millimetres written as metres?");
+    }
     if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
     ex.plate = s->text("plate").value_or("");
     if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
@@ -545,6 +551,13 @@ class CaseReader {
     } else {
       s.missing("shear_modulus", ": give shear_modulus or youngs_modulus (Pa)");
     }
+    auto where_of = [&](std::initializer_list<const char*> keys) {
+      for (const char* k : keys)
+        if (s.has(k)) return s.where(k);
+      return s.where();
+    };
+    check_density(m.density, where_of({"density", "preset"}), spec_.warnings);
+    check_shear_modulus(m.shear_modulus, where_of({"shear_modulus", "youngs_modulus", "preset"}), spec_.warnings);
     spec_.materials.push_back(m);
   }
 

@@ -175,7 +175,8 @@ struct TimeSpec {
   std::optional<double> dt;                 // s
   std::optional<double> rayleigh_fraction;  // dt = fraction * Rayleigh time
   double end_time = 0;                      // s
-  SourceRef where;
+  SourceRef where;                          // dt or rayleigh_fraction
+  SourceRef end_where;                      // end_time
 };
 
 struct NeighbourSpec {
@@ -254,6 +255,9 @@ struct CaseSpec {
   // What the case is, for hashing (case_hash): the parsed TOML with overrides applied, without
   // comments or layout, then every file it read (templates, STL meshes) with a hash of its bytes.
   std::string identity;
+  // Unusual values found while loading, as "FILE:LINE: KEY: warning: ..." (case/physical_ranges.h);
+  // the verbs print them before the run.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace repose

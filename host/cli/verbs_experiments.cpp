@@ -217,17 +217,16 @@ int run_repose_verb(const CaseSpec& spec, const Json& provenance, const Experime
   });
   write_wall_forces(out_dir, r.wall_forces);
   write_heap_angle_png(out_dir + "/heap.png", r.heap);
-  std::printf("repose %s: angle of repose %.2f deg (left %s, right %s), heap %.3g m high, %zu particles\n",
-              spec.name.c_str(), r.angle_deg,
+  char angle_text[32];
+  std::snprintf(angle_text, sizeof angle_text, "%.2f deg", r.angle_deg);
+  std::string angle = std::isfinite(r.angle_deg) ? angle_text : "not measured (no valid slope)";
+  std::printf("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles\n",
+              spec.name.c_str(), angle.c_str(),
               r.heap.left.valid ? (std::to_string(r.heap.left.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.right.valid ? (std::to_string(r.heap.right.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.heap_height, r.particles_measured);
-  if (r.views)
-    std::printf("  %zu views around the heap: mean %.2f deg, sd %.2f deg over %d slopes (the angle)\n",
-                r.views->azimuth_deg.size(), r.views->mean_deg, r.views->sd_deg, r.views->valid_slopes);
-  if (r.heap_3d)
-    std::printf("  3D sector fit: mean %.2f deg, spread %.2f deg over %d sectors\n", r.heap_3d->mean_deg,
-                r.heap_3d->spread_deg, r.heap_3d->valid_sectors);
+  if (r.views) std::printf("  views around the heap (the angle): %s\n", describe_views(*r.views).c_str());
+  if (r.heap_3d) std::printf("  3D sector fit: %s\n", describe_sector_fit(*r.heap_3d).c_str());
   std::printf("wrote %s/repose.json, heap.png, heap.csv, energy.csv, wall_forces.csv\n", out_dir.c_str());
   return 0;
 }

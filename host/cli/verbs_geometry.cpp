@@ -341,17 +341,17 @@ int run_heap_angle(int argc, char** argv) {
   std::optional<HeapViewsAngle> around;
   if (views > 1) {
     around = measure_heap_angle_views(spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
-    std::printf("%d views     about (%.6g, %.6g) m: mean %.3f deg, sd %.3f deg over %d slopes\n", views, around->centre.x,
-                around->centre.y, around->mean_deg, around->sd_deg, around->valid_slopes);
+    std::printf("%d views     about (%.6g, %.6g) m: %s\n", views, around->centre.x, around->centre.y,
+                describe_views(*around).c_str());
     for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
       std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", around->azimuth_deg[k], around->left_deg[k], around->right_deg[k]);
   }
   std::optional<AxisymmetricHeapAngle> a;
   if (axisymmetric) {
     a = measure_axisymmetric_heap_angle(spheres, axi);
-    std::printf("3D fit       %d of %zu sectors, centre (%.6g, %.6g) m: mean %.3f deg, spread %.3f deg, range %.3f-%.3f deg\n",
-                a->valid_sectors, a->sectors.size(), a->centre.x, a->centre.y, a->mean_deg, a->spread_deg, a->min_deg,
-                a->max_deg);
+    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
+    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
+    std::printf("\n");
     for (const SectorFit& s : a->sectors)
       std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
   }

@@ -10,6 +10,7 @@
 
 #include "case/case_loader.h"
 #include "engine/backend_factory.h"
+#include "engine/escape_check.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "io/output_dir.h"
@@ -209,6 +210,8 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
                  spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
                  (unsigned long long)sim.step(), (unsigned long long)schedule.target, info.backend.c_str());
 
+  EscapeCheck escapes(m);
+  bool escape_told = false;
   install_stop_handlers();
   if (!start.restarting && output.frame_due(0)) output.frame(sim);
   Progress progress(spec.name, schedule.target, m.dt, !o.quiet, sim.step());
@@ -218,6 +221,12 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
     sim.advance(schedule.next_stop(sim.step()) - sim.step(), [&](const Simulation& s) {
       progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
     });
+    if (!escape_told)
+      if (auto e = escapes.find(sim.state(), sim.time())) {
+        escape_told = true;
+        std::fprintf(stderr, "warning: at t = %.6g s particle %u is %s: it passed through (too fast for the time step, "
+                             "or pushed through by a moving wall?); the run goes on\n", sim.time(), e->particle, e->where.c_str());
+      }
     if (output.frame_due(sim.step())) output.frame(sim);
     if (schedule.checkpoint_every && sim.step() % schedule.checkpoint_every == 0) {
       output.checkpoint(sim);

@@ -1,5 +1,7 @@
 #include "measure/heap_views.h"
 
+#include <cstdio>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -40,6 +42,17 @@ HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int 
   for (double v : slopes) squares += (v - out.mean_deg) * (v - out.mean_deg);
   out.sd_deg = slopes.size() > 1 ? std::sqrt(squares / double(slopes.size() - 1)) : 0.0;
   return out;
+}
+
+std::string describe_views(const HeapViewsAngle& v) {
+  char text[160];
+  if (v.valid_slopes == 0) {
+    std::snprintf(text, sizeof text, "no slope in any of %zu views", v.azimuth_deg.size());
+    return text;
+  }
+  std::snprintf(text, sizeof text, "mean %.2f deg, sd %.2f deg over %d slopes of %zu views", v.mean_deg, v.sd_deg,
+                v.valid_slopes, v.azimuth_deg.size());
+  return text;
 }
 
 }  // namespace repose

@@ -107,3 +107,23 @@ TEST_CASE("a run that cannot be stored ends the campaign cleanly; every other fi
   CHECK(resumed.output.find(std::to_string(kept) + " of 11 runs already in") != std::string::npos);
   CHECK(test::count_runs(db) == 13);
 }
+
+TEST_CASE("an unreachable target and a campaign without verification are said as such") {
+  std::string dir = test::scratch_dir("unreachable");
+  std::string plan = test::small_ccd_plan();
+  plan.replace(plan.find("measured = 0.44"), 15, "measured = 0.90");  // e <= 0.55 cannot rebound that high
+  plan.replace(plan.find("[verification]\nruns = 2"), 23, "[verification]\nruns = 0");
+  test::write_text(dir + "/plan.toml", plan);
+  auto run = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 2 --quiet");
+  INFO(run.output);
+  CHECK(run.status == 3);  // target not reached
+  CHECK(run.output.find("target met for") == std::string::npos);
+  CHECK(run.output.find("the target is out of reach in the factor ranges") != std::string::npos);
+  CHECK(run.output.find("verification: none (verification.runs = 0)") != std::string::npos);
+  CHECK(run.output.find("over 0 runs") == std::string::npos);
+  auto summary = nlohmann::json::parse(test::read_text_file(dir + "/out/summary.json"));
+  CHECK(summary["verification"]["relative_error"].is_null());
+  CHECK(summary["parameters"]["e"]["set_low"].is_null());
+  CHECK(summary["provenance"]["case_hash"].get<std::string>().size() == 16);
+  CHECK(test::read_text_file(dir + "/out/report.md").find("none: out of reach") != std::string::npos);
+}
