@@ -199,6 +199,11 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   if (d.verdict == "effect") j["cause"] = d.cause[0];
   else if (d.verdict == "ambiguous") j["cause"] = d.cause;
   else j["cause"] = nullptr;
+  j["tried"] = d.tried;
+  j["untested"] = json::array();
+  for (const auto& c : d.candidates)
+    if (!c.tested || !c.simulation_error.empty())
+      j["untested"].push_back({{"id", c.id}, {"reason", c.simulation_error.empty() ? c.untested_reason : c.simulation_error}});
   j["baseline"] = model_json(d.baseline, d.heldout_available);
   j["candidates"] = json::array();
   for (const auto& c : d.candidates) j["candidates"].push_back(model_json(c, d.heldout_available));

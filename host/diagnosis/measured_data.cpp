@@ -185,6 +185,15 @@ MeasuredData read_measured_data(const std::string& path) {
                  std::to_string(spec.experiment.slope_distance) + " m at rolling friction " + std::to_string(kSmallestRollingFriction).substr(0, 5) + " (" +
                  std::to_string(longest) + " m): millimetres? Values are in SI units (m)");
     }
+    if (std::string(info->unit) == "m" && !info->series && m.value < 0)
+      fail(path, line_no, cell("value"), "value", "a " + m.measure + " cannot be negative: lengths are measured from the "
+                                                  "plate or floor upwards, in m");
+    if (m.measure == "rebound_height" && spec.experiment.type == "drop" && m.value > spec.experiment.drop_height)
+      fail(path, line_no, cell("value"), "value",
+           std::to_string(m.value) + " m is higher than the drop height " + std::to_string(spec.experiment.drop_height) +
+               " m: a body does not rebound above its release (e > 1)");
+    if (m.measure == "restitution" && !(m.value > 0 && m.value <= 1))
+      fail(path, line_no, cell("value"), "value", "a restitution coefficient lies in (0, 1]");
     if (std::string(info->unit) == "deg" && (m.value <= 0 || m.value >= 90))
       fail(path, line_no, cell("value"), "value", "an angle in degrees must lie in (0, 90)");
     data.rows.push_back(std::move(m));

@@ -88,12 +88,12 @@ void require_coded_columns(const Table& table, const std::vector<std::string>& f
     }
   }
   if (actual.empty()) return;
-  auto join = [](const std::vector<std::string>& items) {
+  auto join = [](const std::vector<std::string>& items, const char* separator = ",") {
     std::string s;
-    for (const auto& i : items) s += (s.empty() ? "" : ",") + i;
+    for (const auto& i : items) s += (s.empty() ? "" : separator) + i;
     return s;
   };
-  std::string message = table.source + ": the factor columns " + join(actual) +
+  std::string message = table.source + ": the factor columns " + join(actual, ", ") +
                         " are not coded (coded columns run symmetric about 0 with levels at +-1): fitting actual values "
                         "as coded ones gives wrong effects and p values. ";
   if (twins.size() == actual.size())
