@@ -51,6 +51,7 @@ Json slope_json(const SlopeFit& s) {
 
 // Replicates 2..N of a drop: the same case with simulation.seed + k (a clump lands at a new
 // random orientation each time); their rebound heights and e go into drop.json with mean and sd.
+// A replicate that does not rebound is recorded with why, and the others go on.
 Json drop_replicates(const CaseSpec& spec, const ExperimentRunOptions& run, const DropResult& first,
                      int replicates) {
   Json list = Json::array();
@@ -58,17 +59,22 @@ Json drop_replicates(const CaseSpec& spec, const ExperimentRunOptions& run, cons
   for (int k = 0; k < replicates; ++k) {
     CaseSpec replicate = spec;
     replicate.seed = spec.seed + uint64_t(k);
-    DropResult r = k == 0 ? first : run_drop(replicate, {run.backend, run.device, run.threads});
-    e.push_back(r.restitution);
-    list.push_back({{"seed", replicate.seed}, {"rebound_height", r.rebound_height}, {"restitution", r.restitution}});
-    std::printf("  replicate %d (seed %llu): h = %.5g m, e = %.4f\n", k + 1,
-                (unsigned long long)replicate.seed, r.rebound_height, r.restitution);
+    try {
+      DropResult r = k == 0 ? first : run_drop(replicate, {run.backend, run.device, run.threads});
+      e.push_back(r.restitution);
+      list.push_back({{"seed", replicate.seed}, {"rebound_height", r.rebound_height}, {"restitution", r.restitution}});
+      std::printf("  replicate %d (seed %llu): h = %.5g m, e = %.4f\n", k + 1, (unsigned long long)replicate.seed,
+                  r.rebound_height, r.restitution);
+    } catch (const std::runtime_error& error) {
+      list.push_back({{"seed", replicate.seed}, {"problem", error.what()}});
+      std::printf("  replicate %d (seed %llu): no result: %s\n", k + 1, (unsigned long long)replicate.seed, error.what());
+    }
   }
   double mean = 0, var = 0;
   for (double x : e) mean += x / double(e.size());
   for (double x : e) var += (x - mean) * (x - mean) / double(std::max<size_t>(1, e.size() - 1));
-  std::printf("  e over %d replicates: mean %.4f, sd %.4f\n", replicates, mean, std::sqrt(var));
-  return {{"runs", list}, {"restitution_mean", mean}, {"restitution_sd", std::sqrt(var)}};
+  std::printf("  e over %zu of %d replicates: mean %.4f, sd %.4f\n", e.size(), replicates, mean, std::sqrt(var));
+  return {{"runs", list}, {"counted", e.size()}, {"restitution_mean", mean}, {"restitution_sd", std::sqrt(var)}};
 }
 
 int run_drop_verb(const CaseSpec& spec, const Json& provenance, const ExperimentRunOptions& run,
@@ -90,6 +96,7 @@ int run_drop_verb(const CaseSpec& spec, const Json& provenance, const Experiment
     o << "t,height\n";
     for (const auto& [t, h] : r.trajectory) o << t << "," << h << "\n";
   });
+  write_wall_forces(out_dir, r.wall_forces);
   std::printf("drop %s: H = %.4g m, rebound h = %.5g m, e = sqrt(h/H) = %.4f (impact %.3g m/s, contact %.3g ms)\n",
               spec.name.c_str(), r.drop_height, r.rebound_height, r.restitution, r.impact_speed,
               1e3 * r.contact_time);
@@ -97,7 +104,7 @@ int run_drop_verb(const CaseSpec& spec, const Json& provenance, const Experiment
     j["replicates"] = drop_replicates(spec, run, r, replicates);
     write_json(out_dir + "/drop.json", j);
   }
-  std::printf("wrote %s/drop.json and %s/trajectory.csv\n", out_dir.c_str(), out_dir.c_str());
+  std::printf("wrote %s/drop.json, trajectory.csv and wall_forces.csv\n", out_dir.c_str());
   return 0;
 }
 
@@ -216,7 +223,7 @@ int run_repose_verb(const CaseSpec& spec, const Json& provenance, const Experime
     for (const auto& s : r.spheres) o << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
   });
   write_wall_forces(out_dir, r.wall_forces);
-  write_heap_angle_png(out_dir + "/heap.png", r.heap);
+  write_heap_angle_png(out_dir + "/heap.png", r.heap, spec.experiment.view == "x" ? "y" : "x");
   char angle_text[32];
   std::snprintf(angle_text, sizeof angle_text, "%.2f deg", r.angle_deg);
   std::string angle = std::isfinite(r.angle_deg) ? angle_text : "not measured (no valid slope)";

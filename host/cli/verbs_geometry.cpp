@@ -356,7 +356,7 @@ int run_heap_angle(int argc, char** argv) {
       std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
   }
   if (!png.empty()) {
-    write_heap_angle_png(png, m);
+    write_heap_angle_png(png, m, horizontal);
     std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "diagnosis/plot_png.h"
+#include "util/units.h"
 #include "util/atomic_file.h"
 
 namespace repose {
@@ -80,7 +81,7 @@ std::vector<std::pair<std::string, std::string>> write_figures(const Observation
     for (const std::string& v : obs.variables) {
       Plot p;
       p.title = m + ": measured - simulated";
-      p.x_label = v;
+      p.x_label = quantity_label(v);
       p.y_label = with_unit(m) + " residual";
       p.zero_line = true;
       PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};

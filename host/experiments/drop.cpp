@@ -88,6 +88,7 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
   DropResult r;
   r.drop_height = H;
   r.trajectory.push_back({0.0, height(sim.state())});
+  r.wall_forces.sample(sim);
   bool touched = false, left = false;
   double touch_time = 0, prev_speed = 0;
   uint64_t max_frames = uint64_t(ex.max_time / frame_dt) + 1;
@@ -95,6 +96,7 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
     sim.advance(frame_steps);
     double h = height(sim.state()), v = normal_speed(sim.state());
     r.trajectory.push_back({sim.time(), h});
+    r.wall_forces.sample(sim);
     // A frame below the plate, or (a contact shorter than a frame) the fall turned into a rise.
     if (!touched && (h < 0 || (prev_speed < 0 && v > 0))) {
       touched = true;

@@ -8,6 +8,7 @@
 
 #include "case/case_spec.h"
 #include "engine/step_program.h"
+#include "experiments/wall_force_series.h"
 
 namespace repose {
 
@@ -26,6 +27,7 @@ struct DropResult {
   double impact_speed = 0;          // m/s, normal to the plate, just before contact
   double contact_time = 0;          // s, first impact
   std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
+  WallForceSeries wall_forces;                         // the plate's force at every camera frame
 };
 
 // The case's one sphere or one clump is the body (a clump at a random orientation from
