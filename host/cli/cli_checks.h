@@ -20,6 +20,25 @@ inline CLI::Validator finite_positive() {
       "POSITIVE");
 }
 
+// A finite number in [low, high] (nan and inf refused).
+inline CLI::Validator finite_between(double low, double high) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(text, v)) return "'" + text + "' is not a number";
+        if (!std::isfinite(v) || v < low || v > high) {
+          char range[64];
+          std::snprintf(range, sizeof range, "from %g to %g", low, high);
+          return "'" + text + "' must be a finite number " + range;
+        }
+        return {};
+      },
+      "NUMBER");
+}
+
+// A finite number (nan and inf refused).
+inline CLI::Validator finite_number() { return finite_between(-1e300, 1e300); }
+
 // A whole number from `low` to `high`, with a message that says why the bound is there.
 inline CLI::Validator whole_number(long long low, long long high, const std::string& why = "") {
   return CLI::Validator(

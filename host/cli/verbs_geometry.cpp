@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
@@ -149,13 +150,13 @@ int run_clump(int argc, char** argv) {
   std::vector<double> com, inertia;
   UnionIntegration integration;
   app.add_option("file", file, "CSV with x,y,z,radius columns (metres)")->required();
-  app.add_option("--density", density, "kg/m^3, applied to the union volume (default 1000)");
+  app.add_option("--density", density, "kg/m^3, applied to the union volume (default 1000)")->check(finite_positive());
   app.add_flag("--json", json, "print JSON instead of text");
   app.add_option("--depth", integration.refine_depth,
                  "edge refinement depth of the integration (default 4: ~1e-5 relative; 6: ~1e-6)");
   app.add_option("--principal-out", principal_out,
                  "write the template re-expressed in its principal frame to this CSV");
-  app.add_option("--mass", mass, "explicit mass, kg (with --com and --inertia, as EDEM allows)");
+  app.add_option("--mass", mass, "explicit mass, kg (with --com and --inertia, as EDEM allows)")->check(finite_positive());
   app.add_option("--com", com, "explicit centre of mass x,y,z (m)")->expected(3)->delimiter(',');
   app.add_option("--inertia", inertia, "explicit inertia Ixx,Iyy,Izz,Ixy,Ixz,Iyz about the centre of mass (kg m^2)")
       ->expected(6)
@@ -308,13 +309,13 @@ int run_heap_angle(int argc, char** argv) {
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
   app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)");
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)")->check(finite_positive());
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)");
-  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)");
-  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)");
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)")->check(finite_number());
+  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
+  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "stats/anova.h"
 #include "util/atomic_file.h"
@@ -77,14 +78,14 @@ int run_design(int argc, char** argv) {
       ->check(CLI::IsMember({"pb12", "pb20", "factorial", "fractional", "ccd", "bbd", "path"}));
   app.add_option("--factors", factor_list, "NAME:LOW:HIGH,... actual values coded -1 and +1");
   app.add_option("--centre,--center", centre,
-                 "centre points (default: 6 for ccd, 5 for bbd, 0 otherwise)");
+                 "centre points (default: 6 for ccd, 5 for bbd, 0 otherwise)")->check(whole_number(0, 1000));
   app.add_option("--alpha", alpha, "ccd axial distance: rotatable, orthogonal, face, or a number");
   app.add_option("--generators", generators, "fractional: generators such as D=ABC,E=-ABD")->delimiter(',');
-  app.add_option("--fraction", fraction, "fractional: p of 2^(k-p), with standard generators");
+  app.add_option("--fraction", fraction, "fractional: p of 2^(k-p), with standard generators")->check(whole_number(0, 30));
   app.add_option("--seed", seed, "randomise the run order with this seed (std::mt19937_64)");
   app.add_option("--fit", fit_path, "path: a first-order fit (repose fit --json) to follow");
-  app.add_option("--steps", steps, "path: number of steps (default 5)");
-  app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)");
+  app.add_option("--steps", steps, "path: number of steps (default 5)")->check(whole_number(1, 1000));
+  app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)")->check(finite_positive());
   app.add_flag("--descent", descent, "path: descend instead of ascend");
   app.add_option("--out", out, "output CSV (default: standard output)");
   CLI11_PARSE(app, argc, argv);
@@ -164,7 +165,7 @@ int run_fit(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--snap-alpha", snap,
                  "replace axial levels printed rounded (1.682) by the exact alpha: rotatable or a number");
-  app.add_option("--reduce", reduce, "drop terms with p above this value, one at a time, keeping hierarchy");
+  app.add_option("--reduce", reduce, "drop terms with p above this value, one at a time, keeping hierarchy")->check(finite_between(1e-12, 1));
   app.add_flag("--no-hierarchy", no_hierarchy, "with --reduce: allow dropping terms that others contain");
   app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
       ->check(CLI::IsMember({"partial", "sequential"}));
@@ -269,14 +270,14 @@ int run_optimize(int argc, char** argv) {
   app.add_option("fits", fit_paths, "fit files; several with --goal each: desirability")->required();
   auto* o_min = app.add_flag("--minimize,--minimise", minimize, "minimise the response");
   auto* o_max = app.add_flag("--maximize,--maximise", maximize, "maximise the response");
-  auto* o_tgt = app.add_option("--target", target, "bring the response to this value");
+  auto* o_tgt = app.add_option("--target", target, "bring the response to this value")->check(finite_number());
   o_min->excludes(o_max)->excludes(o_tgt);
   o_max->excludes(o_tgt);
   app.add_option("--goal", goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
   app.add_option("--fix", fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
   app.add_option("--fix-coded", fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
   app.add_option("--within", within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
-  app.add_option("--tolerance", tolerance, "width of the reported near-optimal set, in response units");
+  app.add_option("--tolerance", tolerance, "width of the reported near-optimal set, in response units")->check(finite_positive());
   app.add_option("--compare", compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
   app.add_option("--json", json_out, "write the optimum and the near-optimal set to this file");
   CLI11_PARSE(app, argc, argv);
@@ -464,8 +465,8 @@ int run_curve(int argc, char** argv) {
   app.add_option("sweep", path, "CSV table of the sweep")->required();
   app.add_option("--x", xcol, "swept parameter column")->required();
   app.add_option("--y", ycol, "response column")->required();
-  app.add_option("--at", at, "measured response to invert")->required();
-  app.add_option("--degree", degree, "polynomial degree (default 3)");
+  app.add_option("--at", at, "measured response to invert")->required()->check(finite_number());
+  app.add_option("--degree", degree, "polynomial degree (default 3)")->check(whole_number(1, 9));
   CLI11_PARSE(app, argc, argv);
   Table t = read_csv(path);
   std::vector<double> x = t.numeric_column(xcol), y = t.numeric_column(ycol);
