@@ -12,6 +12,8 @@
 
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "util/hash.h"
+#include "util/version.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
@@ -108,6 +110,14 @@ class JsonOut {
   std::string text_;
   bool first_ = true;
 };
+
+// FNV-1a of a file's bytes, for the provenance of a result computed from it.
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return fnv1a_hex(bytes.str());
+}
 
 void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
@@ -389,6 +399,7 @@ int run_heap_angle(int argc, char** argv) {
       }
       j.close(']').close();
     }
+    j.open("provenance").string("version", repose_version()).string("input_fnv1a", file_hash(file)).close();
     j.close();
     write_text_file(json, j.text() + "\n");
     std::printf("results      %s\n", json.c_str());

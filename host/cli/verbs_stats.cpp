@@ -11,6 +11,7 @@
 
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "io/provenance.h"
 #include "stats/anova.h"
 #include "util/atomic_file.h"
 #include "stats/calibration_curve.h"
@@ -225,7 +226,9 @@ int run_fit(int argc, char** argv) {
   std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
               format_equations(fit, response, factors, data.ranges).c_str());
   if (!json_out.empty()) {
-    repose::write_file_atomically(json_out, fit_to_json(fit, data, table_path, chosen, result->removed).dump());
+    Json saved = fit_to_json(fit, data, table_path, chosen, result->removed);
+    saved.set("provenance", Json::parse(input_provenance({table_path}).dump(), "provenance"));
+    repose::write_file_atomically(json_out, saved.dump());
     std::printf("wrote %s\n", json_out.c_str());
   }
   return 0;

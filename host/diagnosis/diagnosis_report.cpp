@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "diagnosis/plot_png.h"
+#include "io/provenance.h"
 #include "util/units.h"
 #include "util/atomic_file.h"
 
@@ -243,6 +244,7 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   for (const auto& f : figures) j["figures"].push_back(f.first);
   j["simulations"] = d.simulations;
   j["seconds"] = d.seconds;
+  j["provenance"] = input_provenance({obs.path});
   write_file_atomically((dir / "diagnosis.json").string(), j.dump(2) + "\n");
 
   std::ostringstream md;

@@ -1,7 +1,11 @@
 #include "io/provenance.h"
 
 #include "case/case_loader.h"
+#include "util/hash.h"
 #include "util/version.h"
+
+#include <fstream>
+#include <sstream>
 
 namespace repose {
 
@@ -22,6 +26,18 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
   j["seed"] = p.seed;
   j["backend"] = p.backend;
   j["device"] = p.device;
+  return j;
+}
+
+nlohmann::ordered_json input_provenance(const std::vector<std::string>& files) {
+  nlohmann::ordered_json j = version_json();
+  j["inputs"] = nlohmann::ordered_json::array();
+  for (const auto& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    j["inputs"].push_back({{"file", file}, {"fnv1a", fnv1a_hex(bytes.str())}});
+  }
   return j;
 }
 

@@ -23,7 +23,11 @@ struct Provenance {
 // The case's path, hash and seed; the rest is filled in by the caller.
 Provenance provenance_of(const CaseSpec& spec, const std::vector<std::string>& overrides);
 nlohmann::ordered_json provenance_json(const Provenance& p);
-// {"version": ...} alone, for results that come from a table rather than a case (fit, design).
+// {"version": ...} alone.
 nlohmann::ordered_json version_json();
+// For results computed from files rather than a simulated case (a fit from a table, a heap angle
+// from a sphere CSV, a diagnosis from measured data): the version and each input file with the
+// FNV-1a hash of its bytes.
+nlohmann::ordered_json input_provenance(const std::vector<std::string>& files);
 
 }  // namespace repose
