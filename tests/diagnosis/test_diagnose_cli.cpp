@@ -102,4 +102,6 @@ TEST_CASE("lack of fit that no tested candidate removes is 'unexplained', with w
   CHECK(j["tried"].empty());
   REQUIRE(j["untested"].size() == 1);
   CHECK(j["untested"][0]["id"] == "shape");
+  CHECK(!j["provenance"]["version"].get<std::string>().empty());
+  CHECK(j["provenance"]["inputs"][0]["fnv1a"].get<std::string>().size() == 16);
 }
