@@ -130,6 +130,21 @@ inline CaseSpec seeded_cloud(uint32_t n, uint64_t seed, double spacing, double j
   return b.spec;
 }
 
+// Six two-sphere clumps resting on a floor with EPSD rolling springs (rolling springs and bodies
+// in one state: the state file and restart tests).
+inline CaseSpec epsd_clump_pairs() {
+  CaseBuilder b;
+  int m = b.material(1000, 5e6, 0.3);
+  b.interaction(m, m, 0.5, 0.5, 0.05);
+  b.spec.gravity = {0, 0, -9.81};
+  b.spec.time.rayleigh_fraction = 0.2;
+  b.spec.contact.rolling = RollingModel::ElasticPlastic;
+  int t = b.clump_template("pair", {{{-0.004, 0, 0}, 0.005}, {{0.004, 0, 0}, 0.005}});
+  for (int k = 0; k < 6; ++k) b.clump(t, {0.011 * k, 0, 0.0052}, m);
+  b.plane({0, 0, 0}, {0, 0, 1}, m);
+  return b.spec;
+}
+
 inline std::unique_ptr<Simulation> simulate(const CaseSpec& spec, const std::string& backend = "cpu",
                                             unsigned threads = 1, KernelVariant variant = {},
                                             uint32_t batch = 200) {

@@ -69,16 +69,7 @@ TEST_CASE("restart: a moving wall, symplectic Euler, lavapipe continuing the CPU
 }
 
 TEST_CASE("restart: clumps with EPSD rolling springs", "[engine][restart]") {
-  CaseBuilder b;
-  int m = b.material(1000, 5e6, 0.3);
-  b.interaction(m, m, 0.5, 0.5, 0.05);
-  b.spec.gravity = {0, 0, -9.81};
-  b.spec.time.rayleigh_fraction = 0.2;
-  b.spec.contact.rolling = RollingModel::ElasticPlastic;
-  int t = b.clump_template("pair", {{{-0.004, 0, 0}, 0.005}, {{0.004, 0, 0}, 0.005}});
-  for (int k = 0; k < 6; ++k) b.clump(t, {0.011 * k, 0.002 * (k % 2), 0.0052 + 0.004 * k}, m);
-  b.plane({0, 0, 0}, {0, 0, 1}, m);
-  check_restart(b.spec, 211, 300);
+  check_restart(epsd_clump_pairs(), 211, 300);
 }
 
 TEST_CASE("restart: a state that does not fit the case is refused by what differs", "[engine][restart]") {
