@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "geometry/clump.h"
+#include "util/math.h"
 
 namespace repose {
-
-using Vec3d = std::array<double, 3>;
 
 // Where in a case file a value came from: "cases/box.toml", key "fill[0].count", line 12.
 struct SourceRef {

@@ -21,6 +21,7 @@
 #include "stats/json.h"
 #include "stats/optimize.h"
 #include "stats/report.h"
+#include "util/number_text.h"
 
 namespace repose::cli {
 
@@ -36,9 +37,7 @@ std::string join_args(int argc, char** argv) {
 
 std::string num(double v, int digits = 6) {
   if (std::fabs(v) < 1e-12) v = 0;  // coded centres computed as (x - c) / h come out as +-3e-15
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return format_g(v, digits);
 }
 
 // Index of a factor given by name or by its letter (A, B, ...).

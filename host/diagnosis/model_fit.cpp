@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "stats/local_search.h"
+
 namespace repose {
 
 std::vector<double> group_chi_squares(const Observations& obs, const Prediction& predicted, const Prediction* target) {
@@ -76,93 +78,14 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
     fit.chi2 = chi_square(obs, fit.predicted, use, target);
     return fit;
   }
-  // Nelder-Mead (standard coefficients) over the dimensions in `free`, the others held; the
-  // simplex kept inside the unit cube by clamping. Returns the best point and its value.
-  auto nelder_mead = [&](std::vector<double> u, const std::vector<size_t>& free, double size0, int budget) {
-    size_t m = free.size();
-    int stop = fit.evaluations + budget;
-    std::vector<std::vector<double>> x(m + 1, u);
-    for (size_t k = 0; k < m; ++k) {
-      size_t d = free[k];
-      x[k + 1][d] = u[d] + (u[d] + size0 <= 1.0 ? size0 : -size0);
-    }
-    std::vector<double> f(m + 1);
-    for (size_t k = 0; k <= m; ++k) f[k] = objective(x[k]);
-    auto along = [&](const std::vector<double>& centroid, const std::vector<double>& worst, double a) {
-      std::vector<double> p = worst;
-      for (size_t d : free) p[d] = std::clamp(centroid[d] + a * (worst[d] - centroid[d]), 0.0, 1.0);
-      return p;
-    };
-    while (fit.evaluations < stop) {
-      std::vector<size_t> order(m + 1);
-      for (size_t k = 0; k <= m; ++k) order[k] = k;
-      std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return f[a] < f[b]; });
-      std::vector<std::vector<double>> xs;
-      std::vector<double> fs;
-      for (size_t k : order) { xs.push_back(x[k]); fs.push_back(f[k]); }
-      x = xs;
-      f = fs;
-      double size = 0;
-      for (size_t k = 1; k <= m; ++k)
-        for (size_t d : free) size = std::max(size, std::abs(x[k][d] - x[0][d]));
-      // 0.01 in chi^2 is far below any decision; a small simplex is converged.
-      if (size < 1e-3 || (f[m] - f[0] < 0.01 && size < 0.03)) break;
-      std::vector<double> centroid = x[0];
-      for (size_t d : free) {
-        centroid[d] = 0;
-        for (size_t k = 0; k < m; ++k) centroid[d] += x[k][d] / m;
-      }
-      auto xr = along(centroid, x[m], -1.0);
-      double fr = objective(xr);
-      if (fr < f[0]) {
-        auto xe = along(centroid, x[m], -2.0);
-        double fe = objective(xe);
-        if (fe < fr) { x[m] = xe; f[m] = fe; } else { x[m] = xr; f[m] = fr; }
-      } else if (fr < f[m - 1]) {
-        x[m] = xr;
-        f[m] = fr;
-      } else {
-        auto xc = fr < f[m] ? along(centroid, x[m], -0.5) : along(centroid, x[m], 0.5);
-        double fc = objective(xc);
-        if (fc < std::min(fr, f[m])) {
-          x[m] = xc;
-          f[m] = fc;
-        } else {
-          for (size_t k = 1; k <= m; ++k) {
-            for (size_t d : free) x[k][d] = x[0][d] + 0.5 * (x[k][d] - x[0][d]);
-            f[k] = objective(x[k]);
-          }
-        }
-      }
-    }
-    size_t best = std::min_element(f.begin(), f.end()) - f.begin();
-    return std::make_pair(x[best], f[best]);
+  // 0.01 in chi^2 is far below any decision: a small simplex within it is converged.
+  auto nelder_mead = [&](const std::vector<double>& u, const std::vector<size_t>& free, double size0, int budget) {
+    stats::UnitMinimum m = stats::nelder_mead(objective, u, free, size0, budget, 0.01);
+    return std::make_pair(m.x, m.value);
   };
-
-  // Golden-section search of one dimension over its whole range (the profile's inner fit).
-  auto golden = [&](std::vector<double> u, size_t d, int evaluations) {
-    const double r = 0.6180339887498949;
-    double a = 0, b = 1;
-    std::vector<double> p = u, q = u;
-    p[d] = b - r * (b - a);
-    q[d] = a + r * (b - a);
-    double fp = objective(p), fq = objective(q);
-    for (int i = 2; i < evaluations; ++i) {
-      if (fp < fq) {
-        b = q[d];
-        q = p;
-        fq = fp;
-        p[d] = b - r * (b - a);
-        fp = objective(p);
-      } else {
-        a = p[d];
-        p = q;
-        fp = fq;
-        q[d] = a + r * (b - a);
-        fq = objective(q);
-      }
-    }
-    return fp < fq ? std::make_pair(p, fp) : std::make_pair(q, fq);
+  auto golden = [&](const std::vector<double>& u, size_t d, int evaluations) {
+    stats::UnitMinimum m = stats::golden_section(objective, u, d, evaluations);
+    return std::make_pair(m.x, m.value);
   };
 
   std::vector<size_t> all_dims(n);

@@ -14,12 +14,11 @@
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
 #include "util/atomic_file.h"
+#include "util/math.h"
 
 namespace repose {
 
 namespace {
-
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Vertex of the parabola through three equally spaced samples (the camera's sub-frame estimate).
 double parabola_peak(double a, double b, double c) {
@@ -137,7 +136,6 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
 
 void align_impact_phase(CaseSpec& spec) {
   if (spec.spheres.empty() && spec.bodies.empty()) return;
-  constexpr double kPi = 3.14159265358979323846;
   const Vec3d& gv = spec.gravity;
   double g = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
   double H = spec.experiment.drop_height;

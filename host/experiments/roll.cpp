@@ -13,12 +13,9 @@
 #include "experiments/tilt.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/math.h"
 
 namespace repose {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
   CaseSpec spec = input;

@@ -12,28 +12,9 @@
 #include "experiments/body_frame.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/math.h"
 
 namespace repose {
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-Vec3d sub(Vec3d a, Vec3d b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(Vec3d a, Vec3d b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(Vec3d a, Vec3d b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-// Rodrigues rotation of v about the unit axis k by angle a.
-Vec3d rotate(Vec3d v, Vec3d k, double a) {
-  double c = std::cos(a), s = std::sin(a);
-  Vec3d kv = cross(k, v);
-  double kd = dot(k, v) * (1 - c);
-  return {v[0] * c + kv[0] * s + k[0] * kd, v[1] * c + kv[1] * s + k[1] * kd, v[2] * c + kv[2] * s + k[2] * kd};
-}
-
-}  // namespace
 
 TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
   CaseSpec spec = input;
@@ -65,7 +46,7 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, 
   // The body in the plate's frame: rotate back by the tilt so far (exact on the host, in double).
   auto in_plate_frame = [&](Vec3d x, double t) {
     double angle = rate * std::max(0.0, t - ex.settle_time);
-    return rotate(sub(x, pivot), ex.tilt_axis, -angle);
+    return rotate_about(sub(x, pivot), ex.tilt_axis, -angle);
   };
   Vec3d start = in_plate_frame(body_centre(sim.state()), sim.time());
   Vec3d turned{0, 0, 0};  // the first body's rotation since the tilt began (w dt summed: rocking cancels)
