@@ -187,12 +187,10 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   j["contact_time"] = r.contact_time;
   j["camera_fps"] = spec.experiment.camera_fps;
   auto track = std::make_shared<std::vector<std::pair<double, double>>>(r.trajectory);
-  o.files.push_back({"trajectory.csv", [track](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,height\n";
-                         for (const auto& [t, h] : *track) out << t << "," << h << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("trajectory.csv", [track](std::ostream& out) {
+    out << "t,height\n";
+    for (const auto& [t, h] : *track) out << t << "," << h << "\n";
+  }));
   o.lines.push_back(printf_text("drop %s: H = %.4g m, rebound h = %.5g m, e = sqrt(h/H) = %.4f (impact %.3g m/s, contact %.3g ms)",
                                 spec.name.c_str(), r.drop_height, r.rebound_height, r.restitution, r.impact_speed,
                                 1e3 * r.contact_time));

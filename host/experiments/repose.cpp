@@ -252,23 +252,16 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
 }
 
 void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r) {
-  o.files.push_back({"energy.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,largest_kinetic_energy\n";
-                         for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
-                       });
-                     }});
-  o.files.push_back({"heap.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "x,y,z,radius\n";
-                         for (const auto& s : r->spheres)
-                           out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("energy.csv", [r](std::ostream& out) {
+    out << "t,largest_kinetic_energy\n";
+    for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
+  }));
+  o.files.push_back(text_file("heap.csv", [r](std::ostream& out) {
+    out << "x,y,z,radius\n";
+    for (const auto& s : r->spheres) out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   o.files.push_back({"heap.png", [r](const std::string& path) { write_heap_angle_png(path, r->heap); }});
 }
 

@@ -154,16 +154,12 @@ ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["onset_time"] = r->onset_time;
   j[quantity_] = r->tan_alpha;
   j["rolled_fraction"] = r->rolled_fraction;
-  o.files.push_back({"trajectory.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,angle_deg,displacement\n";
-                         for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
+    out << "t,angle_deg,displacement\n";
+    for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   o.lines.push_back(printf_text("%s %s: the body starts to %s at alpha = %.3f deg, %s = tan(alpha) = %.4f (rolled fraction %.2f)",
                                 type_.c_str(), spec.name.c_str(), motion_.c_str(), r->onset_angle_deg, quantity_.c_str(),
                                 r->tan_alpha, r->rolled_fraction));
@@ -187,6 +183,19 @@ std::string one_body_problem(const CaseSpec& spec) {
   return one_body ? "" : "diagnose tilts or rolls one body (one [[sphere]] or one [[clump]], no fills or lattices)";
 }
 
+DiagnosisRole body_plate_role(MeasureInfo measure, FreeParameter baseline, double Interaction::*field,
+                              std::string baseline_model, std::string condition) {
+  DiagnosisRole r;
+  r.synthetic = {measure.name};
+  r.measures = {std::move(measure)};
+  r.baseline = std::move(baseline);
+  r.baseline_field = field;
+  r.baseline_model = std::move(baseline_model);
+  r.condition = std::move(condition);
+  r.truth_option = "plate_friction";
+  return r;
+}
+
 Interaction& TiltExperiment::tested_contact(CaseSpec& spec) const { return body_plate_contact(spec); }
 
 std::string TiltExperiment::diagnosis_problem(const CaseSpec& spec) const { return one_body_problem(spec); }
@@ -200,17 +209,10 @@ DiagnosticOutcome TiltExperiment::simulate_for_diagnosis(CaseSpec spec, const st
 }
 
 const Experiment& slide_experiment() {
-  static const TiltExperiment slide("slide", "slide", "slide", "mu_s", [] {
-    DiagnosisRole r;
-    r.measures = {{"slide_angle", false, "deg"}};
-    r.synthetic = {"slide_angle"};
-    r.baseline = {"static_friction", "1", 0.05, 1.2, false};
-    r.baseline_field = &Interaction::static_friction;
-    r.baseline_model = "Hertz-Mindlin, Coulomb friction, no cohesion";
-    r.condition = "material.0.density";
-    r.truth_option = "plate_friction";
-    return r;
-  }());
+  static const TiltExperiment slide(
+      "slide", "slide", "slide", "mu_s",
+      body_plate_role({"slide_angle", false, "deg"}, {"static_friction", "1", 0.05, 1.2, false},
+                      &Interaction::static_friction, "Hertz-Mindlin, Coulomb friction, no cohesion", "material.0.density"));
   return slide;
 }
 

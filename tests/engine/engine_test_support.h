@@ -14,8 +14,6 @@
 
 namespace repose::test {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A case without gravity, walls or particles; tests add what they need.
 struct CaseBuilder {
   CaseSpec spec;
