@@ -34,30 +34,16 @@ std::string no_rebound(const CaseSpec& spec) {
 
 }  // namespace
 
-DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
-  CaseSpec spec = input;
-  const ExperimentSpec& ex = spec.experiment;
-  bool clump = spec.spheres.empty() && spec.bodies.size() == 1;
-  if (!clump && !(spec.spheres.size() == 1 && spec.bodies.empty()))
-    throw std::runtime_error(spec.path + ": a drop test needs exactly one body (a [[sphere]] or a [[clump]]); the case has " +
-                             std::to_string(spec.spheres.size()) + " spheres and " +
-                             std::to_string(spec.bodies.size()) + " clumps");
-  auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
-                            [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
-  if (plate == spec.walls.end())
-    throw std::runtime_error(spec.path + ": a drop test needs a plane [[wall]] as the plate");
-  double n_len = std::sqrt(dot(plate->normal, plate->normal));
-  Vec3d up = {plate->normal[0] / n_len, plate->normal[1] / n_len, plate->normal[2] / n_len};
-  double g_down = -dot(spec.gravity, up);
-  if (!(g_down > 0)) throw std::runtime_error(spec.path + ": a drop test needs gravity towards the plate");
+namespace {
 
-  // Release at rest, lowest point H above the plate, above where the case put the body; a
-  // clump at a random orientation drawn from the case's seed (one replicate per seed).
-  double H = ex.drop_height;
-  double plate_level = dot(plate->point, up);
+// Places the body (the case's one sphere, else its one clump) at rest with its lowest point
+// `height` above the surface, above where the case put it; a clump at a random orientation drawn
+// from the case's seed (one replicate per seed) unless the options say otherwise.
+void place_body(CaseSpec& spec, const DropSurface& surface, double height, const DropOptions& options) {
+  const Vec3d& up = surface.up;
   Vec3d* position = nullptr;
   double lowest = 0;  // of the body as placed, along `up`
-  if (clump) {
+  if (spec.spheres.empty()) {
     BodySpec& body = spec.bodies[0];
     if (options.random_orientation) {
       std::mt19937_64 engine(spec.seed);
@@ -74,26 +60,32 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
     lowest = dot(body.position, up) - body.radius;
     position = &body.position;
   }
-  for (int k = 0; k < 3; ++k) (*position)[k] += (plate_level + H - lowest) * up[k];
+  for (int k = 0; k < 3; ++k) (*position)[k] += (surface.level + height - lowest) * up[k];
+}
 
+// The camera's frames of the body's lowest point (particles that move: fixed ones are the rig's),
+// until past the rebound's apex; contact and lift-off from the body's speed along `up`.
+DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_down, const DropOptions& options) {
+  const ExperimentSpec& ex = spec.experiment;
+  const Vec3d& up = surface.up;
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
   Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
                  {}, frame_steps);
-  // The camera tracks the body's lowest point; the lift-off test uses its centre's speed.
   auto height = [&](const HostState& s) {
     double low = 1e300;
-    for (const auto& p : s.pos) low = std::min(low, dot({p.x, p.y, p.z}, up) - p.w);
-    return low - plate_level;
+    for (size_t i = 0; i < s.pos.size(); ++i)
+      if (s.vel[i].w != 0.0f) low = std::min(low, dot({s.pos[i].x, s.pos[i].y, s.pos[i].z}, up) - s.pos[i].w);
+    return low - surface.level;
   };
   auto normal_speed = [&](const HostState& s) {
-    const gpu::vec4& v = s.bodies.empty() ? s.vel[0] : s.bodies[0].vel;
+    const gpu::vec4& v = s.bodies.empty() ? s.vel[first_moving_sphere(s)] : s.bodies[first_moving_body(s)].vel;
     return double(v.x) * up[0] + double(v.y) * up[1] + double(v.z) * up[2];
   };
 
   DropResult r;
-  r.drop_height = H;
+  r.drop_height = ex.drop_height;
   r.trajectory.push_back({0.0, height(sim.state())});
   bool touched = false, left = false;
   double touch_time = 0, prev_speed = 0;
@@ -102,7 +94,7 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
     sim.advance(frame_steps);
     double h = height(sim.state()), v = normal_speed(sim.state());
     r.trajectory.push_back({sim.time(), h});
-    // A frame below the plate, or (a contact shorter than a frame) the fall turned into a rise.
+    // A frame below the surface, or (a contact shorter than a frame) the fall turned into a rise.
     if (!touched && (h < 0 || (prev_speed < 0 && v > 0))) {
       touched = true;
       touch_time = sim.time();
@@ -130,8 +122,35 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
   if (best == first_after || best + 1 >= r.trajectory.size()) r.rebound_height = r.trajectory[best].second;
   else r.rebound_height = parabola_peak(r.trajectory[best - 1].second, r.trajectory[best].second,
                                         r.trajectory[best + 1].second);
-  r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / H);
+  r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / ex.drop_height);
   return r;
+}
+
+}  // namespace
+
+DropResult drop_onto(const CaseSpec& input, const DropSurface& surface, const DropOptions& options) {
+  double g_down = -dot(input.gravity, surface.up);
+  if (!(g_down > 0)) throw std::runtime_error(input.path + ": a drop test needs gravity towards the plate");
+  CaseSpec spec = input;
+  place_body(spec, surface, spec.experiment.drop_height, options);
+  return film_drop(spec, surface, g_down, options);
+}
+
+DropResult run_drop(const CaseSpec& spec, const DropOptions& options) {
+  bool clump = spec.spheres.empty() && spec.bodies.size() == 1;
+  if (!clump && !(spec.spheres.size() == 1 && spec.bodies.empty()))
+    throw std::runtime_error(spec.path + ": a drop test needs exactly one body (a [[sphere]] or a [[clump]]); the case has " +
+                             std::to_string(spec.spheres.size()) + " spheres and " +
+                             std::to_string(spec.bodies.size()) + " clumps");
+  auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
+                            [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
+  if (plate == spec.walls.end())
+    throw std::runtime_error(spec.path + ": a drop test needs a plane [[wall]] as the plate");
+  double n_len = std::sqrt(dot(plate->normal, plate->normal));
+  DropSurface surface;
+  surface.up = {plate->normal[0] / n_len, plate->normal[1] / n_len, plate->normal[2] / n_len};
+  surface.level = dot(plate->point, surface.up);
+  return drop_onto(spec, surface, options);
 }
 
 void align_impact_phase(CaseSpec& spec) {
