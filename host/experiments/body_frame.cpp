@@ -9,14 +9,17 @@ namespace repose {
 
 namespace {
 
-// (1/mass, position, velocity) of each free sphere or body.
+// (mass, position, velocity) of each sphere or body that moves (fixed ones, 1/mass = 0, are
+// the rig's, not the body under test).
 template <class F>
 void for_each_mass(const HostState& state, F&& f) {
   if (!state.bodies.empty()) {
-    for (const auto& b : state.bodies) f(1.0 / b.pos.w, b.pos, b.vel);
+    for (const auto& b : state.bodies)
+      if (b.pos.w != 0.0f) f(1.0 / b.pos.w, b.pos, b.vel);
     return;
   }
-  for (size_t i = 0; i < state.pos.size(); ++i) f(1.0 / state.vel[i].w, state.pos[i], state.vel[i]);
+  for (size_t i = 0; i < state.pos.size(); ++i)
+    if (state.vel[i].w != 0.0f) f(1.0 / state.vel[i].w, state.pos[i], state.vel[i]);
 }
 
 }  // namespace

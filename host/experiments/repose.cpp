@@ -27,13 +27,14 @@ double max_kinetic_energy(const HostState& st) {
   auto sq = [](const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; };
   if (!st.bodies.empty()) {
     for (const auto& b : st.bodies) {
+      if (b.pos.w == 0.0f) continue;  // fixed: never moves
       double rot = double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z;
       most = std::max(most, 0.5 / b.pos.w * sq(b.vel) + 0.5 * rot);
     }
     return most;
   }
   for (size_t i = 0; i < st.vel.size(); ++i)
-    most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
+    if (st.vel[i].w != 0.0f) most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
   return most;
 }
 
