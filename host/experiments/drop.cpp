@@ -36,15 +36,17 @@ std::string no_rebound(const CaseSpec& spec) {
 
 namespace {
 
-// Places the body (the case's one sphere, else its one clump) at rest with its lowest point
-// `height` above the surface, above where the case put it; a clump at a random orientation drawn
-// from the case's seed (one replicate per seed) unless the options say otherwise.
+// Places the body (the case's first sphere that is not fixed, else its first such clump) at rest
+// with its lowest point `height` above the surface, above where the case put it; a clump at a
+// random orientation drawn from the case's seed (one replicate per seed) unless the options say
+// otherwise.
 void place_body(CaseSpec& spec, const DropSurface& surface, double height, const DropOptions& options) {
   const Vec3d& up = surface.up;
   Vec3d* position = nullptr;
   double lowest = 0;  // of the body as placed, along `up`
-  if (spec.spheres.empty()) {
-    BodySpec& body = spec.bodies[0];
+  auto sphere = std::find_if(spec.spheres.begin(), spec.spheres.end(), [](const SphereSpec& s) { return !s.fixed; });
+  if (sphere == spec.spheres.end()) {
+    BodySpec& body = *std::find_if(spec.bodies.begin(), spec.bodies.end(), [](const BodySpec& b) { return !b.fixed; });
     if (options.random_orientation) {
       std::mt19937_64 engine(spec.seed);
       body.orientation = random_orientation([&engine] { return unit_interval(engine()); });
@@ -55,7 +57,7 @@ void place_body(CaseSpec& spec, const DropSurface& surface, double height, const
       lowest = std::min(lowest, dot(s.position, up) - s.radius);
     position = &body.position;
   } else {
-    SphereSpec& body = spec.spheres[0];
+    SphereSpec& body = *sphere;
     body.velocity = body.angular_velocity = {0, 0, 0};
     lowest = dot(body.position, up) - body.radius;
     position = &body.position;
@@ -163,8 +165,9 @@ void align_impact_phase(CaseSpec& spec) {
   // A clump body falls in vacuum (the engine's drag acts on free spheres only) and without
   // turning, so its lowest point meets the plate after sqrt(2 H / g) whatever its orientation.
   double k = 0;
-  if (!spec.spheres.empty()) {
-    const SphereSpec& body = spec.spheres[0];
+  auto sphere = std::find_if(spec.spheres.begin(), spec.spheres.end(), [](const SphereSpec& s) { return !s.fixed; });
+  if (sphere != spec.spheres.end()) {
+    const SphereSpec& body = *sphere;
     double r = body.radius;
     double mass = spec.materials.at(body.material).density * 4.0 / 3.0 * kPi * r * r * r;
     k = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi * r * r / mass;
