@@ -82,6 +82,9 @@ REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of ri
 REPOSE_CONST kFlagRollingSpring = 256u;       // EDEM type C (EPSD) rolling resistance, full entries only
 REPOSE_CONST kFlagSpinningFriction = 512u;    // some pair has spinning friction (PairParams::c.x), full entries only
 REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling lever on the force before cohesion
+REPOSE_CONST kFlagRollingLeverSphere = 2048u; // LIGGGHTS multisphere: a clump's rolling lever is the sub-sphere's
+                                              // radius, not |contact point - centre of mass| (EDEM)
+REPOSE_CONST kFlagCohesionIntersection = 4096u;  // LIGGGHTS sjkr: cohesion on the spheres' intersection disc
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;

@@ -11,6 +11,7 @@
 #include "calibrate/design_runs.h"
 #include "calibrate/gaussian_process.h"
 #include "stats/halton.h"
+#include "stats/local_search.h"
 
 namespace repose::calibrate {
 
@@ -42,37 +43,12 @@ std::string loop_id(int index) {
 
 // Maximises `score` over the given points and quasi-random candidates, then polishes the best by
 // a shrinking compass search inside the coded cube.
-template <class Score>
-Eigen::VectorXd maximise(int k, const Eigen::MatrixXd& extra, Score score, double& top) {
-  Eigen::VectorXd arg;
-  top = -INFINITY;
-  auto consider = [&](const Eigen::VectorXd& p) {
-    double v = score(p);
-    if (v > top) {
-      top = v;
-      arg = p;
-    }
-  };
-  for (int i = 0; i < extra.rows(); ++i) consider(extra.row(i).transpose());
-  for (const auto& p : halton_points(k, 1, 1024 * k)) consider(p);
-  for (double step = 0.05; step > 1e-4; step *= 0.5) {
-    bool moved = true;
-    while (moved) {
-      moved = false;
-      for (int d = 0; d < k; ++d)
-        for (double dir : {-1.0, 1.0}) {
-          Eigen::VectorXd p = arg;
-          p[d] = std::clamp(p[d] + dir * step, -1.0, 1.0);
-          double v = score(p);
-          if (v > top + 1e-15) {
-            top = v;
-            arg = p;
-            moved = true;
-          }
-        }
-    }
-  }
-  return arg;
+Eigen::VectorXd maximise(int k, const Eigen::MatrixXd& extra, const std::function<double(const Eigen::VectorXd&)>& score,
+                         double& top) {
+  std::vector<Eigen::VectorXd> candidates;
+  for (int i = 0; i < extra.rows(); ++i) candidates.push_back(extra.row(i).transpose());
+  for (const auto& p : halton_points(k, 1, 1024 * k)) candidates.push_back(p);
+  return stats::compass_maximise(score, candidates, top);
 }
 
 // Expected improvement towards the target, `best` the smallest |mean - target| at the runs so far

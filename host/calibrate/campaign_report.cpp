@@ -8,17 +8,13 @@
 #include "io/provenance.h"
 #include "util/atomic_file.h"
 #include "util/hash.h"
+#include "util/number_text.h"
 
 namespace repose::calibrate {
 
 namespace {
 
-std::string num(double v, int digits = 6) {
-  if (std::isinf(v)) return "inf";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string num(double v, int digits = 6) { return std::isinf(v) ? "inf" : format_g(v, digits); }
 
 std::string percent(double fraction) {
   char buf[40];

@@ -9,6 +9,7 @@
 
 #include "case/case_error.h"
 #include "case/case_loader.h"
+#include "util/number_text.h"
 
 namespace repose::calibrate {
 
@@ -92,7 +93,5 @@ std::string describe_plan_change(const std::string& stored, const std::string& c
 // The overrides of one run: the plan's [set], the factors at `x` (actual values), the seed.
 std::vector<CaseOverride> run_overrides(const CampaignPlan& plan, const std::vector<double>& x,
                                         std::uint64_t seed);
-// The shortest text that reads back as exactly `value` (overrides, canonical plan text).
-std::string exact_number(double value);
 
 }  // namespace repose::calibrate

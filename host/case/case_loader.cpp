@@ -208,7 +208,9 @@ class CaseReader {
   void read_contact() {
     auto s = table("contact");
     if (!s) return;
-    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_damping", "cohesion_friction"}, "[contact]");
+    s->allow_only({"coulomb_cap", "normal_attraction", "rolling", "rolling_omega", "rolling_lever", "rolling_damping",
+                   "cohesion_friction", "cohesion_area"},
+                  "[contact]");
     ContactOptions& c = spec_.contact;
     c.coulomb_cap = s->choice<CoulombCap>(
         "coulomb_cap", {{"spring_and_damper", CoulombCap::SpringAndDamper}, {"spring", CoulombCap::SpringOnly}},
@@ -222,9 +224,20 @@ class CaseReader {
         c.rolling);
     c.rolling_omega = s->choice<RollingOmega>(
         "rolling_omega", {{"own", RollingOmega::Own}, {"relative", RollingOmega::Relative}}, c.rolling_omega);
+    // LIGGGHTS's relative torque takes R* of the touching spheres: its lever is the sphere's.
+    RollingLever lever_default =
+        c.rolling_omega == RollingOmega::Relative ? RollingLever::Sphere : c.rolling_lever;
+    c.rolling_lever = s->choice<RollingLever>(
+        "rolling_lever", {{"centre", RollingLever::Centre}, {"sphere", RollingLever::Sphere}}, lever_default);
+    if (c.rolling_omega == RollingOmega::Relative && c.rolling_lever == RollingLever::Centre)
+      s->fail("rolling_lever", "\"centre\" belongs to EDEM's torque against each body's own spin; "
+                               "rolling_omega = \"relative\" (LIGGGHTS cdt) takes R* of the touching spheres");
     c.cohesion_friction = s->choice<CohesionFriction>(
         "cohesion_friction", {{"net", CohesionFriction::Net}, {"contact", CohesionFriction::Contact}},
         c.cohesion_friction);
+    c.cohesion_area = s->choice<CohesionArea>(
+        "cohesion_area", {{"hertz", CohesionArea::Hertz}, {"intersection", CohesionArea::Intersection}},
+        c.cohesion_area);
     if (auto eta = s->number("rolling_damping")) {
       c.rolling_damping = non_negative(*s, "rolling_damping", *eta);
       if (c.rolling != RollingModel::ElasticPlastic)
@@ -447,8 +460,16 @@ class CaseReader {
     users.emplace(material, s.where("material"));
   }
 
+  // `fixed = true`: the particles take part in contacts but never move, so they start at rest.
+  bool fixed_of(const Section& s) const {
+    bool fixed = s.boolean("fixed").value_or(false);
+    for (const char* k : {"velocity", "angular_velocity"})
+      if (fixed && s.has(k)) s.fail(k, "a fixed particle never moves: give it no velocity");
+    return fixed;
+  }
+
   void read_sphere(const Section& s) {
-    s.allow_only({"material", "radius", "position", "velocity", "angular_velocity"}, "a [[sphere]]");
+    s.allow_only({"material", "radius", "position", "velocity", "angular_velocity", "fixed"}, "a [[sphere]]");
     SphereSpec sphere;
     sphere.where = s.where();
     sphere.material = material_of(s);
@@ -456,6 +477,7 @@ class CaseReader {
     sphere.position = s.required_vector3("position");
     sphere.velocity = s.vector3("velocity").value_or(Vec3d{});
     sphere.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
+    sphere.fixed = fixed_of(s);
     note_use(particle_users_, sphere.material, s);
     spec_.spheres.push_back(sphere);
   }
@@ -542,7 +564,7 @@ class CaseReader {
 
   // [[clump]]: one body of a template at a given pose.
   void read_clump(const Section& s) {
-    s.allow_only({"template", "material", "position", "orientation", "scale", "velocity", "angular_velocity"},
+    s.allow_only({"template", "material", "position", "orientation", "scale", "velocity", "angular_velocity", "fixed"},
                  "a [[clump]]");
     BodySpec body;
     body.where = s.where();
@@ -553,12 +575,13 @@ class CaseReader {
     body.orientation = orientation_of(s);
     body.velocity = s.vector3("velocity").value_or(Vec3d{});
     body.angular_velocity = s.vector3("angular_velocity").value_or(Vec3d{});
+    body.fixed = fixed_of(s);
     note_use(particle_users_, body.material, s);
     spec_.bodies.push_back(body);
   }
 
   void read_fill(const Section& s, int index) {
-    s.allow_only({"material", "count", "radius", "template", "scale", "box", "cylinder", "seed", "velocity"},
+    s.allow_only({"material", "count", "radius", "template", "scale", "box", "cylinder", "seed", "velocity", "fixed"},
                  "a [[fill]]");
     FillSpec fill;
     fill.where = s.where();
@@ -618,17 +641,19 @@ class CaseReader {
       fill.seed = spec_.seed + uint64_t(index);  // distinct fills draw distinct streams
     }
     fill.velocity = s.vector3("velocity").value_or(Vec3d{});
+    fill.fixed = fixed_of(s);
     note_use(particle_users_, fill.material, s);
     spec_.fills.push_back(fill);
   }
 
   void read_lattice(const Section& s) {
     s.allow_only({"material", "type", "min", "max", "spacing", "radius", "count", "velocity", "template",
-                  "orientation", "scale"},
+                  "orientation", "scale", "fixed"},
                  "a [[lattice]]");
     LatticeSpec lattice;
     lattice.where = s.where();
     lattice.material = material_of(s);
+    lattice.fixed = fixed_of(s);
     if (s.has("template")) {
       read_body_lattice(s, lattice);
       return;

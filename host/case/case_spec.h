@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "geometry/clump.h"
+#include "util/math.h"
 
 namespace repose {
-
-using Vec3d = std::array<double, 3>;
 
 // Where in a case file a value came from: "cases/box.toml", key "fill[0].count", line 12.
 struct SourceRef {
@@ -50,6 +49,7 @@ struct SphereSpec {
   Vec3d angular_velocity{};
   double radius = 0;
   int material = 0;
+  bool fixed = false;  // takes part in contacts, never moves (infinite mass; LIGGGHTS fix freeze)
   SourceRef where;  // the [[sphere]], [[fill]] or [[lattice]] entry that made it
 };
 
@@ -72,6 +72,7 @@ struct BodySpec {
   std::array<double, 4> orientation{1, 0, 0, 0};  // unit quaternion (w, x, y, z), template -> world
   Vec3d velocity{};                               // of the centre of mass
   Vec3d angular_velocity{};
+  bool fixed = false;                             // never moves (see SphereSpec::fixed)
   SourceRef where;
 };
 
@@ -88,6 +89,7 @@ struct FillSpec {
   int material = 0;
   uint64_t seed = 0;
   Vec3d velocity{};
+  bool fixed = false;                     // every sphere or body of the fill is fixed
   SourceRef where;
 };
 
@@ -106,6 +108,7 @@ struct LatticeSpec {
   Vec3d spacing_xyz{};
   std::array<double, 4> orientation{1, 0, 0, 0};
   double scale = 1;
+  bool fixed = false;  // every site's sphere or body is fixed
   SourceRef where;
 };
 
@@ -156,18 +159,27 @@ enum class NormalAttraction { Allow, Clip };
 // ElasticPlastic: EDEM type C, the elastic-plastic spring-dashpot (EPSD) of Ai et al. 2011.
 enum class RollingModel { None, ConstantTorque, ElasticPlastic };
 enum class RollingOmega { Own, Relative };  // EDEM uses each body's own w, LIGGGHTS the relative w
+// The constant torque's lever on a multi-sphere body: the distance from the contact point to the
+// body's centre of mass (EDEM, DEM-Engine) or the touching sub-sphere's radius (LIGGGHTS-PUBLIC's
+// multisphere). Equal for a lone sphere.
+enum class RollingLever { Centre, Sphere };
 // What the Coulomb cap and the rolling torque's lever see when cohesion pulls a contact together:
 // the net normal force (LIGGGHTS sjkr's default, tangential_reduce off) or the contact's own
 // repulsion, which cohesion raises (tangential_reduce on; JKR-like: wet contacts grip harder).
 enum class CohesionFriction { Net, Contact };
+// The area linear cohesion pulls on: EDEM's Hertz contact area pi R* dn, or LIGGGHTS sjkr's disc
+// where the two sphere surfaces intersect (about 2 pi R* dn).
+enum class CohesionArea { Hertz, Intersection };
 
 struct ContactOptions {
   CoulombCap coulomb_cap = CoulombCap::SpringAndDamper;
   NormalAttraction normal_attraction = NormalAttraction::Allow;
   RollingModel rolling = RollingModel::ConstantTorque;
   RollingOmega rolling_omega = RollingOmega::Own;
+  RollingLever rolling_lever = RollingLever::Centre;  // with rolling_omega Relative: Sphere (R*)
   double rolling_damping = 0.3;  // ElasticPlastic: eta_r, fraction of critical (Ai et al. 2011 use 0.3)
   CohesionFriction cohesion_friction = CohesionFriction::Net;
+  CohesionArea cohesion_area = CohesionArea::Hertz;
 };
 
 struct TimeSpec {

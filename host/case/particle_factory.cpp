@@ -148,6 +148,7 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
     sphere.velocity = lattice.velocity;
     sphere.radius = lattice.radius;
     sphere.material = lattice.material;
+    sphere.fixed = lattice.fixed;
     sphere.where = lattice.where;
     spheres.push_back(sphere);
   }
@@ -226,6 +227,7 @@ void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec) {
     body.material = lattice.material;
     body.position = site;
     body.velocity = lattice.velocity;
+    body.fixed = lattice.fixed;
     body.where = lattice.where;
     auto subs = body_spheres(body, templ);
     for (const SphereSpec& s : subs)
@@ -267,6 +269,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     sphere.velocity = fill.velocity;
     sphere.radius = radius;
     sphere.material = fill.material;
+    sphere.fixed = fill.fixed;
     sphere.where = fill.where;
     spheres.push_back(sphere);
   }
@@ -290,6 +293,7 @@ void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
     body.template_index = fill.template_index;
     body.material = fill.material;
     body.velocity = fill.velocity;
+    body.fixed = fill.fixed;
     body.where = fill.where;
     body.scale = fill.scale_min;
     if (fill.scale_max > fill.scale_min) body.scale += (fill.scale_max - fill.scale_min) * uniform();

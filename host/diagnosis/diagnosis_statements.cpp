@@ -4,16 +4,13 @@
 
 #include "diagnosis/diagnosis_report.h"
 #include "diagnosis/extensions.h"
+#include "util/number_text.h"
 
 namespace repose {
 
 namespace {
 
-std::string num(double v, int digits = 4) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string num(double v, int digits = 4) { return format_g(v, digits); }
 
 // A length in mm, anything else in its own unit.
 std::string in_unit(double v, const std::string& unit) {

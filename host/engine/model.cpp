@@ -9,27 +9,11 @@
 #include "case/time_step.h"
 #include "geometry/clump.h"
 #include "geometry/projected_area.h"
+#include "util/math.h"
 
 namespace repose {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-Vec3d add(Vec3d a, Vec3d b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3d sub(Vec3d a, Vec3d b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d mul(Vec3d a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(Vec3d a, Vec3d b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(Vec3d a, Vec3d b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3d unit(Vec3d a) { return mul(a, 1.0 / std::sqrt(dot(a, a))); }
-
-// Rodrigues rotation of v about the unit axis k by angle a.
-Vec3d rotate_about(Vec3d v, Vec3d k, double a) {
-  double c = std::cos(a), s = std::sin(a);
-  return add(add(mul(v, c), mul(cross(k, v), s)), mul(k, dot(k, v) * (1 - c)));
-}
 
 gpu::vec4 v4(Vec3d a, double w) {
   return gpu::vec4(float(a[0]), float(a[1]), float(a[2]), float(w));
@@ -93,10 +77,12 @@ void add_bodies(const CaseSpec& spec, Model& m) {
   bool drag = spec.air_drag.drag_coefficient > 0;
   auto push_body = [&](Vec3d centre, double mass, Quat q, Vec3d moments, Vec3d v, Vec3d w,
                        const std::vector<Vec3d>& local, const std::vector<double>& radii,
-                       uint32_t material, Vec3d drag_area) {
+                       uint32_t material, Vec3d drag_area, bool fixed) {
     gpu::Body b{};
     uint32_t first = static_cast<uint32_t>(m.subs.size());
-    b.pos = v4(centre, 1.0 / mass);
+    // A fixed body has infinite mass and inertia: 1/mass = 0 marks it for the kernels.
+    double inv_mass = fixed ? 0.0 : 1.0 / mass;
+    b.pos = v4(centre, inv_mass);
     b.vel = v4(v, 0);
     b.quat = v4(q);
     Quat conj{q[0], -q[1], -q[2], -q[3]};
@@ -104,7 +90,7 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     Vec3d lb{moments[0] * wb[0], moments[1] * wb[1], moments[2] * wb[2]};
     b.ang_mom = v4(rotate(q, lb), 0);
     b.omega = v4(w, 0);
-    b.inv_inertia = v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
+    b.inv_inertia = fixed ? v4({0, 0, 0}, 0) : v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
     b.spheres = gpu::uvec4(first, uint32_t(local.size()), 0u, 0u);
     b.drag = v4(mul(drag_area, 1 / kPi), 0);
     for (size_t k = 0; k < local.size(); ++k) {
@@ -114,11 +100,11 @@ void add_bodies(const CaseSpec& spec, Model& m) {
       m.subs.push_back(s);
       Vec3d r = rotate(q, local[k]);
       m.pos.push_back(v4(add(centre, r), radii[k]));
-      m.vel.push_back(v4(add(v, cross(w, r)), 1.0 / mass));
+      m.vel.push_back(v4(add(v, cross(w, r)), inv_mass));
       m.omega.push_back(v4(w, 0));
       m.material.push_back(material);
     }
-    m.total_mass += mass;
+    if (!fixed) m.total_mass += mass;
     m.bodies.push_back(b);
   };
   for (const SphereSpec& s : spec.spheres) {
@@ -127,7 +113,7 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     double inertia = 0.4 * mass * s.radius * s.radius;
     double area = drag ? kPi * s.radius * s.radius : 0;
     push_body(s.position, mass, {1, 0, 0, 0}, {inertia, inertia, inertia}, s.velocity,
-              s.angular_velocity, {{0, 0, 0}}, {s.radius}, uint32_t(s.material), {area, area, area});
+              s.angular_velocity, {{0, 0, 0}}, {s.radius}, uint32_t(s.material), {area, area, area}, s.fixed);
   }
   std::vector<std::optional<TemplateFrame>> frames(spec.templates.size());
   for (const BodySpec& body : spec.bodies) {
@@ -153,7 +139,7 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     Vec3d area = mul(frame->silhouette, s * s);
     if (!drag) area = {0, 0, 0};
     push_body(centre, mass, q, moments, body.velocity, body.angular_velocity, local, radii,
-              uint32_t(body.material), area);
+              uint32_t(body.material), area, body.fixed);
   }
   m.n_particles = static_cast<uint32_t>(m.subs.size());
 }
@@ -257,10 +243,11 @@ Model build_model(const CaseSpec& spec) {
     const Material& mat = spec.materials.at(s.material);
     double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
     double inertia = 0.4 * mass * s.radius * s.radius;
-    m.total_mass += mass;
+    if (!s.fixed) m.total_mass += mass;
     m.pos.push_back(v4(s.position, s.radius));
-    m.vel.push_back(v4(s.velocity, 1.0 / mass));
-    m.omega.push_back(v4(s.angular_velocity, 1.0 / inertia));
+    // A fixed sphere: 1/mass = 0 and 1/inertia = 0 (neighbour.h, integrate.h).
+    m.vel.push_back(v4(s.velocity, s.fixed ? 0.0 : 1.0 / mass));
+    m.omega.push_back(v4(s.angular_velocity, s.fixed ? 0.0 : 1.0 / inertia));
     m.material.push_back(static_cast<uint32_t>(s.material));
     r_min = std::min(r_min, s.radius);
     r_max = std::max(r_max, s.radius);
@@ -360,6 +347,8 @@ Model build_model(const CaseSpec& spec) {
   if (spec.contact.cohesion_friction == CohesionFriction::Contact) m.flags |= gpu::kFlagCohesionContactFriction;
   if (spec.contact.rolling == RollingModel::ConstantTorque) m.flags |= gpu::kFlagRollingConstTorque;
   if (spec.contact.rolling_omega == RollingOmega::Relative) m.flags |= gpu::kFlagRollingRelativeOmega;
+  if (spec.contact.rolling_lever == RollingLever::Sphere) m.flags |= gpu::kFlagRollingLeverSphere;
+  if (spec.contact.cohesion_area == CohesionArea::Intersection) m.flags |= gpu::kFlagCohesionIntersection;
   if (spec.contact.rolling == RollingModel::ElasticPlastic) {
     m.flags |= gpu::kFlagRollingSpring;
     m.rolling_damping = spec.contact.rolling_damping;

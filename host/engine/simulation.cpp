@@ -157,6 +157,7 @@ EnergySummary Simulation::kinetic_energy() const {
   EnergySummary e;
   if (!state_.bodies.empty()) {
     for (const gpu::Body& b : state_.bodies) {
+      if (b.pos.w == 0.0f) continue;  // fixed: infinite mass at rest
       const auto& v = b.vel;
       e.translational += 0.5 / b.pos.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
       e.rotational += 0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y +
@@ -167,6 +168,7 @@ EnergySummary Simulation::kinetic_energy() const {
   for (size_t i = 0; i < state_.vel.size(); ++i) {
     const auto& v = state_.vel[i];
     const auto& w = state_.omega[i];
+    if (v.w == 0.0f) continue;  // fixed
     e.translational += 0.5 / v.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
     e.rotational += 0.5 / w.w * (double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);
   }

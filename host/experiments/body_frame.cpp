@@ -9,14 +9,17 @@ namespace repose {
 
 namespace {
 
-// (1/mass, position, velocity) of each free sphere or body.
+// (mass, position, velocity) of each sphere or body that moves (fixed ones, 1/mass = 0, are
+// the rig's, not the body under test).
 template <class F>
 void for_each_mass(const HostState& state, F&& f) {
   if (!state.bodies.empty()) {
-    for (const auto& b : state.bodies) f(1.0 / b.pos.w, b.pos, b.vel);
+    for (const auto& b : state.bodies)
+      if (b.pos.w != 0.0f) f(1.0 / b.pos.w, b.pos, b.vel);
     return;
   }
-  for (size_t i = 0; i < state.pos.size(); ++i) f(1.0 / state.vel[i].w, state.pos[i], state.vel[i]);
+  for (size_t i = 0; i < state.pos.size(); ++i)
+    if (state.vel[i].w != 0.0f) f(1.0 / state.vel[i].w, state.pos[i], state.vel[i]);
 }
 
 }  // namespace
@@ -77,6 +80,18 @@ size_t find_wall(const CaseSpec& spec, const std::string& name, const std::strin
     if (name.empty() || spec.walls[w].name == name) return w;
   throw std::runtime_error(spec.path + ": the experiment needs a [[wall]] as the " + role +
                            (name.empty() ? "" : " (named '" + name + "')"));
+}
+
+size_t first_moving_sphere(const HostState& state) {
+  for (size_t i = 0; i < state.vel.size(); ++i)
+    if (state.vel[i].w != 0.0f) return i;
+  return 0;
+}
+
+size_t first_moving_body(const HostState& state) {
+  for (size_t i = 0; i < state.bodies.size(); ++i)
+    if (state.bodies[i].pos.w != 0.0f) return i;
+  return 0;
 }
 
 Interaction& interaction_between(CaseSpec& spec, int a, int b, const std::string& what) {

@@ -33,6 +33,19 @@ struct DropResult {
   WallForceSeries wall_forces;                         // the plate's force at every camera frame
 };
 
+// Where a drop is measured from: `up` (unit, against gravity) and the level along it from which
+// the release height and the camera's heights count (the plate; a bed's top).
+struct DropSurface {
+  Vec3d up{0, 0, 1};
+  double level = 0;
+};
+
+// Releases the case's body (its one sphere, else its one clump) at rest with its lowest point
+// drop_height above the surface and films its fall and rebound as run_drop does; particles that
+// do not move (fixed: the rig's) are not filmed. Throws std::runtime_error naming the case
+// without gravity towards the surface or (require_rebound) when the body never rebounds.
+DropResult drop_onto(const CaseSpec& spec, const DropSurface& surface, const DropOptions& options = {});
+
 // The case's one sphere or one clump is the body (a clump at a random orientation from
 // simulation.seed unless options say otherwise), its first plane wall the plate; [experiment]
 // drop_height, camera_fps and max_time apply. Throws std::runtime_error naming the case when

@@ -27,13 +27,14 @@ double max_kinetic_energy(const HostState& st) {
   auto sq = [](const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; };
   if (!st.bodies.empty()) {
     for (const auto& b : st.bodies) {
+      if (b.pos.w == 0.0f) continue;  // fixed: never moves
       double rot = double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z;
       most = std::max(most, 0.5 / b.pos.w * sq(b.vel) + 0.5 * rot);
     }
     return most;
   }
   for (size_t i = 0; i < st.vel.size(); ++i)
-    most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
+    if (st.vel[i].w != 0.0f) most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
   return most;
 }
 
@@ -252,23 +253,16 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
 }
 
 void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r, const CaseSpec& spec) {
-  o.files.push_back({"energy.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,largest_kinetic_energy\n";
-                         for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
-                       });
-                     }});
-  o.files.push_back({"heap.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "x,y,z,radius\n";
-                         for (const auto& s : r->spheres)
-                           out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("energy.csv", [r](std::ostream& out) {
+    out << "t,largest_kinetic_energy\n";
+    for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
+  }));
+  o.files.push_back(text_file("heap.csv", [r](std::ostream& out) {
+    out << "x,y,z,radius\n";
+    for (const auto& s : r->spheres) out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   std::string horizontal = spec.experiment.view == "x" ? "y" : "x";  // the picture's horizontal axis
   o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
 }

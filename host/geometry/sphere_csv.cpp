@@ -11,7 +11,7 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
 #include "util/input_file.h"
 
 namespace repose {

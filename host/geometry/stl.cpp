@@ -13,7 +13,7 @@
 
 #include <glm/geometric.hpp>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
 #include "util/input_file.h"
 
 namespace repose {

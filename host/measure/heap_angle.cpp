@@ -6,10 +6,11 @@
 #include <limits>
 #include <stdexcept>
 
+#include "util/math.h"
+
 namespace repose {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr size_t kMinimumPoints = 3;
 // A side whose points span less than this fraction of the band's height horizontally is a

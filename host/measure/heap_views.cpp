@@ -6,13 +6,14 @@
 #include <limits>
 #include <stdexcept>
 
+#include "util/math.h"
+
 namespace repose {
 
 HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int views, const HeapAngleOptions& options,
                                         std::optional<glm::dvec2> centre) {
   if (views < 1) throw std::invalid_argument("heap angle: views must be at least 1");
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
-  constexpr double kPi = 3.14159265358979323846;
   HeapViewsAngle out;
   out.centre = centre ? *centre : heap_centre(spheres);
   HeapAngleOptions front = options;  // the turn keeps every z: each view finds the same floor

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "util/number_text.h"
+
 namespace repose {
 
 const std::vector<Colour>& colours::series() {
@@ -36,11 +38,7 @@ std::vector<double> nice_ticks(double lo, double hi, int target = 6) {
   return t;
 }
 
-std::string tick_text(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
-}
+std::string tick_text(double v) { return format_g(v, 4); }
 
 Colour heat(double t) {  // 0 blue .. 0.5 white .. 1 red, pale so lines stay visible
   t = std::clamp(t, 0.0, 1.0);

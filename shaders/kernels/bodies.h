@@ -52,6 +52,7 @@ FN vec3 body_omega(vec4 q, vec3 L, vec3 inv_i) {
 // advances over dt with the midpoint angular velocity (L is constant during the drift).
 KFN(void, body_kick_and_drift) uint b, vec3 force, vec3 torque) {
   vec4 p4 = B_bodies[b].pos;
+  if (p4.w == 0.0f) return;  // a fixed body (1/mass = 0) never moves
   vec4 q = B_bodies[b].quat;
   vec3 inv_i = xyz(B_bodies[b].inv_inertia);
   precise float h = PC.kick * PC.dt;

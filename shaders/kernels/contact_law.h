@@ -18,30 +18,63 @@ struct ContactOut {
   float normal_stiffness;  // Hertz secant stiffness Fn_elastic / overlap = 4/3 E* sqrt(R* dn)
 };
 
-// Torque on one body of a contact: the tangential force's moment about its centre (r from the
-// centre to the contact point), plus EDEM's standard rolling torque against the body's own spin
-// when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once per body). The lean gather
-// calls it again on stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
-FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, vec3 w, float lw) {
+// Where two surfaces touch, as process_contact (contacts.h) measured it.
+struct ContactGeometry {
+  vec3 n;               // unit normal from j to i
+  float overlap;        // > 0
+  float radius_star;    // R* (a wall: R_i)
+  float mass_star;      // m* of the two bodies (a wall: m_i)
+  float ri;             // i's centre to the contact point (the tangential force's moment arm)
+  float rj;             // j's (0 for a wall)
+  float lever_i;        // the EDEM rolling torque's levers (body_torque)
+  float lever_j;
+  float cohesion_lens;  // kFlagCohesionIntersection: the sphere surfaces' intersection area / pi
+};
+
+// Torque on one body of a contact: the tangential force's moment about its sphere's centre (r
+// from that centre to the contact point), plus EDEM's standard rolling torque mu_r |Fn| x lever
+// against the body's own spin when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once
+// per body). The lever is r for a sphere; for a clump, |contact point - centre of mass| (EDEM) or
+// r (rolling_lever = "sphere"; rolling_lever() in contacts.h). The lean gather calls it again on
+// stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
+FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, float lw) {
   precise vec3 t = scale3(n_x_ft, -r);
   if (roll_arm >= 0.0f) {
     if (lw > 0.0f) {
-      precise float k = -(roll_arm * r) / lw;
+      precise float k = -(roll_arm * lever) / lw;
       t = t + scale3(w, k);
     }
   }
   return t;
 }
 
-// LIGGGHTS cdt rolling torque on i (j receives minus it): against the relative rotation, lever
-// arm R*. False (and nothing to add) when the two spins are equal.
-FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float radius_star, OUT(vec3) tr) {
+// The contact point: i's surface point along -n (ri = its radius less half the overlap).
+FN vec3 contact_point(vec3 xi, vec3 n, float ri) {
+  precise vec3 cp = xi - scale3(n, ri);
+  return cp;
+}
+
+// Whether a rolling torque's lever must be measured from a clump's centre of mass: EDEM's
+// constant torque against each body's own spin (the relative torque of LIGGGHTS uses R*).
+FN bool centre_lever(uint flags) {
+  uint need = kFlagRollingConstTorque | kFlagBodies;
+  uint never = kFlagRollingRelativeOmega | kFlagRollingLeverSphere;
+  return (flags & need) == need && (flags & never) == 0u;
+}
+
+// LIGGGHTS cdt (rolling_model_cdt.h) rolling torque on i (j receives minus it), exactly as
+// LIGGGHTS writes it: mu_r Fn_el lever w / |w| with w = w_i - w_j (a wall's spin is not
+// counted), then its component along n removed (the torque has no twist part, but |w| keeps
+// the twist spin). roll_arm = mu_r Fn_el, the elastic normal force kn dn; lever = R* for two
+// spheres, r_i - dn/2 for a wall. False (and nothing to add) when the two spins are equal.
+FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float lever, vec3 n, OUT(vec3) tr) {
   precise vec3 w = w_i - w_j;
   precise float lw = length3(w);
   tr = vec3(0.0f);
   if (!(lw > 0.0f)) return false;
-  precise float k = -(roll_arm * radius_star) / lw;
-  tr = scale3(w, k);
+  precise float k = -(roll_arm * lever) / lw;
+  precise vec3 t = scale3(w, k);
+  tr = t - scale3(n, dot3(t, n));
   return true;
 }
 
@@ -56,11 +89,30 @@ FN float viscoelastic_damping(float time_a, float sn, float vn) {
 }
 
 // Extension cohesion: EDEM's linear cohesion F = k A on the Hertz contact area A = pi R* dn,
-// attractive; pi_k = pi k with k the cohesion energy density (J/m^3). 0 when off.
-FN float linear_cohesion(float pi_k, float radius_star, float overlap) {
+// attractive; pi_k = pi k with k the cohesion energy density (J/m^3). With lens >= 0 the area is
+// pi lens instead (LIGGGHTS sjkr, cohesion_intersection_area()). 0 when off.
+FN float linear_cohesion(float pi_k, float radius_star, float overlap, float lens) {
   if (!(pi_k > 0.0f)) return 0.0f;
+  if (lens >= 0.0f) {
+    precise float f_lens = pi_k * lens;
+    return f_lens;
+  }
   precise float f = (pi_k * radius_star) * overlap;
   return f;
+}
+
+// LIGGGHTS sjkr's cohesion area over pi (cohesion_model_sjkr.h): the disc where the two sphere
+// surfaces intersect, a^2 = -(d-r1-r2)(d+r1-r2)(d-r1+r2)(d+r1+r2) / (4 d^2) at centre distance
+// d = r1 + r2 - dn, written with r1 + r2 - d = dn; against a wall r^2 - (r - dn)^2 = dn (2r - dn).
+// About 2 R* dn for small overlaps: twice EDEM's Hertz area R* dn.
+FN float cohesion_intersection_area(float r1, float r2, float dist, float overlap, bool wall) {
+  if (wall) {
+    precise float a_wall = overlap * (2.0f * r1 - overlap);
+    return a_wall;
+  }
+  precise float q = ((overlap * ((dist + r1) - r2)) * ((dist - r1) + r2)) * ((dist + r1) + r2);
+  precise float a = q / ((4.0f * dist) * dist);
+  return a;
 }
 
 // A stored spring (tangential or rolling) turned into the current tangent plane, its length kept.
@@ -128,23 +180,46 @@ FN vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, floa
   return scale3(n, k);
 }
 
-FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass_star, float ri,
-                            float rj, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall,
-                            PairParams pp, float dt, uint flags, INOUT(vec3) shear) {
+// The torques of a full contact entry (the lean gather derives the same from the stored entry):
+// the tangential force's moment about each sphere's centre, and the rolling torque, EDEM's
+// against each body's own spin (lever lever_i, lever_j) or LIGGGHTS cdt's against the relative
+// spin (relative_rolling()).
+FN void contact_torques(ContactGeometry g, vec3 w_i, vec3 w_j, bool j_is_wall, uint flags, INOUT(ContactOut) o) {
+  bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
+  float arm = o.roll_arm;
+  float own_arm = relative ? -1.0f : arm;
+  float arm_j = j_is_wall ? -1.0f : own_arm;
+  precise float lw_i = own_arm >= 0.0f ? length3(w_i) : 0.0f;
+  precise float lw_j = arm_j >= 0.0f ? length3(w_j) : 0.0f;
+  o.torque_i = body_torque(o.n_x_ft, g.ri, own_arm, g.lever_i, w_i, lw_i);
+  o.torque_j = body_torque(o.n_x_ft, g.rj, arm_j, g.lever_j, w_j, lw_j);
+  if (arm >= 0.0f && relative) {
+    vec3 tr;
+    float lever = j_is_wall ? g.ri : g.radius_star;
+    if (relative_rolling(w_i, w_j, arm, lever, g.n, tr)) {
+      o.torque_i = o.torque_i + tr;
+      if (!j_is_wall) o.torque_j = o.torque_j - tr;
+    }
+  }
+}
+
+FN ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall, PairParams pp,
+                            float dt, uint flags, INOUT(vec3) shear) {
   ContactOut o;
+  vec3 n = g.n;
   float e_star = pp.a.x;
   float g_star = pp.a.y;
   float damping = pp.a.z;  // -2 sqrt(5/6) beta, >= 0
   float mu_s = pp.a.w;
   float mu_r = pp.b.x;
 
-  precise float sqrt_rd = sqrt(radius_star * overlap);
+  precise float sqrt_rd = sqrt(g.radius_star * g.overlap);
   precise float sn = 2.0f * e_star * sqrt_rd;
   precise float st = 8.0f * g_star * sqrt_rd;
   // Fn = 4/3 E* sqrt(R*) dn^(3/2), written as dn * sqrt(R* dn)
-  precise float fn_elastic = (4.0f * e_star * sqrt_rd * overlap) / 3.0f;
-  precise float gamma_n = damping * sqrt(sn * mass_star);
-  precise float gamma_t = damping * sqrt(st * mass_star);
+  precise float fn_elastic = (4.0f * e_star * sqrt_rd * g.overlap) / 3.0f;
+  precise float gamma_n = damping * sqrt(sn * g.mass_star);
+  precise float gamma_t = damping * sqrt(st * g.mass_star);
 
   precise float vn = dot3(v_rel, n);
   precise vec3 v_t = v_rel - scale3(n, vn);
@@ -154,7 +229,7 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   if ((flags & kFlagClipAttraction) != 0u) fn = max(fn, 0.0f);
   // What friction and the rolling lever see: the net force, or the repulsion before cohesion.
   precise float fn_grip = fn;
-  fn = fn - linear_cohesion(pp.b.w, radius_star, overlap);
+  fn = fn - linear_cohesion(pp.b.w, g.radius_star, g.overlap, g.cohesion_lens);
   if ((flags & kFlagCohesionContactFriction) == 0u) fn_grip = fn;
 
   // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.
@@ -187,34 +262,19 @@ FN ContactOut hertz_mindlin(vec3 n, float overlap, float radius_star, float mass
   }
   shear = spring;
 
-  precise vec3 n_x_ft = cross3(n, ft);
+  o.n_x_ft = cross3(n, ft);
   o.force_i = scale3(n, fn) + ft;
   o.normal_force = fn;
   o.grip_force = fn_grip;
-  o.n_x_ft = n_x_ft;
   bool rolling = (flags & kFlagRollingConstTorque) != 0u && mu_r > 0.0f;
+  // EDEM scales the rolling torque with |Fn|; LIGGGHTS cdt with the elastic force kn dn.
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
-  precise float arm = rolling ? mu_r * abs(fn_grip) : -1.0f;
-  o.roll_arm = arm;
+  precise float roll_force = relative ? fn_elastic : abs(fn_grip);
+  o.roll_arm = rolling ? mu_r * roll_force : -1.0f;
   o.normal_stiffness = (4.0f * e_star * sqrt_rd) / 3.0f;
   o.torque_i = vec3(0.0f);
   o.torque_j = vec3(0.0f);
-  if ((flags & kFlagLeanContacts) != 0u) return o;  // the gather derives the torques
-  // EDEM standard: each body's torque opposes its own rotation, lever arm its own R.
-  float own_arm = relative ? -1.0f : arm;
-  float arm_j = j_is_wall ? -1.0f : own_arm;
-  precise float lw_i = own_arm >= 0.0f ? length3(w_i) : 0.0f;
-  precise float lw_j = arm_j >= 0.0f ? length3(w_j) : 0.0f;
-  o.torque_i = body_torque(n_x_ft, ri, own_arm, w_i, lw_i);
-  o.torque_j = body_torque(n_x_ft, rj, arm_j, w_j, lw_j);
-  if (rolling && relative) {
-    // LIGGGHTS cdt: torque against the relative rotation, lever arm R*.
-    vec3 tr;
-    if (relative_rolling(w_i, w_j, arm, radius_star, tr)) {
-      o.torque_i = o.torque_i + tr;
-      if (!j_is_wall) o.torque_j = o.torque_j - tr;
-    }
-  }
+  if ((flags & kFlagLeanContacts) == 0u) contact_torques(g, w_i, w_j, j_is_wall, flags, o);
   return o;
 }
 

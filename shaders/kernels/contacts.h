@@ -29,69 +29,117 @@ KFN(float, spin_stop_share) uint i, vec3 n) {
   return share;
 }
 
-KFN(void, process_contact) uint i, uint c) {
-  uint p = B_partner[c];
+// process_contact's view of one touching contact.
+struct ContactState {
+  ContactGeometry g;
+  vec3 v_rel;           // velocity of i's surface relative to j's at the contact point
+  vec3 wj;              // j's spin (zero for a wall: the constant torques ignore a wall's spin)
+  vec3 w_other;         // j's or the wall's spin (the EPSD spring and spinning friction count it)
+  float inv_inertia_r;  // 1 / (7/5 m r^2) summed over the two bodies (rolling dashpot)
+  uint mj;              // j's material
+};
+
+// The area cohesion pulls on, over pi, when it is LIGGGHTS sjkr's intersection disc; -1 (EDEM's
+// Hertz area R* dn, in linear_cohesion()) otherwise.
+KFN(float, cohesion_lens) float r1, float r2, float dist, float overlap, bool wall) {
+  if ((PC.flags & kFlagCohesionIntersection) == 0u) return -1.0f;
+  return cohesion_intersection_area(r1, r2, dist, overlap, wall);
+}
+
+// The rolling levers of i and (unless a wall) p at the contact: the sphere's own ri, rj, or
+// for EDEM's torque on a clump the distance to its centre of mass (full entries; the lean
+// gather measures them itself).
+KFN(void, set_rolling_levers) uint i, uint p, vec3 xi, bool is_wall, INOUT(ContactGeometry) g) {
+  g.lever_i = g.ri;
+  g.lever_j = g.rj;
+  if (!centre_lever(PC.flags) || (PC.flags & kFlagLeanContacts) != 0u) return;
+  vec3 cp = contact_point(xi, g.n, g.ri);
+  g.lever_i = rolling_lever(KB i, cp, g.ri);
+  if (!is_wall) g.lever_j = rolling_lever(KB p, cp, g.rj);
+}
+
+// Contact of particles i and p: false when they do not touch.
+KFN(bool, touch_particle) uint i, uint p, OUT(ContactState) s) {
+  vec4 pi = B_pos[i];
+  vec4 vi = B_vel[i];
+  vec4 pj = B_pos[p];
+  vec4 vj = B_vel[p];
+  float rad_i = pi.w;
+  float rad_j = pj.w;
+  s.wj = xyz(B_omega[p]);
+  s.w_other = s.wj;
+  s.mj = B_material[p];
+  precise vec3 d = xyz(pi) - xyz(pj);
+  precise float dist = length3(d);
+  precise float overlap = rad_i + rad_j - dist;
+  if (!(overlap > 0.0f && dist > 0.0f)) return false;
+  vec3 wi = xyz(B_omega[i]);
+  precise vec3 n = vec3(d.x / dist, d.y / dist, d.z / dist);
+  precise float radius_star = (rad_i * rad_j) / (rad_i + rad_j);
+  precise float mass_star = 1.0f / (vi.w + vj.w);
+  precise float ri = rad_i - 0.5f * overlap;
+  precise float rj = rad_j - 0.5f * overlap;
+  precise vec3 spin = scale3(wi, ri) + scale3(s.wj, rj);
+  precise vec3 v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
+  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri)) + vj.w / (1.4f * (rj * rj));
+  s.g.n = n;
+  s.g.overlap = overlap;
+  s.g.radius_star = radius_star;
+  s.g.mass_star = mass_star;
+  s.g.ri = ri;
+  s.g.rj = rj;
+  s.g.cohesion_lens = cohesion_lens(KB rad_i, rad_j, dist, overlap, false);
+  s.v_rel = v_rel;
+  s.inv_inertia_r = inv_inertia_r;
+  set_rolling_levers(KB i, p, xyz(pi), false, s.g);
+  return true;
+}
+
+// Contact of particle i with wall row p - n_particles (contact c): false when not touching.
+KFN(bool, touch_wall) uint i, uint c, uint p, OUT(ContactState) s) {
   vec4 pi = B_pos[i];
   vec4 vi = B_vel[i];
   vec3 xi = xyz(pi);
   float rad_i = pi.w;
+  WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
+  s.mj = ws.info.y;
+  s.wj = vec3(0.0f);
+  s.w_other = xyz(ws.omega);
+  uint feature = kFeatureFace;
+  vec3 n;
+  float overlap;
+  bool touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
+  if (touching && ws.info.x == kWallTriangle)
+    touching = !mesh_contact_shadowed(KB i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
+  if (!touching) return false;
+  vec3 wi = xyz(B_omega[i]);
+  precise float ri = rad_i - 0.5f * overlap;
+  precise float mass_star = 1.0f / vi.w;
+  precise vec3 v_wall = wall_point_velocity(ws, contact_point(xi, n, ri));
+  precise vec3 v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
+  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri));
+  s.g.n = n;
+  s.g.overlap = overlap;
+  s.g.radius_star = rad_i;
+  s.g.mass_star = mass_star;
+  s.g.ri = ri;
+  s.g.rj = 0.0f;
+  s.g.cohesion_lens = cohesion_lens(KB rad_i, 0.0f, 0.0f, overlap, true);
+  s.v_rel = v_rel;
+  s.inv_inertia_r = inv_inertia_r;
+  set_rolling_levers(KB i, p, xi, true, s.g);
+  return true;
+}
+
+KFN(void, process_contact) uint i, uint c) {
+  uint p = B_partner[c];
   vec3 wi = xyz(B_omega[i]);
   vec4 hist = B_history[c];
   vec3 shear = xyz(hist);
   uint mi = B_material[i];
   bool is_wall = p >= PC.n_particles;
-
-  vec3 n = vec3(0.0f);
-  float overlap = -1.0f;
-  float radius_star = 0.0f;
-  float mass_star = 0.0f;
-  float ri = 0.0f;
-  float rj = 0.0f;
-  vec3 v_rel = vec3(0.0f);
-  vec3 wj = vec3(0.0f);
-  vec3 w_wall = vec3(0.0f);  // a wall's spin, for the rolling spring (rolls relative to the wall)
-  float inv_inertia_r = 0.0f;  // 1 / (7/5 m r^2) summed over the two bodies (rolling dashpot)
-  uint mj = 0u;
-  bool touching = false;
-
-  if (!is_wall) {
-    vec4 pj = B_pos[p];
-    vec4 vj = B_vel[p];
-    float rad_j = pj.w;
-    wj = xyz(B_omega[p]);
-    mj = B_material[p];
-    precise vec3 d = xi - xyz(pj);
-    precise float dist = length3(d);
-    overlap = rad_i + rad_j - dist;
-    touching = overlap > 0.0f && dist > 0.0f;
-    if (touching) {
-      n = vec3(d.x / dist, d.y / dist, d.z / dist);
-      radius_star = (rad_i * rad_j) / (rad_i + rad_j);
-      mass_star = 1.0f / (vi.w + vj.w);
-      ri = rad_i - 0.5f * overlap;
-      rj = rad_j - 0.5f * overlap;
-      precise vec3 spin = scale3(wi, ri) + scale3(wj, rj);
-      v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
-      inv_inertia_r = vi.w / (1.4f * (ri * ri)) + vj.w / (1.4f * (rj * rj));
-    }
-  } else {
-    WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
-    mj = ws.info.y;
-    uint feature = kFeatureFace;
-    touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
-    if (touching && ws.info.x == kWallTriangle)
-      touching = !mesh_contact_shadowed(KB i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
-    if (touching) {
-      radius_star = rad_i;
-      mass_star = 1.0f / vi.w;
-      ri = rad_i - 0.5f * overlap;
-      precise vec3 contact_point = xi - scale3(n, ri);
-      precise vec3 v_wall = wall_point_velocity(ws, contact_point);
-      v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
-      w_wall = xyz(ws.omega);
-      inv_inertia_r = vi.w / (1.4f * (ri * ri));
-    }
-  }
+  ContactState st;
+  bool touching = is_wall ? touch_wall(KB i, c, p, st) : touch_particle(KB i, p, st);
 
   bool lean = (PC.flags & kFlagLeanContacts) != 0u;
   bool rolling_spring = (PC.flags & kFlagRollingSpring) != 0u;
@@ -105,32 +153,30 @@ KFN(void, process_contact) uint i, uint c) {
     if (!lean) B_torque_j[c] = vec4(0.0f);
     return;
   }
-  PairParams pp = B_pairs[mi * PC.n_materials + mj];
-  ContactOut o = hertz_mindlin(n, overlap, radius_star, mass_star, ri, rj, v_rel, wi, wj, is_wall,
-                               pp, PC.dt, PC.flags, shear);
+  PairParams pp = B_pairs[mi * PC.n_materials + st.mj];
+  vec3 n = st.g.n;
+  ContactOut o = hertz_mindlin(st.g, st.v_rel, wi, st.wj, is_wall, pp, PC.dt, PC.flags, shear);
   if ((PC.flags & kFlagKeepHistory) == 0u) B_history[c] = vec4(shear, hist.w + 1.0f);
   if (rolling_spring) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
     vec3 spring = xyz(B_rolling_spring[c]);
-    vec3 w_other = is_wall ? w_wall : wj;
-    vec3 tr = epsd_rolling_torque(n, wi, w_other, radius_star, o.grip_force, o.normal_stiffness, pp.b.x,
-                                  1.0f / inv_inertia_r, PC.rolling_damping, PC.dt, spring);
+    vec3 tr = epsd_rolling_torque(n, wi, st.w_other, st.g.radius_star, o.grip_force, o.normal_stiffness, pp.b.x,
+                                  1.0f / st.inv_inertia_r, PC.rolling_damping, PC.dt, spring);
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
     if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);
   }
   if ((PC.flags & kFlagSpinningFriction) != 0u && pp.c.x > 0.0f) {
     // Full entries only (the host refuses lean ones), like the rolling spring.
-    vec3 w_other = is_wall ? w_wall : wj;
     precise float share = spin_stop_share(KB i, n);
     if (!is_wall) share = share + spin_stop_share(KB p, n);
-    vec3 ts = spinning_friction_torque(n, wi, w_other, pp.c.x, radius_star, o.grip_force, share, PC.dt);
+    vec3 ts = spinning_friction_torque(n, wi, st.w_other, pp.c.x, st.g.radius_star, o.grip_force, share, PC.dt);
     o.torque_i = o.torque_i + ts;
     if (!is_wall) o.torque_j = o.torque_j - ts;
   }
   if (lean) {
     B_contact_force[c] = vec4(o.force_i, o.roll_arm);
-    B_torque_i[c] = vec4(o.n_x_ft, overlap);
+    B_torque_i[c] = vec4(o.n_x_ft, st.g.overlap);
   } else {
     B_contact_force[c] = vec4(o.force_i, o.normal_force);
     B_torque_i[c] = vec4(o.torque_i, 0.0f);

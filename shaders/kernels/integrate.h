@@ -16,6 +16,7 @@ FN vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
 // v += kick dt (F/m + g [+ drag]); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
 KFN(void, kick_and_drift) uint i, vec3 force, vec3 torque) {
   vec4 v4 = B_vel[i];
+  if (v4.w == 0.0f) return;  // fixed (neighbour.h): never moves
   vec4 w4 = B_omega[i];
   precise float h = PC.kick * PC.dt;
   precise vec3 accel = scale3(force, v4.w) + vec3(PC.gx, PC.gy, PC.gz);
@@ -66,30 +67,72 @@ KERNEL(k_gather_kick) uint i) {
   if (PC.kick > 0.0f) kick_and_drift(KB i, f, t);
 }
 
+// The rolling lever of particle k at contact point cp (centre_lever() in contact_law.h): the
+// distance from cp to the centre of mass of k's body when it has more than one sphere, else r
+// (k's centre to cp: a lone sphere keeps its bytes).
+KFN(float, rolling_lever) uint k, vec3 cp, float r) {
+  uint b = B_subs[k].info.x;
+  if (B_bodies[b].spheres.y < 2u) return r;
+  precise vec3 d = cp - xyz(B_bodies[b].pos);
+  precise float lever = length3(d);
+  return lever;
+}
+
+// The unit normal of stored contact c, recomputed from the positions exactly as process_contact
+// computed it (positions do not move between the contact kernel and a gather that calls this).
+KFN(vec3, stored_contact_normal) uint c) {
+  uint i = B_owner[c];
+  uint p = B_partner[c];
+  vec4 pi = B_pos[i];
+  vec3 n = vec3(0.0f, 0.0f, 1.0f);
+  if (p < PC.n_particles) {
+    precise vec3 d = xyz(pi) - xyz(B_pos[p]);
+    precise float dist = length3(d);
+    n = vec3(d.x / dist, d.y / dist, d.z / dist);
+  } else {
+    WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
+    float overlap;
+    uint feature;
+    wall_contact_feature(ws, xyz(pi), pi.w, 0.0f, n, overlap, feature);
+  }
+  return n;
+}
+
+// A lean entry's rolling lever for particle `self` (the owner when owner_side) with sphere lever
+// r: the centre-of-mass distance from the contact point process_contact used.
+KFN(float, lean_rolling_lever) uint c, uint self, float r, float overlap) {
+  vec4 pi = B_pos[B_owner[c]];
+  vec3 n = stored_contact_normal(KB c);
+  precise float ri = pi.w - 0.5f * overlap;
+  return rolling_lever(KB self, contact_point(xyz(pi), n, ri), r);
+}
+
 // The torque a lean contact entry (contacts.h) puts on one of its bodies, with exactly the
 // arithmetic process_contact uses for the full entry: `rad` and `w` are that body's radius and
 // spin, `owner_side` tells i (+tr) from j (-tr). The relative rolling torque needs both spins
 // and radii (only with kFlagRollingRelativeOmega; the step program then kicks in a separate
 // pass so no spin changes while gathers read it).
-KFN(vec3, lean_torque) uint c, bool owner_side, float rad, vec3 w, float lw, vec4 a, vec4 b) {
+KFN(vec3, lean_torque) uint c, uint self, bool owner_side, float rad, vec3 w, float lw, vec4 a, vec4 b) {
   if (!(b.w > 0.0f)) return vec3(0.0f);  // separated: the full entry stores zeros
   bool relative = (PC.flags & kFlagRollingRelativeOmega) != 0u;
   precise float r = rad - 0.5f * b.w;
-  vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, w, lw);
+  float lever = r;
+  if (a.w >= 0.0f && centre_lever(PC.flags)) lever = lean_rolling_lever(KB c, self, r, b.w);
+  vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, lever, w, lw);
   if (relative && a.w >= 0.0f) {
     uint i = B_owner[c];
     uint p = B_partner[c];
     vec4 pi = B_pos[i];
     vec3 wi = xyz(B_omega[i]);
     vec3 wj = vec3(0.0f);
-    float radius_star = pi.w;
+    precise float lever = pi.w - 0.5f * b.w;  // a wall: LIGGGHTS's contact radius r_i - dn/2
     if (p < PC.n_particles) {
       float rad_j = B_pos[p].w;
       wj = xyz(B_omega[p]);
-      radius_star = (pi.w * rad_j) / (pi.w + rad_j);
+      lever = (pi.w * rad_j) / (pi.w + rad_j);  // R*
     }
     vec3 tr;
-    if (relative_rolling(wi, wj, a.w, radius_star, tr)) t = owner_side ? t + tr : t - tr;
+    if (relative_rolling(wi, wj, a.w, lever, stored_contact_normal(KB c), tr)) t = owner_side ? t + tr : t - tr;
   }
   return t;
 }
@@ -115,7 +158,7 @@ KERNEL(k_gather_lean) uint i) {
     vec4 a = B_contact_force[c];
     vec4 b = B_torque_i[c];
     f = owner_side ? f + xyz(a) : f - xyz(a);
-    t = t + lean_torque(KB c, owner_side, pi.w, wi, lwi, a, b);
+    t = t + lean_torque(KB c, i, owner_side, pi.w, wi, lwi, a, b);
   }
   B_force[i] = vec4(f, 0.0f);
   B_torque[i] = vec4(t, 0.0f);

@@ -122,9 +122,15 @@ KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint
     B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
 }
 
-// True when particles i and j are sub-spheres of one body (no contact inside a clump).
-KFN(bool, same_body) uint i, uint j) {
-  return (PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x;
+// A fixed particle (a fixed sphere, or a sub-sphere of a fixed body) has 1/mass = 0: it takes
+// part in contacts with moving particles as an infinite mass, and never moves.
+KFN(bool, is_fixed) uint i) { return B_vel[i].w == 0.0f; }
+
+// True when particles i and j never form a contact: sub-spheres of one body (none inside a
+// clump), or two fixed particles (neither can move; their m* would be infinite).
+KFN(bool, no_contact) uint i, uint j) {
+  if ((PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x) return true;
+  return is_fixed(KB i) && is_fixed(KB j);
 }
 
 // Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
@@ -149,7 +155,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
         uint end = B_cell_start[h + 1u];
         for (uint s = B_cell_start[h]; s < end; ++s) {
           uint j = B_sorted[s];
-          if (j <= i || same_body(KB i, j)) continue;
+          if (j <= i || no_contact(KB i, j)) continue;
           vec4 pj = B_pos[j];
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
@@ -163,12 +169,13 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
   uint large_end = B_cell_start[PC.table_size + 1u];
   for (uint s = B_cell_start[PC.table_size]; s < large_end; ++s) {
     uint j = B_sorted[s];
-    if (j == i || (large && j < i) || same_body(KB i, j)) continue;
+    if (j == i || (large && j < i) || no_contact(KB i, j)) continue;
     if (!near_pair(pi, B_pos[j], PC.skin)) continue;
     if (fill) write_candidate(KB base + k, i, j, old_begin, old_end);
     k = k + 1u;
   }
-  for (uint w = 0u; w < PC.n_walls; ++w) {
+  uint n_walls = is_fixed(KB i) ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
+  for (uint w = 0u; w < n_walls; ++w) {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + w];
     vec3 n;
     float overlap;

@@ -108,12 +108,13 @@ FN bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(ve
     overlap = r - ah;
     return ah < r + margin;
   }
-  // Cylinder: inner surface of radius p1.w, from the base along the axis for vel.w.
+  // Cylinder: inner surface of radius p1.w, from the base along the axis for vel.w. It holds
+  // the spheres whose centres are inside; one outside (d >= R) never touches the inner surface.
   precise float s = dot3(rel, dir);
   if (s < -margin || s > ws.vel.w + margin) return false;
   precise vec3 q = rel - scale3(dir, s);
   precise float d = length3(q);
-  if (!(d > 0.0f)) return false;
+  if (!(d > 0.0f) || !(d < ws.p1.w)) return false;
   precise float inv_d = -1.0f / d;
   n = scale3(q, inv_d);
   overlap = r + d - ws.p1.w;

@@ -276,6 +276,11 @@ TEST_CASE("other checks: moduli, option words, lattices, wall geometry") {
   CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "sprng"), "contact.coulomb_cap")) &&
                                  Contains("did you mean 'spring'?"));
 
+  // LIGGGHTS's relative rolling torque takes R*: EDEM's centre-of-mass lever does not go with it.
+  text = kValid + "\n[contact]\nrolling_omega = \"relative\"\nrolling_lever = \"centre\"\n";
+  CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "rolling_lever"), "contact.rolling_lever")) &&
+                                 Contains("R*"));
+
   text = kValid + "\n[[lattice]]\nmaterial = \"grain\"\ntype = \"sc\"\nmin = [0, 0, 0]\nmax = [0.1, 0.1, 0.1]\n"
                   "spacing = 0.009\nradius = 0.005\n";
   CHECK_THAT(error_of(text), StartsWith(at(line_of(text, "spacing = 0.009"), "lattice[0].spacing")));

@@ -81,6 +81,7 @@ TEST_CASE("defaults are EDEM's and the name is the file's stem") {
   CHECK(spec.contact.normal_attraction == NormalAttraction::Allow);
   CHECK(spec.contact.rolling == RollingModel::ConstantTorque);
   CHECK(spec.contact.rolling_omega == RollingOmega::Own);
+  CHECK(spec.contact.rolling_lever == RollingLever::Centre);
   CHECK(spec.neighbour.skin < 0);
   CHECK(spec.neighbour.rebuild_interval == 0);
   CHECK(spec.output.interval == 0);
@@ -99,6 +100,7 @@ coulomb_cap = "spring"
 normal_attraction = "clip"
 rolling = "none"
 rolling_omega = "relative"
+rolling_lever = "sphere"
 
 [neighbour]
 skin = 0.002
@@ -120,6 +122,7 @@ vtk = false
   CHECK(spec.contact.normal_attraction == NormalAttraction::Clip);
   CHECK(spec.contact.rolling == RollingModel::None);
   CHECK(spec.contact.rolling_omega == RollingOmega::Relative);
+  CHECK(spec.contact.rolling_lever == RollingLever::Sphere);  // LIGGGHTS's, with the relative torque
   CHECK(spec.neighbour.skin == 0.002);
   CHECK(spec.neighbour.rebuild_interval == 10);
   CHECK(spec.output.interval == 0.01);

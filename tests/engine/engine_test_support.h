@@ -14,8 +14,6 @@
 
 namespace repose::test {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A case without gravity, walls or particles; tests add what they need.
 struct CaseBuilder {
   CaseSpec spec;
@@ -142,6 +140,37 @@ inline CaseSpec epsd_clump_pairs() {
   int t = b.clump_template("pair", {{{-0.004, 0, 0}, 0.005}, {{0.004, 0, 0}, 0.005}});
   for (int k = 0; k < 6; ++k) b.clump(t, {0.011 * k, 0, 0.0052}, m);
   b.plane({0, 0, 0}, {0, 0, 1}, m);
+  return b.spec;
+}
+
+// An asymmetric clump: three spheres of different radii off one line, overlapping.
+inline std::vector<Sphere> lumpy_clump() {
+  return {{{0.0, 0.0, 0.0}, 0.010}, {{0.012, 0.003, 0.0}, 0.007}, {{-0.004, 0.011, 0.006}, 0.005}};
+}
+
+// 60 tumbling lumpy clumps and 20 spheres falling onto a floor beside a side wall.
+inline CaseSpec clump_pile() {
+  CaseBuilder b;
+  int grain = b.material(1000, 5e6, 0.3);
+  int steel = b.material(7800, 8e10, 0.3);
+  b.interaction(grain, grain, 0.5, 0.5, 0.05);
+  b.interaction(grain, steel, 0.6, 0.3, 0.02);
+  b.spec.gravity = {0, 0, -9.81};
+  int t = b.clump_template("lumpy", lumpy_clump());
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int k = 0; k < 60; ++k) {
+    std::array<double, 4> q{u(rng), u(rng), u(rng), u(rng)};
+    double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    for (double& c : q) c /= n;
+    b.clump(t, {0.04 * (k % 4), 0.04 * ((k / 4) % 4), 0.02 + 0.04 * (k / 16)}, grain, q,
+            {0.3 * u(rng), 0.3 * u(rng), -1.0}, {10 * u(rng), 10 * u(rng), 10 * u(rng)});
+  }
+  for (int k = 0; k < 20; ++k)
+    b.sphere({0.02 + 0.04 * (k % 4), 0.02 + 0.04 * (k / 4 % 4), 0.2 + 0.03 * (k / 16)}, 0.006, grain);
+  b.plane({0, 0, -0.012}, {0, 0, 1}, steel);
+  b.plane({-0.02, 0, 0}, {1, 0, 0}, steel);
+  b.spec.time.rayleigh_fraction = 0.2;
   return b.spec;
 }
 

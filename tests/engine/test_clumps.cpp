@@ -16,18 +16,13 @@ double dot3d(const gpu::vec4& a, const gpu::vec4& b) {
   return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
 }
 
-// An asymmetric clump: three spheres of different radii off one line, overlapping.
-std::vector<Sphere> lumpy() {
-  return {{{0.0, 0.0, 0.0}, 0.010}, {{0.012, 0.003, 0.0}, 0.007}, {{-0.004, 0.011, 0.006}, 0.005}};
-}
-
 }  // namespace
 
 TEST_CASE("a free clump keeps its angular momentum, energy and momentum") {
   CaseBuilder b;
   int grain = b.material(1000, 5e6, 0.3);
   b.interaction(grain, grain, 0.5, 0.4, 0.0);
-  int t = b.clump_template("lumpy", lumpy());
+  int t = b.clump_template("lumpy", lumpy_clump());
   b.clump(t, {0, 0, 0}, grain, {0.9, 0.1, -0.3, 0.2}, {0.1, -0.2, 0.05}, {30, -12, 21});
   b.spec.time.dt = 1e-5;
   auto sim = simulate(b.spec);
@@ -56,7 +51,7 @@ TEST_CASE("a free clump keeps its angular momentum, energy and momentum") {
     double dx = p[i].x - p[j].x, dy = p[i].y - p[j].y, dz = p[i].z - p[j].z;
     return std::sqrt(dx * dx + dy * dy + dz * dz);
   };
-  auto s = lumpy();
+  auto s = lumpy_clump();
   CHECK(gap(0, 1) == Approx(glm::length(s[0].centre - s[1].centre)).epsilon(1e-5));
   CHECK(gap(1, 2) == Approx(glm::length(s[1].centre - s[2].centre)).epsilon(1e-5));
 }
@@ -65,7 +60,7 @@ TEST_CASE("sub-spheres of one clump exert no force on each other") {
   CaseBuilder b;
   int grain = b.material(1000, 5e6, 0.3);
   b.interaction(grain, grain, 0.5, 0.4, 0.0);
-  int t = b.clump_template("lumpy", lumpy());
+  int t = b.clump_template("lumpy", lumpy_clump());
   b.clump(t, {0, 0, 0}, grain);
   b.spec.time.dt = 1e-5;
   auto sim = simulate(b.spec);
@@ -114,6 +109,47 @@ TEST_CASE("a clump dropped on one sub-sphere returns the sphere's restitution") 
   }
 }
 
+// A dumbbell (two touching spheres of radius R, centres at y = +-R) rolls along x about its long
+// axis on a plate, without slip. EDEM's rolling torque on each sphere is mu_r |Fn| L with L the
+// distance from the contact point to the body's centre of mass, sqrt(R^2 + R^2); LIGGGHTS's
+// multisphere takes the sphere's radius, L = R. Rigid-body theory: the torque mu_r M g L against
+// rolling (I = 2/5 M R^2 about the long axis) decelerates it at 5 mu_r g L / (7 R), so it stops
+// after s = 7 v0^2 R / (10 mu_r g L): 1/sqrt(2) of a lone sphere's distance with the centre lever.
+TEST_CASE("a rolling dumbbell feels mu_r |Fn| |contact - centre|: stop distance 7 v0^2 R / (10 mu_r g L) (2 %)",
+          "[engine][theory]") {
+  const double R = 0.01, v0 = 0.5, mu_r = 0.05, g = 9.81;
+  auto stop_distance = [&](RollingLever lever) {
+    CaseBuilder b;
+    int grain = b.material(1000, 1e7, 0.3);
+    int floor = b.material(7800, 8e10, 0.3);
+    b.interaction(grain, grain, 0.5, 0.8, mu_r);
+    b.interaction(grain, floor, 0.5, 0.8, mu_r);
+    b.spec.gravity = {0, 0, -g};
+    b.spec.time.rayleigh_fraction = 0.2;
+    b.spec.contact.rolling_lever = lever;
+    // Start at each sphere's static overlap (it carries its own weight), rolling without slip.
+    double m = 1000 * 4.0 / 3.0 * kPi * R * R * R;
+    double E = 2e7 * 1.3, E_star = 1 / ((1 - 0.09) / E + (1 - 0.09) / (2 * 8e10 * 1.3));
+    double d = std::pow(m * g / (4.0 / 3.0 * E_star * std::sqrt(R)), 2.0 / 3.0);
+    int t = b.clump_template("dumbbell", {{{0, -R, 0}, R}, {{0, R, 0}, R}});
+    b.clump(t, {0, 0, R - d}, grain, {1, 0, 0, 0}, {v0, 0, 0}, {0, v0 / (R - d), 0});
+    b.plane({0, 0, 0}, {0, 0, 1}, floor);
+    auto sim = simulate(b.spec, "cpu", 1, {}, 20);
+    double x0 = sim->state().bodies[0].pos.x;
+    while (sim->time() < 3.0) {
+      sim->advance(20);
+      if (sim->state().bodies[0].vel.x <= 0.001 * v0) return double(sim->state().bodies[0].pos.x) - x0;
+    }
+    return -1.0;
+  };
+  double sphere_lever = 7 * v0 * v0 / (10 * mu_r * g);
+  double centre = stop_distance(RollingLever::Centre), sphere = stop_distance(RollingLever::Sphere);
+  INFO("centre lever: stopped after " << centre << " m, theory " << sphere_lever / std::sqrt(2.0)
+                                       << "; sphere lever: " << sphere << " m, theory " << sphere_lever);
+  CHECK(centre == Approx(sphere_lever / std::sqrt(2.0)).epsilon(0.02));  // the sphere test's 2 %
+  CHECK(sphere == Approx(sphere_lever).epsilon(0.02));
+}
+
 // Spheres spanning 10:1 in size: the big ones skip the grid (the large bucket), and the list
 // must still hold every touching pair exactly once.
 TEST_CASE("the contact list finds every touching pair when sizes span 10:1") {
@@ -147,31 +183,6 @@ TEST_CASE("the contact list finds every touching pair when sizes span 10:1") {
       }
     }
   CHECK(touching > 100);
-}
-
-// 60 tumbling clumps and 20 spheres falling onto a floor beside a side wall.
-static CaseSpec clump_pile() {
-  CaseBuilder b;
-  int grain = b.material(1000, 5e6, 0.3);
-  int steel = b.material(7800, 8e10, 0.3);
-  b.interaction(grain, grain, 0.5, 0.5, 0.05);
-  b.interaction(grain, steel, 0.6, 0.3, 0.02);
-  b.spec.gravity = {0, 0, -9.81};
-  int t = b.clump_template("lumpy", lumpy());
-  std::mt19937_64 rng(3);
-  std::uniform_real_distribution<double> u(-1, 1);
-  for (int k = 0; k < 60; ++k) {
-    std::array<double, 4> q{u(rng), u(rng), u(rng), u(rng)};
-    double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-    for (double& c : q) c /= n;
-    b.clump(t, {0.04 * (k % 4), 0.04 * ((k / 4) % 4), 0.02 + 0.04 * (k / 16)}, grain, q,
-            {0.3 * u(rng), 0.3 * u(rng), -1.0}, {10 * u(rng), 10 * u(rng), 10 * u(rng)});
-  }
-  for (int k = 0; k < 20; ++k) b.sphere({0.02 + 0.04 * (k % 4), 0.02 + 0.04 * (k / 4 % 4), 0.2 + 0.03 * (k / 16)}, 0.006, grain);
-  b.plane({0, 0, -0.012}, {0, 0, 1}, steel);
-  b.plane({-0.02, 0, 0}, {1, 0, 0}, steel);
-  b.spec.time.rayleigh_fraction = 0.2;
-  return b.spec;
 }
 
 // Clumps and lone spheres settling with walls: every byte equal on lavapipe and the CPU twin

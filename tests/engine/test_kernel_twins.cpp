@@ -21,67 +21,85 @@ struct Binding {
   const void* cpu;
 };
 
+// Runs one step of `spec` (after `warmup` steps in batches of `batch`, forcing a rebuild) one
+// dispatch at a time on both backends and requires every buffer to match after every dispatch.
+// The walls must be at rest (the step reads wall slot 0 of the last batch).
+void check_each_dispatch(const CaseSpec& spec, const char* variant_text, uint64_t warmup, uint32_t batch,
+                         const std::string& label) {
+  KernelVariant v = KernelVariant::parse(variant_text);
+  auto cpu_sim = simulate(spec, "cpu", 2, v, batch);
+  auto gpu_sim = simulate(spec, "vulkan", 1, v, batch);
+  cpu_sim->advance(warmup);  // histories (and clump contacts) are non-zero
+  gpu_sim->advance(warmup);
+  auto& cpu = dynamic_cast<CpuBackend&>(cpu_sim->backend());
+  auto& gpu = dynamic_cast<VulkanBackend&>(gpu_sim->backend());
+  const Layout& l = cpu_sim->layout();
+  REQUIRE(l.capacity == gpu_sim->layout().capacity);
+  // Force the next step to rebuild, so the neighbour kernels run too.
+  HostState s = cpu_sim->state();
+  s.control[gpu::kCtlNeedRebuild] = 1;
+  cpu_sim->set_state(s);
+  gpu_sim->set_state(s);
+
+  const gpu::Buffers& b = cpu.buffers();
+  size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
+  std::vector<Binding> bindings = {
+      {gpu::kBindPos, "pos", N * v4, b.pos}, {gpu::kBindVel, "vel", N * v4, b.vel},
+      {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
+      {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
+      {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
+      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
+      {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
+      {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
+      {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
+      {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
+      {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
+  };
+  if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  auto program = step_program(cpu_sim->model(), l, v, 0);
+  size_t checked = 0;
+  for (const Dispatch& d : program) {
+    cpu.execute({d}, nullptr);
+    gpu.execute({d}, nullptr);
+    for (const Binding& bind : bindings) {
+      // The two scatters place ids by atomic cursor, in thread order; the sort kernel right
+      // after them fixes the order, and the comparison happens there.
+      bool scattered = (d.kernel == KernelId::BucketScatter && bind.index == gpu::kBindSorted) ||
+                       (d.kernel == KernelId::TransposeFill && bind.index == gpu::kBindTransList);
+      if (scattered) {
+        ++checked;
+        continue;
+      }
+      std::vector<char> from_gpu(bind.bytes);
+      gpu.read_binding(bind.index, from_gpu.data(), bind.bytes);
+      bool same = std::memcmp(from_gpu.data(), bind.cpu, bind.bytes) == 0;
+      INFO(label << ", " << variant_text << ": after " << kernel_shader_name(d.kernel) << ", buffer " << bind.name
+                 << " differs");
+      REQUIRE(same);
+      ++checked;
+    }
+  }
+  CHECK(checked == program.size() * bindings.size());
+  CHECK(cpu.read_control()[gpu::kCtlRebuildCount] >= 2);  // the forced rebuild happened
+}
+
 }  // namespace
 
 TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispatch", "[engine][bitexact]") {
   for (const char* variant_text : {"contact", "rows,lean"}) {
     for (uint32_t n : {63u, 64u, 65u, 129u}) {
-      KernelVariant v = KernelVariant::parse(variant_text);
       // Spacing 2.05 radii: many pairs already touching, so every kernel has real work.
-      CaseSpec spec = seeded_cloud(n, n, 2.05, 0.0);
-      auto cpu_sim = simulate(spec, "cpu", 2, v, 1);
-      auto gpu_sim = simulate(spec, "vulkan", 1, v, 1);
-      cpu_sim->advance(3);  // a few steps so histories are non-zero
-      gpu_sim->advance(3);
-      auto& cpu = dynamic_cast<CpuBackend&>(cpu_sim->backend());
-      auto& gpu = dynamic_cast<VulkanBackend&>(gpu_sim->backend());
-      const Layout& l = cpu_sim->layout();
-      REQUIRE(l.capacity == gpu_sim->layout().capacity);
-      // Force the next step to rebuild, so the neighbour kernels run too.
-      HostState s = cpu_sim->state();
-      s.control[gpu::kCtlNeedRebuild] = 1;
-      cpu_sim->set_state(s);
-      gpu_sim->set_state(s);
-
-      const gpu::Buffers& b = cpu.buffers();
-      size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
-      std::vector<Binding> bindings = {
-          {gpu::kBindPos, "pos", N * v4, b.pos}, {gpu::kBindVel, "vel", N * v4, b.vel},
-          {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
-          {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
-          {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
-          {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
-          {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
-          {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
-          {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
-          {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
-          {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
-      };
-      auto program = step_program(cpu_sim->model(), l, v, 0);
-      size_t checked = 0;
-      for (const Dispatch& d : program) {
-        cpu.execute({d}, nullptr);
-        gpu.execute({d}, nullptr);
-        for (const Binding& bind : bindings) {
-          // The two scatters place ids by atomic cursor, in thread order; the sort kernel right
-          // after them fixes the order, and the comparison happens there.
-          bool scattered = (d.kernel == KernelId::BucketScatter && bind.index == gpu::kBindSorted) ||
-                           (d.kernel == KernelId::TransposeFill && bind.index == gpu::kBindTransList);
-          if (scattered) {
-            ++checked;
-            continue;
-          }
-          std::vector<char> from_gpu(bind.bytes);
-          gpu.read_binding(bind.index, from_gpu.data(), bind.bytes);
-          bool same = std::memcmp(from_gpu.data(), bind.cpu, bind.bytes) == 0;
-          INFO(variant_text << ", n = " << n << ": after " << kernel_shader_name(d.kernel) << ", buffer "
-                            << bind.name << " differs");
-          REQUIRE(same);
-          ++checked;
-        }
-      }
-      CHECK(checked == program.size() * bindings.size());
-      CHECK(cpu.read_control()[gpu::kCtlRebuildCount] >= 2);  // the forced rebuild happened
+      check_each_dispatch(seeded_cloud(n, n, 2.05, 0.0), variant_text, 3, 1, "n = " + std::to_string(n));
     }
   }
+}
+
+// Clumps rolling against each other and the walls with EDEM's centre-of-mass lever (the default):
+// the full kernel and the lean gather compute the lever on both backends alike.
+TEST_CASE("every kernel of a clump step, rolling lever at the centre of mass: lavapipe equals the CPU twin",
+          "[engine][bitexact]") {
+  CaseSpec pile = clump_pile();
+  REQUIRE(pile.contact.rolling_lever == RollingLever::Centre);
+  for (const char* variant_text : {"contact", "contact,lean", "rows,lean"})
+    check_each_dispatch(pile, variant_text, 1500, 100, "clump pile");
 }

@@ -150,8 +150,7 @@ TEST_CASE("spinning friction: identical on lavapipe and the CPU twin (spheres an
   for (auto& in : b.spec.interactions) in.spinning_friction = 0.2;
   b.spec.gravity = {0, 0, -9.81};
   b.spec.time.rayleigh_fraction = 0.2;
-  int t = b.clump_template("lumpy", {{{0.0, 0.0, 0.0}, 0.010}, {{0.012, 0.003, 0.0}, 0.007},
-                                     {{-0.004, 0.011, 0.006}, 0.005}});
+  int t = b.clump_template("lumpy", lumpy_clump());
   for (int k = 0; k < 12; ++k)
     b.clump(t, {0.03 * (k % 3), 0.03 * ((k / 3) % 2), 0.012 + 0.03 * (k / 6)}, grain,
             {0.9, 0.1 * k, -0.3, 0.2}, {0, 0, 0}, {3.0 * k - 15, 2.0, 20.0 - 3 * k});

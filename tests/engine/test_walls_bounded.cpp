@@ -109,6 +109,42 @@ TEST_CASE("rectangle wall: face, edge and corner contacts along the closest-poin
   }
 }
 
+// The bottomless cylinder holds the spheres inside it. A sphere outside, near or far, is not its
+// business (the lifted-cylinder rigs leave spheres outside once the cylinder rises).
+TEST_CASE("cylinder wall: a sphere inside is pushed by Hertz's force, one outside feels nothing", "[walls]") {
+  auto make = [] {
+    Rig rig;
+    WallSpec cyl;
+    cyl.type = WallSpec::Type::Cylinder;
+    cyl.base = {0, 0, -0.5};
+    cyl.axis = {0, 0, 1};
+    cyl.radius = 0.12;
+    cyl.height = 1.0;
+    cyl.material = rig.steel;
+    cyl.name = "cylinder";
+    rig.b.spec.walls.push_back(cyl);
+    return rig;
+  };
+  {
+    Rig rig = make();  // inside, pressed kDelta into the surface along (1, 1, 0)
+    double F = hertz(rig);
+    check_push(wall_force(rig, along({0, 0, 0}, {1, 1, 0}, 0.12 - R + kDelta)), {-1, -1, 0}, F);
+  }
+  for (double d : {0.12 + R - kDelta, 0.12 + kDelta, 0.18}) {
+    Rig rig = make();  // outside: touching the outer surface, centre just outside, far away
+    INFO("centre " << d << " m from the axis");
+    check_push(wall_force(rig, along({0, 0, 0}, {1, 0, 0}, d)), {1, 0, 0}, 0.0);
+  }
+  // Without gravity, a sphere at rest 0.18 m from the axis stays at rest (it used to gain ~1 J
+  // in 0.01 s from a contact with the far side of the inner surface).
+  Rig rig = make();
+  rig.b.sphere({0.18, 0, 0}, R, rig.grain);
+  auto sim = simulate(rig.b.spec);
+  sim->advance(uint64_t(0.01 / sim->model().dt) + 1);
+  CHECK(sim->contacts() == 0);
+  CHECK(sim->kinetic_energy().translational == 0.0);
+}
+
 TEST_CASE("mesh wall: face, boundary edge and corner contacts of a two-triangle plate, each once", "[walls]") {
   const double a = 0.05;
   struct Case { const char* what; Vec3d q, dir; };
