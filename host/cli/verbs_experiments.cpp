@@ -197,6 +197,11 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
     a["sectors"] = sectors;
     j["axisymmetric"] = a;
   }
+  Json phases = Json::array();
+  for (const auto& [name, p] : r.phases)
+    phases.push_back({{"phase", name}, {"steps", p.steps}, {"simulated_s", p.steps * r.dt},
+                      {"wall_s", p.wall_seconds}, {"rebuilds", p.rebuilds}});
+  j["phases"] = phases;
   write_json(out_dir + "/repose.json", j);
   write_file_atomically(out_dir + "/energy.csv", [&](std::ostream& o) {
     o << "t,largest_kinetic_energy\n";
@@ -219,6 +224,11 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   if (r.heap_3d)
     std::printf("  3D sector fit: mean %.2f deg, spread %.2f deg over %d sectors\n", r.heap_3d->mean_deg,
                 r.heap_3d->spread_deg, r.heap_3d->valid_sectors);
+  if (run.profile) {
+    std::printf("where the time went (%s):\n%s", run.backend.c_str(), format_profiles(r.phases, r.dt).c_str());
+    for (const auto& [name, p] : r.phases)
+      if (p.steps) std::printf("  %s kernels per step: %s\n", name.c_str(), format_kernel_times(p).c_str());
+  }
   std::printf("wrote %s/repose.json, heap.png, heap.csv, energy.csv, wall_forces.csv\n", out_dir.c_str());
   return 0;
 }
@@ -243,6 +253,8 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
   app.add_flag("--quiet", quiet, "no progress output");
+  bool profile = false;
+  app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
   int replicates = 1;
   app.add_option("--replicates", replicates,
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
@@ -260,7 +272,7 @@ int run_experiment(int argc, char** argv) {
     return 2;
   }
   if (out_dir.empty()) out_dir = "out/" + spec.name;
-  ExperimentRunOptions run{backend, device, threads, !quiet};
+  ExperimentRunOptions run{backend, device, threads, !quiet, profile};
   try {
     std::filesystem::create_directories(out_dir);
     if (type == "drop") return run_drop_verb(spec, case_path, run, out_dir, replicates);

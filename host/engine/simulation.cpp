@@ -1,6 +1,7 @@
 #include "engine/simulation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -93,22 +94,36 @@ std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
 
 void Simulation::advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch) {
   uint64_t target = step_ + steps;
+  auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   while (step_ < target) {
+    auto t0 = std::chrono::steady_clock::now();
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
     upload_walls(k);
-    backend_->execute(batch_program(k));
+    backend_->execute(batch_program(k), profiling_ ? &profile_.kernels : nullptr);
     auto ctl = backend_->read_control();
     if (ctl[gpu::kCtlOverflow]) {
       // Redo the batch from its start with a larger list: nothing of it is kept.
       ++retries_;
       state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
       allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+      profile_.wall_seconds += since(t0);
       continue;
     }
+    uint32_t rebuilds_before = rebuilds();
     backend_->download_state(state_);
     step_ += k;
+    profile_.steps += k;
+    profile_.rebuilds += rebuilds() - rebuilds_before;
+    profile_.contact_steps += double(contacts()) * k;
+    profile_.wall_seconds += since(t0);
     if (on_batch) on_batch(*this);
   }
+}
+
+RunProfile Simulation::take_profile() {
+  RunProfile p = std::move(profile_);
+  profile_ = RunProfile{};
+  return p;
 }
 
 KernelTimes Simulation::time_kernels(uint64_t steps) {

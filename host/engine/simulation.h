@@ -9,6 +9,7 @@
 
 #include "engine/backend.h"
 #include "engine/model.h"
+#include "engine/run_profile.h"
 #include "engine/step_program.h"
 
 namespace repose {
@@ -53,6 +54,11 @@ class Simulation {
   void set_state(const HostState& s);
   // Times each kernel of the next `steps` steps (for `repose bench`); state advances too.
   KernelTimes time_kernels(uint64_t steps);
+  // With profiling on, advance() also times every kernel (a clock read per dispatch on the cpu
+  // backend, timestamp queries on Vulkan). The profile always counts steps, rebuilds, contacts
+  // and the wall time inside advance(); take_profile() returns it and starts a new one.
+  void set_profiling(bool on) { profiling_ = on; }
+  RunProfile take_profile();
 
  private:
   void allocate(uint32_t capacity);
@@ -66,6 +72,8 @@ class Simulation {
   HostState state_;
   uint64_t step_ = 0;
   uint32_t retries_ = 0;
+  bool profiling_ = false;
+  RunProfile profile_;
 };
 
 }  // namespace repose

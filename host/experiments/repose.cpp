@@ -2,6 +2,7 @@
 #include "experiments/repose.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -64,11 +65,16 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   uint64_t sample_steps = steps_in(0.05, model.dt);
   uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
   Simulation sim = experiment_simulation(model, options, sample_steps, 200);
+  sim.set_profiling(options.profile);
   Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
 
   ReposeResult r;
+  r.phases = {{"fill", {}}, {"lift", {}}, {"run-out", {}}};
+  r.dt = model.dt;
   bool bed_measured = false;
   while (true) {
+    auto sample_start = std::chrono::steady_clock::now();
+    size_t phase = sim.time() < lift.motion.start_time - 1e-9 ? 0 : sim.time() < lift_end - 1e-9 ? 1 : 2;
     sim.advance(sample_steps);
     if (!bed_measured && sim.time() >= lift.motion.start_time - 1e-9) {
       r.bed_height = bed_height(sim.state(), ex.heap_floor_z);
@@ -78,6 +84,10 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     r.energy.push_back({sim.time(), e});
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "max E " + std::to_string(e).substr(0, 8) + " J");
+    RunProfile sample = sim.take_profile();
+    sample.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
+    r.phases[phase].second.add(sample);
     if (sim.time() >= lift_end && e < ex.settle_energy) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;

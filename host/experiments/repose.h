@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "engine/run_profile.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 #include "measure/heap_angle.h"
@@ -31,6 +32,10 @@ struct ReposeResult {
   std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
   std::vector<Sphere> spheres;    // the settled heap
   WallForceSeries wall_forces;
+  // Where the time went: "fill" (before the lift starts: pouring and settling), "lift", "run-out"
+  // (after the lift until settled); wall time includes the experiment's own sampling.
+  std::vector<std::pair<std::string, RunProfile>> phases;
+  double dt = 0;  // s, the time step
 };
 
 // Runs until the lift is over (lift_end, default the lift wall's motion stop) and the kinetic
