@@ -371,7 +371,7 @@ class CaseReader {
     if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
     if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
     if (type == "repose")
-      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"});
+      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"});
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
@@ -398,6 +398,7 @@ class CaseReader {
     if (type == "repose" && ex.lift_wall.empty())
       s->missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
     if (auto t = s->number("lift_end")) ex.lift_end = non_negative(*s, "lift_end", *t);
+    ex.end_when_clear = s->boolean("end_when_clear").value_or(true);
     if (auto e = s->number("settle_energy")) ex.settle_energy = positive(*s, "settle_energy", *e);
     ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
     ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);

@@ -68,6 +68,11 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   sim.set_profiling(options.profile);
   Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
 
+  // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
+  auto names = model.wall_group_names();
+  size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
+  bool clear_before = false;
+
   ReposeResult r;
   r.phases = {{"fill", {}}, {"lift", {}}, {"run-out", {}}};
   r.dt = model.dt;
@@ -88,7 +93,11 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     sample.wall_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
     r.phases[phase].second.add(sample);
-    if (sim.time() >= lift_end && e < ex.settle_energy) {
+    const WallForce& f = r.wall_forces.rows.back().at(lift_group);
+    bool clear = sim.time() > lift.motion.start_time && f.fx == 0 && f.fy == 0 && f.fz == 0;
+    bool lift_over = sim.time() >= lift_end || (ex.end_when_clear && clear && clear_before);
+    clear_before = clear;
+    if (lift_over && e < ex.settle_energy) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
       break;

@@ -38,7 +38,8 @@ struct ReposeResult {
   double dt = 0;  // s, the time step
 };
 
-// Runs until the lift is over (lift_end, default the lift wall's motion stop) and the kinetic
+// Runs until the lift is over (lift_end, default the lift wall's motion stop, or with
+// end_when_clear once the lifted wall has touched nothing at two samples) and the kinetic
 // energy of every particle (or body) is below settle_energy, then measures. Throws std::runtime_error naming
 // the case when the heap has not settled by max_time (unless `measure_unsettled`: then it measures
 // the heap as it stands at max_time, settled = false; the diagnosis does, since a lone grain that
