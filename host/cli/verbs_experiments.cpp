@@ -9,6 +9,7 @@
 
 #include "cli/cli_case.h"
 #include "cli/verbs.h"
+#include "engine/backend_factory.h"
 #include "experiments/drop.h"
 #include "experiments/repose.h"
 #include "experiments/roll.h"
@@ -236,8 +237,8 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
 int run_experiment(int argc, char** argv) {
   CLI::App app{"Run a virtual experiment: drop (restitution), slide (static friction on a tilting plate), "
                "roll (rolling friction: incline + floor, or tilt), repose (angle of repose of a rig)."};
-  std::string type, case_path, backend = "cpu", out_dir;
-  unsigned threads = 1;
+  std::string type, case_path, backend = "auto", out_dir;
+  unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
   double height = -1;
@@ -247,8 +248,9 @@ int run_experiment(int argc, char** argv) {
       ->check(CLI::IsMember({"drop", "slide", "roll", "repose"}));
   app.add_option("case", case_path, "case file (TOML) with an [experiment] table")->required();
   app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case");
-  app.add_option("--backend", backend, "cpu (default) or vulkan")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--threads", threads, "cpu backend threads (default 1)");
+  app.add_option("--backend", backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), cpu or vulkan")
+      ->check(CLI::IsMember({"auto", "vulkan", "cpu"}));
+  app.add_option("--threads", threads, "cpu backend threads (default all cores)");
   app.add_option("--device", device, "Vulkan device index");
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
@@ -272,6 +274,9 @@ int run_experiment(int argc, char** argv) {
     return 2;
   }
   if (out_dir.empty()) out_dir = "out/" + spec.name;
+  BackendChoice chosen = resolve_backend(backend, device);
+  backend = chosen.backend;
+  device = chosen.device;
   ExperimentRunOptions run{backend, device, threads, !quiet, profile};
   try {
     std::filesystem::create_directories(out_dir);

@@ -126,28 +126,17 @@ RunProfile Simulation::take_profile() {
   return p;
 }
 
-KernelTimes Simulation::time_kernels(uint64_t steps) {
-  KernelTimes times;
-  for (uint64_t s = 0; s < steps; ++s) {
-    upload_walls(1);
-    backend_->execute(step_program(model_, layout_, variant_, 0), &times);
-    auto ctl = backend_->read_control();
-    if (ctl[gpu::kCtlOverflow]) throw std::runtime_error("contact list overflow while timing");
-    ++step_;
-  }
-  backend_->download_state(state_);
-  return times;
-}
-
 void Simulation::set_state(const HostState& s) {
   state_ = s;
   backend_->upload_state(state_);
 }
 
-EnergySummary Simulation::kinetic_energy() const {
+EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state_); }
+
+EnergySummary kinetic_energy(const HostState& state) {
   EnergySummary e;
-  if (!state_.bodies.empty()) {
-    for (const gpu::Body& b : state_.bodies) {
+  if (!state.bodies.empty()) {
+    for (const gpu::Body& b : state.bodies) {
       const auto& v = b.vel;
       e.translational += 0.5 / b.pos.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
       e.rotational += 0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y +
@@ -155,9 +144,9 @@ EnergySummary Simulation::kinetic_energy() const {
     }
     return e;
   }
-  for (size_t i = 0; i < state_.vel.size(); ++i) {
-    const auto& v = state_.vel[i];
-    const auto& w = state_.omega[i];
+  for (size_t i = 0; i < state.vel.size(); ++i) {
+    const auto& v = state.vel[i];
+    const auto& w = state.omega[i];
     e.translational += 0.5 / v.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
     e.rotational += 0.5 / w.w * (double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);
   }

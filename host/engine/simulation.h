@@ -25,6 +25,9 @@ struct EnergySummary {
   double total() const { return translational + rotational; }
 };
 
+// Translational and rotational kinetic energy of the spheres, or of the bodies when there are.
+EnergySummary kinetic_energy(const HostState& state);
+
 class Simulation {
  public:
   Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant = {},
@@ -52,8 +55,6 @@ class Simulation {
   std::vector<WallForce> wall_forces();
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
-  // Times each kernel of the next `steps` steps (for `repose bench`); state advances too.
-  KernelTimes time_kernels(uint64_t steps);
   // With profiling on, advance() also times every kernel (a clock read per dispatch on the cpu
   // backend, timestamp queries on Vulkan). The profile always counts steps, rebuilds, contacts
   // and the wall time inside advance(); take_profile() returns it and starts a new one.
