@@ -1,6 +1,7 @@
 // `repose devices`, `repose run`, `repose bench`: the engine's verbs.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include "cli/cli_case.h"
 #include "cli/verbs.h"
 #include "engine/backend_factory.h"
+#include "engine/buffer_table.h"
 #include "engine/bench_bed.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
@@ -207,8 +209,10 @@ void bench_one(const Model& model, const std::string& backend, const std::string
   sim.advance(50);  // warm up: list built, caches hot
   uint32_t rebuilds_before = sim.rebuilds();
   auto t0 = std::chrono::steady_clock::now();
+  std::clock_t c0 = std::clock();
   sim.advance(steps);
   double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double cpu_secs = double(std::clock() - c0) / CLOCKS_PER_SEC;
   uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
   double contacts = sim.contacts(), n = model.n_particles;
   // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
@@ -217,9 +221,9 @@ void bench_one(const Model& model, const std::string& backend, const std::string
   probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
   size_t per_contact_bytes = bytes_per_contact(probe);
   double bytes_per_particle = double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
-  std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9u\n", backend.c_str(), v.name().c_str(),
+  std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9u %8.3g\n", backend.c_str(), v.name().c_str(),
               n * steps / secs, contacts * steps / secs, contacts, touching_contacts(sim.state()),
-              bytes_per_particle, per_contact_bytes, rebuilds);
+              bytes_per_particle, per_contact_bytes, rebuilds, cpu_secs);
   sim.set_profiling(true);
   sim.take_profile();
   sim.advance(steps);
@@ -269,8 +273,10 @@ int run_bench(int argc, char** argv) {
   else
     std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
                 settle, n, model.dt, 1e3 * model.skin, energy, steps);
-  std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s\n", "backend", "variant", "particle-st/s", "contacts/s",
-              "contacts", "touching", "B/particle", "B/contact", "rebuilds");
+  // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
+  // figure to compare on a shared machine.
+  std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
+              "contacts", "touching", "B/particle", "B/contact", "rebuilds", "cpu s");
   for (const auto& b : backends)
     for (const auto& vt : variants) bench_one(model, b, vt, device, threads, steps);
   return 0;
