@@ -4,37 +4,14 @@
 #include <stdexcept>
 
 #include "diagnosis/elongated_body.h"
-#include "experiments/body_frame.h"
+#include "experiments/registry.h"
 
 namespace repose {
 
-Interaction& body_plate_interaction(CaseSpec& spec) {
-  int a = 0;
-  if (!spec.spheres.empty()) a = spec.spheres[0].material;
-  else if (!spec.bodies.empty()) a = spec.bodies[0].material;
-  else throw std::runtime_error(spec.path + ": the case has no body");
-  // A drop's plate is its first plane wall; a tilt or roll test names its plate (default the first wall).
-  const WallSpec* plate = nullptr;
-  if (spec.experiment.type == "drop") {
-    auto it = std::find_if(spec.walls.begin(), spec.walls.end(),
-                           [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
-    if (it == spec.walls.end()) throw std::runtime_error(spec.path + ": the case has no plane wall (plate)");
-    plate = &*it;
-  } else {
-    plate = &spec.walls.at(find_wall(spec, spec.experiment.plate, "plate"));
-  }
-  int b = plate->material;
-  for (auto& in : spec.interactions)
-    if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;
-  throw std::runtime_error(spec.path + ": no [[interaction]] between the body and the plate");
-}
-
-Interaction& heap_interaction(CaseSpec& spec) {
-  if (spec.fills.empty()) throw std::runtime_error(spec.path + ": the case has no [[fill]] of grains");
-  int a = spec.fills[0].material;
-  for (auto& in : spec.interactions)
-    if (in.material_a == a && in.material_b == a) return in;
-  throw std::runtime_error(spec.path + ": no [[interaction]] of the grains' material with itself");
+Interaction& tested_contact(CaseSpec& spec) {
+  const Experiment* e = experiment_for(spec);
+  if (!e) throw std::runtime_error(spec.path + ": the case runs no experiment, so no tested contact");
+  return e->tested_contact(spec);
 }
 
 const std::vector<ModelExtension>& model_extensions() {
@@ -45,7 +22,7 @@ const std::vector<ModelExtension>& model_extensions() {
        {{"viscoelastic_time", "s", 1e-6, 3e-2, true}},
        {"rebound_height", "restitution", "height"},
        "",
-       [](CaseSpec& s, const std::vector<double>& p) { body_plate_interaction(s).viscoelastic_time = p.at(0); }},
+       [](CaseSpec& s, const std::vector<double>& p) { tested_contact(s).viscoelastic_time = p.at(0); }},
       {"air_drag",
        "quadratic air drag 0.5 rho C_d A v^2 on the body (A its projected area, rho = 1.2 kg/m^3)",
        {{"drag_coefficient", "1", 1e-3, 2.0, true}},  // 2: a flat plate broadside, the bluffest body
@@ -62,7 +39,7 @@ const std::vector<ModelExtension>& model_extensions() {
        {"rebound_height", "restitution", "height", "slide_angle", "roll_angle"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
-         body_plate_interaction(s).cohesion_energy_density = p.at(0);
+         tested_contact(s).cohesion_energy_density = p.at(0);
          s.contact.cohesion_friction = CohesionFriction::Contact;
        }},
       {"rolling_epsd",

@@ -2,6 +2,7 @@
 // hidden: the case's experiment simulated with a truth model (the baseline plus, optionally, one
 // extension of given strength) at several conditions, each replicate with Gaussian noise of a
 // stated size, written in the measured-data CSV format (README "Measured data").
+// The experiment the case names says how (experiments/experiment.h, DiagnosisRole):
 // - A drop case varies the drop height. A truth whose body is a clump (extension `shape`) lands
 //   at a random orientation: every replicate is its own drop, with seeds no diagnosis uses
 //   (1,000,000 + 10,000 seed + 100 condition index + replicate).
@@ -28,8 +29,8 @@ struct SyntheticTruth {
   std::vector<double> heights;           // drop heights, m (the condition variable); other cases:
                                          // the values of condition_key
   // The key the conditions vary in a heap, slide or roll case (any case key); empty: the
-  // experiment's own (diagnosed_experiments.cpp: fill.0.count, experiment.slope_distance,
-  // material.0.density).
+  // experiment's own (its DiagnosisRole: experiment.drop_height, fill.0.count,
+  // experiment.slope_distance, material.0.density).
   std::string condition_key;
   double angle_noise = 0.5;              // SD of one measured angle, deg (lengths: `noise`)
   bool bed_height_only = false;          // heap: only bed_height rows (the bed alone is simulated)

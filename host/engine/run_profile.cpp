@@ -47,7 +47,7 @@ std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>
                   p.contact_steps / steps);
     out += line;
     if (p.kernels.empty()) {
-      out += " (kernels not timed: --profile)\n";
+      out += p.steps ? " (kernels not timed)\n" : "\n";
       continue;
     }
     for (const char* s : kKernelStages) {

@@ -7,7 +7,7 @@
 
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
-#include "diagnosis/heap_bed.h"
+#include "experiments/repose.h"
 #include "diagnosis/predictor.h"
 #include "experiments/repose.h"
 
