@@ -34,6 +34,7 @@ namespace repose::gpu {
 #define B_bodies buf.bodies
 #define B_subs buf.subs
 #define B_rolling_spring buf.rolling_spring
+#define B_candidates buf.candidates
 #define PC buf.push
 #define KERNEL(name) inline void name(Buffers& buf,
 #define KFN(ret, name) inline ret name(Buffers& buf,

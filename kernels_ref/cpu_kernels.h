@@ -11,7 +11,7 @@ namespace repose::gpu {
 
 // Pointers to every buffer of the table in repose_shared.h, in the shaders' names (B_pos -> pos).
 struct Buffers {
-#define REPOSE_BUFFER_POINTER(binding, Name, name, type, count, need, keep, alias) type* name = nullptr;
+#define REPOSE_BUFFER_POINTER(binding, Name, name, type, count, need, keep) type* name = nullptr;
   REPOSE_BUFFERS(REPOSE_BUFFER_POINTER)
 #undef REPOSE_BUFFER_POINTER
   SimPush push{};

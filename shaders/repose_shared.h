@@ -18,58 +18,70 @@ namespace repose::gpu {
 // its size on both backends, whether the host keeps a copy (HostState) and writes it to state
 // files (host/engine/buffer_table.h). Adding per-contact state is a row here plus the kernel
 // that uses it. Columns:
-//   binding, Name (kBindName), name (B_name), element type,
+//   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
 //   count:  Particles N, ParticlesPlusOne N+1, Contacts C (the list capacity), ContactsTwice 2C,
 //           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
 //           Pairs M*M, WallRows steps_per_batch*W, Walls W, Bodies B, Control kControlWords,
-//   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings,
-//           or Alias (shares the memory of the binding named in the last column),
+//           CandidateSlots N*kCandidateSlots,
+//   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
+//           Alias (another view of its binding's memory: a second declaration at that binding,
+//           which costs no descriptor; no kernel uses both names of one buffer),
 //   keep:   Scratch (rewritten by the kernels), State (the host keeps a copy between batches),
-//           File (kept, and written to state files in binding order), Constant (uploaded once),
-//           Walls (uploaded every batch),
-//   alias:  the binding whose memory an Alias row shares (-1 otherwise).
+//           File (kept, and written to state files in table order), Constant (uploaded once),
+//           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
-// rebuild; trans_list (transpose_fill) and contact_force (contact kernel) are rewritten after
-// that in the same step, and no kernel touches both names of one buffer.
+// rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
+// contact_force and torque_i (the contact kernel) are rewritten after that in the same step.
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
-// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32).
+// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
 #define REPOSE_BUFFERS(X) \
-  X(0, Pos, pos, vec4, Particles, Always, File, -1)               /* xyz position, w radius */ \
-  X(1, Vel, vel, vec4, Particles, Always, File, -1)               /* xyz velocity, w 1/mass */ \
-  X(2, Omega, omega, vec4, Particles, Always, File, -1)           /* xyz angular velocity, w 1/I */ \
-  X(3, Force, force, vec4, Particles, Always, File, -1)           /* xyz contact force sum */ \
-  X(4, Torque, torque, vec4, Particles, Always, File, -1)         /* xyz contact torque sum */ \
-  X(5, PosAtBuild, pos_at_build, vec4, Particles, Always, State, -1)  /* position at the list's build */ \
-  X(6, Material, material, uint, Particles, Always, Constant, -1) \
-  X(7, Pairs, pairs, PairParams, Pairs, Always, Constant, -1)     /* per material pair */ \
-  X(8, Walls, walls, WallState, WallRows, Always, Walls, -1)      /* every wall at every step of a batch */ \
-  X(9, Control, control, uint, Control, Always, State, -1)        /* kCtl* words */ \
-  X(10, CellOf, cell_of, uint, Particles, Always, Scratch, -1)    /* hash bucket of each particle */ \
-  X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch, -1)  /* counts, scanned to starts */ \
-  X(12, CellFill, cell_fill, uint, Buckets, Always, Scratch, -1)  /* scatter cursor */ \
-  X(13, Sorted, sorted, uint, Particles, Always, Scratch, -1)     /* ids by bucket, by id within one */ \
-  X(14, RowStart, row_start, uint, ParticlesPlusOne, Always, File, -1)  /* contacts per owner, scanned (CSR) */ \
-  X(15, Partner, partner, uint, Contacts, Always, File, -1)       /* j > i, or N + w for wall w */ \
-  X(16, Owner, owner, uint, Contacts, Always, State, -1)          /* i */ \
-  X(17, History, history, vec4, Contacts, Always, File, -1)       /* xyz tangential spring, w age (steps) */ \
-  X(18, OldRowStart, old_row_start, uint, ParticlesPlusOne, Always, Scratch, -1)  /* the list before a rebuild */ \
-  X(19, OldPartner, old_partner, uint, Contacts, Alias, Scratch, 26)  \
-  X(20, OldHistory, old_history, vec4, Contacts, Alias, Scratch, 21)  \
-  X(21, ContactForce, contact_force, vec4, Contacts, Always, Scratch, -1)  /* force on the owner i */ \
-  X(22, TorqueI, torque_i, vec4, Contacts, Always, Scratch, -1)   /* torque on i */ \
-  X(23, TorqueJ, torque_j, vec4, Contacts, FullEntries, Scratch, -1)  /* torque on j */ \
-  X(24, TransStart, trans_start, uint, ParticlesPlusOne, Always, State, -1)  /* contacts as the partner (CSR) */ \
-  X(25, TransFill, trans_fill, uint, Particles, Always, Scratch, -1)  \
-  X(26, TransList, trans_list, uint, Transposed, Always, State, -1)  /* contact indices, ascending per row */ \
-  X(27, WallForce, wall_force, vec4, Walls, Always, Scratch, -1)  /* force on each wall (output) */ \
-  X(28, Bodies, bodies, Body, Bodies, Bodies, File, -1)           /* rigid bodies (clumps) */ \
-  X(29, Subs, subs, SubSphere, Particles, Bodies, Constant, -1)   /* each particle's body and offset */ \
-  X(30, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File, -1)  /* EPSD springs */
+  X(0, Pos, pos, vec4, Particles, Always, File)               /* xyz position, w radius */ \
+  X(1, Vel, vel, vec4, Particles, Always, File)               /* xyz velocity, w 1/mass */ \
+  X(2, Omega, omega, vec4, Particles, Always, File)           /* xyz angular velocity, w 1/I */ \
+  X(3, Force, force, vec4, Particles, Always, File)           /* xyz contact force sum */ \
+  X(4, Torque, torque, vec4, Particles, Always, File)         /* xyz contact torque sum */ \
+  X(5, PosAtBuild, pos_at_build, vec4, Particles, Always, State)  /* position at the list's build */ \
+  X(6, Material, material, uint, Particles, Always, Constant) \
+  X(7, Pairs, pairs, PairParams, Pairs, Always, Constant)     /* per material pair */ \
+  X(8, Walls, walls, WallState, WallRows, Always, Walls)      /* every wall at every step of a batch */ \
+  X(9, Control, control, uint, Control, Always, State)        /* kCtl* words */ \
+  X(10, CellOf, cell_of, uint, Particles, Always, Scratch)    /* hash bucket of each particle */ \
+  X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch)  /* counts, scanned to starts */ \
+  X(12, CellFill, cell_fill, uint, Buckets, Always, Scratch)  /* scatter cursor */ \
+  X(13, Sorted, sorted, uint, Particles, Always, Scratch)     /* ids by bucket, by id within one */ \
+  X(14, RowStart, row_start, uint, ParticlesPlusOne, Always, File)  /* contacts per owner, scanned (CSR) */ \
+  X(15, Partner, partner, uint, Contacts, Always, File)       /* j > i, or N + w for wall w */ \
+  X(16, Owner, owner, uint, Contacts, Always, State)          /* i */ \
+  X(17, History, history, vec4, Contacts, Always, File)       /* xyz tangential spring, w age (steps) */ \
+  X(18, OldRowStart, old_row_start, uint, ParticlesPlusOne, Always, Scratch)  /* the list before a rebuild */ \
+  X(19, ContactForce, contact_force, vec4, Contacts, Always, Scratch)  /* force on the owner i */ \
+  X(20, TorqueI, torque_i, vec4, Contacts, Always, Scratch)   /* torque on i */ \
+  X(21, TorqueJ, torque_j, vec4, Contacts, FullEntries, Scratch)  /* torque on j */ \
+  X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
+  X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
+  X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, ascending per row */ \
+  X(25, WallForce, wall_force, vec4, Walls, Always, Scratch)  /* force on each wall (output) */ \
+  X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
+  X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
+  X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
+  X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
+  X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
+  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */
 
-#define REPOSE_BINDING_CONSTANT(binding, Name, name, type, count, need, keep, alias) \
-  REPOSE_CONST kBind##Name = binding;
-#define REPOSE_BINDING_COUNT(binding, Name, name, type, count, need, keep, alias) +1u
+// Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
+// again). 16 slots of 4 bytes fit in torque_i's 16 bytes per contact while the list has room
+// for 4 contacts per particle (Simulation allocates at least that).
+REPOSE_CONST kCandidateSlots = 16u;
+
+#define REPOSE_BINDING_CONSTANT(binding, Name, name, type, count, need, keep) REPOSE_CONST kBind##Name = binding;
+#define REPOSE_BINDING_COUNT(binding, Name, name, type, count, need, keep) REPOSE_COUNT_##need
+#define REPOSE_COUNT_Always +1u
+#define REPOSE_COUNT_FullEntries +1u
+#define REPOSE_COUNT_Bodies +1u
+#define REPOSE_COUNT_RollingSprings +1u
+#define REPOSE_COUNT_Alias
 REPOSE_BUFFERS(REPOSE_BINDING_CONSTANT)
+// Descriptors: the rows that are not aliases.
 REPOSE_CONST kBindingCount = 0u REPOSE_BUFFERS(REPOSE_BINDING_COUNT);
 #undef REPOSE_BINDING_CONSTANT
 #undef REPOSE_BINDING_COUNT

@@ -28,7 +28,7 @@ struct Layout {
 // Inputs that stay constant during a run, uploaded with every allocation: the table's
 // Constant rows (shaders/repose_shared.h; subs is empty without bodies).
 struct ConstantData {
-#define REPOSE_CONSTANT_MEMBER(binding, Name, name, type, count, need, keep, alias) REPOSE_CONSTANT_##keep(type, name)
+#define REPOSE_CONSTANT_MEMBER(binding, Name, name, type, count, need, keep) REPOSE_CONSTANT_##keep(type, name)
 #define REPOSE_CONSTANT_Constant(type, name) std::vector<gpu::type> name;
 #define REPOSE_CONSTANT_State(type, name)
 #define REPOSE_CONSTANT_File(type, name)
@@ -51,7 +51,7 @@ struct Dispatch {
 // the buffer table, named as the binding (pos, vel, ..., partner, history, bodies, ...), holding
 // the used part (contacts in the list, particles, bodies; empty when the case does not need it).
 struct HostState {
-#define REPOSE_STATE_MEMBER(binding, Name, name, type, count, need, keep, alias) REPOSE_STATE_##keep(type, name)
+#define REPOSE_STATE_MEMBER(binding, Name, name, type, count, need, keep) REPOSE_STATE_##keep(type, name)
 #define REPOSE_STATE_State(type, name) std::vector<gpu::type> name;
 #define REPOSE_STATE_File(type, name) std::vector<gpu::type> name;
 #define REPOSE_STATE_Constant(type, name)

@@ -24,8 +24,16 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::Walls: return l.n_walls;
     case BufferCount::Bodies: return l.n_bodies;
     case BufferCount::Control: return gpu::kControlWords;
+    case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;
   }
   return 0;
+}
+
+size_t binding_bytes(uint32_t binding, const Layout& l) {
+  size_t bytes = 0;
+  for (const BufferSpec& b : kBufferTable)
+    if (b.binding == binding) bytes = std::max(bytes, buffer_elements(b, l) * b.element_bytes);
+  return bytes;
 }
 
 size_t used_elements(const BufferSpec& b, const Layout& l, const HostState& s) {
@@ -41,7 +49,7 @@ size_t bytes_per_contact(const Layout& l) {
   one.capacity = 1;
   size_t bytes = 0;
   for (const BufferSpec& b : kBufferTable)
-    if (b.need != BufferNeed::Alias &&
+    if (!b.alias() &&
         (b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice || b.count == BufferCount::Transposed))
       bytes += buffer_elements(b, one) * b.element_bytes;
   return bytes;

@@ -12,7 +12,7 @@ namespace repose {
 
 enum class BufferCount {
   Particles, ParticlesPlusOne, Contacts, ContactsTwice, Transposed, Buckets, BucketsPlusOne, Pairs, WallRows,
-  Walls, Bodies, Control
+  Walls, Bodies, Control, CandidateSlots
 };
 enum class BufferNeed { Always, FullEntries, Bodies, RollingSprings, Alias };
 enum class BufferKeep { Scratch, State, File, Constant, Walls };
@@ -24,27 +24,39 @@ struct BufferSpec {
   BufferCount count;
   BufferNeed need;
   BufferKeep keep;
-  int alias;  // the binding whose memory an Alias row shares, else -1
+  constexpr bool alias() const { return need == BufferNeed::Alias; }
 };
 
-// The rows, indexed by binding.
-inline constexpr std::array<BufferSpec, gpu::kBindingCount> kBufferTable = {{
-#define REPOSE_SPEC(binding, Name, name, type, count, need, keep, alias) \
-  {binding, #name, sizeof(gpu::type), BufferCount::count, BufferNeed::need, BufferKeep::keep, alias},
+// The rows in table order (kRowPos, kRowVel, ...).
+enum BufferRow : uint32_t {
+#define REPOSE_ROW(binding, Name, name, type, count, need, keep) kRow##Name,
+  REPOSE_BUFFERS(REPOSE_ROW)
+#undef REPOSE_ROW
+  kBufferRows
+};
+
+inline constexpr std::array<BufferSpec, kBufferRows> kBufferTable = {{
+#define REPOSE_SPEC(binding, Name, name, type, count, need, keep) \
+  {binding, #name, sizeof(gpu::type), BufferCount::count, BufferNeed::need, BufferKeep::keep},
     REPOSE_BUFFERS(REPOSE_SPEC)
 #undef REPOSE_SPEC
 }};
 
-constexpr bool buffer_rows_in_binding_order() {
-  for (uint32_t b = 0; b < gpu::kBindingCount; ++b)
-    if (kBufferTable[b].binding != b) return false;
-  return true;
+// The buffers come first, as descriptors 0, 1, 2, ... (so kBufferTable[binding] is a buffer's own
+// row); the aliases follow, each naming one of them.
+constexpr bool buffer_bindings_in_order() {
+  uint32_t next = 0;
+  for (const BufferSpec& b : kBufferTable) {
+    if (b.alias() ? b.binding >= next : (b.binding != next++ || next > gpu::kBindingCount)) return false;
+  }
+  return next == gpu::kBindingCount;
 }
-static_assert(buffer_rows_in_binding_order(), "REPOSE_BUFFERS rows must be numbered 0, 1, 2, ...");
+static_assert(buffer_bindings_in_order(), "REPOSE_BUFFERS: buffers numbered 0, 1, 2, ..., then aliases naming one");
 
-// Elements of buffer b for the layout; 0 when the layout does not need it (an alias counts its
-// own elements; its memory is its target's).
+// Elements of buffer b for the layout; 0 when the layout does not need it.
 size_t buffer_elements(const BufferSpec& b, const Layout& l);
+// Bytes of a binding's memory: the largest of the rows that view it (a buffer and its aliases).
+size_t binding_bytes(uint32_t binding, const Layout& l);
 // Elements of a kept buffer that hold state (what download_state copies): all of them, or for
 // the contact list the entries in use, from the control words and trans_start of `s` (visited
 // before, in binding order).
@@ -55,12 +67,12 @@ size_t bytes_per_contact(const Layout& l);
 // f(spec, vector) for every State and File row, in binding order.
 template <class State, class F>
 void for_each_kept(State& s, F&& f) {
-#define REPOSE_VISIT(binding, Name, name, type, count, need, keep, alias) REPOSE_VISIT_##keep(binding, name)
-#define REPOSE_VISIT_State(binding, name) f(kBufferTable[binding], s.name);
-#define REPOSE_VISIT_File(binding, name) f(kBufferTable[binding], s.name);
-#define REPOSE_VISIT_Constant(binding, name)
-#define REPOSE_VISIT_Scratch(binding, name)
-#define REPOSE_VISIT_Walls(binding, name)
+#define REPOSE_VISIT(binding, Name, name, type, count, need, keep) REPOSE_VISIT_##keep(Name, name)
+#define REPOSE_VISIT_State(Name, name) f(kBufferTable[kRow##Name], s.name);
+#define REPOSE_VISIT_File(Name, name) f(kBufferTable[kRow##Name], s.name);
+#define REPOSE_VISIT_Constant(Name, name)
+#define REPOSE_VISIT_Scratch(Name, name)
+#define REPOSE_VISIT_Walls(Name, name)
   REPOSE_BUFFERS(REPOSE_VISIT)
 #undef REPOSE_VISIT_State
 #undef REPOSE_VISIT_File
@@ -73,12 +85,12 @@ void for_each_kept(State& s, F&& f) {
 // f(spec, vector) for every Constant row.
 template <class F>
 void for_each_constant(const ConstantData& c, F&& f) {
-#define REPOSE_VISIT(binding, Name, name, type, count, need, keep, alias) REPOSE_VISIT_##keep(binding, name)
-#define REPOSE_VISIT_Constant(binding, name) f(kBufferTable[binding], c.name);
-#define REPOSE_VISIT_State(binding, name)
-#define REPOSE_VISIT_File(binding, name)
-#define REPOSE_VISIT_Scratch(binding, name)
-#define REPOSE_VISIT_Walls(binding, name)
+#define REPOSE_VISIT(binding, Name, name, type, count, need, keep) REPOSE_VISIT_##keep(Name, name)
+#define REPOSE_VISIT_Constant(Name, name) f(kBufferTable[kRow##Name], c.name);
+#define REPOSE_VISIT_State(Name, name)
+#define REPOSE_VISIT_File(Name, name)
+#define REPOSE_VISIT_Scratch(Name, name)
+#define REPOSE_VISIT_Walls(Name, name)
   REPOSE_BUFFERS(REPOSE_VISIT)
 #undef REPOSE_VISIT_State
 #undef REPOSE_VISIT_File

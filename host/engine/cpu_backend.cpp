@@ -17,15 +17,15 @@ std::string CpuBackend::describe() const {
 
 void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
   layout_ = l;
-  for (const BufferSpec& b : kBufferTable)
-    if (b.alias < 0) storage_[b.binding].assign(std::max<size_t>(buffer_elements(b, l), 1) * b.element_bytes, std::byte{0});
+  for (uint32_t b = 0; b < gpu::kBindingCount; ++b)
+    storage_[b].assign(std::max<size_t>(binding_bytes(b, l), 16), std::byte{0});
   for_each_constant(constants, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
   point_buffers();
 }
 
 void CpuBackend::point_buffers() {
-#define REPOSE_POINT(binding, Name, name, type, count, need, keep, alias) \
-  buf_.name = reinterpret_cast<gpu::type*>(storage_[alias >= 0 ? alias : binding].data());
+#define REPOSE_POINT(binding, Name, name, type, count, need, keep) \
+  buf_.name = reinterpret_cast<gpu::type*>(storage_[binding].data());
   REPOSE_BUFFERS(REPOSE_POINT)
 #undef REPOSE_POINT
 }

@@ -34,18 +34,16 @@ static void down(const vk::Buffer& src, std::vector<T>& dst, size_t count) {
 void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
   layout_ = l;
   std::array<const vk::Buffer*, kBindingCount> bound{};
-  for (const BufferSpec& spec : kBufferTable) {
-    uint32_t i = spec.binding;
-    buffers_[i] = vk::Buffer();
-    if (spec.alias >= 0) continue;  // bound to its target below
-    size_t bytes = buffer_elements(spec, l) * spec.element_bytes;
+  for (uint32_t i = 0; i < kBindingCount; ++i) {
+    size_t bytes = binding_bytes(i, l);
     if (bytes > ctx_.info().max_storage_range)
-      throw vk::VulkanError(std::string("buffer ") + spec.name + " needs " + std::to_string(bytes) +
+      throw vk::VulkanError(std::string("buffer ") + kBufferTable[i].name + " needs " + std::to_string(bytes) +
                             " bytes, above the device's storage-buffer range");
     VkBufferUsageFlags extra = i == kBindControl ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
+    buffers_[i] = vk::Buffer();
     buffers_[i] = vk::Buffer(ctx_, std::max<size_t>(bytes, 16), extra);
+    bound[i] = &buffers_[i];
   }
-  for (const BufferSpec& spec : kBufferTable) bound[spec.binding] = &buffers_[spec.alias >= 0 ? spec.alias : spec.binding];
   // Zero everything once so no kernel ever reads uninitialised memory.
   ctx_.submit_and_wait([&](VkCommandBuffer cb) {
     for (auto& buf : buffers_)

@@ -13,7 +13,7 @@ layout(local_size_x_id = 0) in;
 #define KB
 
 // Every buffer of the table in repose_shared.h as B_name[].
-#define REPOSE_DECLARE_BUFFER(index, Name, name, type, count, need, keep, alias) \
+#define REPOSE_DECLARE_BUFFER(index, Name, name, type, count, need, keep) \
   layout(std430, set = 0, binding = index) buffer Name##Buf { type B_##name[]; };
 REPOSE_BUFFERS(REPOSE_DECLARE_BUFFER)
 #undef REPOSE_DECLARE_BUFFER

@@ -132,6 +132,13 @@ KFN(void, write_candidate) uint base, uint k, uint i, uint partner, uint old_beg
   if (springs) B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
 }
 
+// Candidate k of i found by a walk: written to i's row in a fill walk; in the count walk kept in
+// i's candidate slots (the first kCandidateSlots), so contact_fill need not walk again.
+KFN(void, emit_candidate) bool fill, uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
+  if (fill) write_candidate(KB base, k, i, partner, old_begin, old_end);
+  else if (k < kCandidateSlots) B_candidates[i * kCandidateSlots + k] = partner;
+}
+
 // True when particles i and j are sub-spheres of one body (no contact inside a clump).
 KFN(bool, same_body) uint i, uint j) {
   return (PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x;
@@ -185,7 +192,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
           if (!near_pair(pi, pj, PC.skin)) continue;
-          if (fill) write_candidate(KB base, k, i, j, old_begin, old_end);
+          emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
           k = k + 1u;
         }
       }
@@ -196,7 +203,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     uint j = B_sorted[s];
     if (j == i || (large && j < i)) continue;
     if (!near_pair(pi, B_pos[j], PC.skin) || same_body(KB i, j)) continue;
-    if (fill) write_candidate(KB base, k, i, j, old_begin, old_end);
+    emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
     k = k + 1u;
   }
   for (uint w = 0u; w < PC.n_walls; ++w) {
@@ -204,7 +211,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     vec3 n;
     float overlap;
     if (!wall_contact(ws, xyz(pi), pi.w, PC.skin, n, overlap)) continue;
-    if (fill) write_candidate(KB base, k, i, PC.n_particles + w, old_begin, old_end);
+    emit_candidate(KB fill, base, k, i, PC.n_particles + w, old_begin, old_end);
     k = k + 1u;
   }
   return k;
@@ -219,9 +226,19 @@ KERNEL(k_contact_count) uint i) {
   if (i < PC.n_particles) B_trans_fill[i] = 0u;
 }
 
+// Writes i's row from the candidates contact_count kept, or walks again when it found more.
 KERNEL(k_contact_fill) uint i) {
   if (i >= PC.n_particles) return;
-  walk_neighbours(KB i, true, B_row_start[i]);
+  uint base = B_row_start[i];
+  uint count = B_row_start[i + 1u] - base;
+  if (count > kCandidateSlots) {
+    walk_neighbours(KB i, true, base);
+    return;
+  }
+  uint old_begin = B_old_row_start[i];
+  uint old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
+  for (uint k = 0u; k < count; ++k)
+    write_candidate(KB base, k, i, B_candidates[i * kCandidateSlots + k], old_begin, old_end);
 }
 
 KERNEL(k_transpose_count) uint c) {
