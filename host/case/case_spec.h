@@ -226,6 +226,9 @@ struct ExperimentSpec {
   // repose
   std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
   double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
+  bool end_when_clear = true;      // the lift is also over once the lifted wall has touched no
+                                   // particle for two samples: the rest of its motion cannot
+                                   // change the heap (repose.cpp)
   double settle_energy = 1e-4;     // J: settled when no particle (or body) has more
   std::string view = "y";          // camera looks along +y ("y") or +x ("x")
   std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)

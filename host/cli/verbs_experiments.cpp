@@ -49,8 +49,8 @@ int run_experiment(int argc, char** argv) {
   std::string descriptions;
   for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
   CLI::App app{"Run a virtual experiment: " + descriptions + "."};
-  std::string type, case_path, backend = "cpu", out_dir;
-  unsigned threads = 1;
+  std::string type, case_path, backend = "auto", out_dir;
+  unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
   double height = 0;
@@ -61,13 +61,16 @@ int run_experiment(int argc, char** argv) {
   app.add_option("case", case_path, "case file (TOML) with an [experiment] table")->required();
   auto* height_opt = app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case")
                          ->check(finite_positive());
-  app.add_option("--backend", backend, "cpu (default) or vulkan")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--threads", threads, "cpu backend threads (default 1)")->check(thread_count());
+  app.add_option("--backend", backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), cpu or vulkan")
+      ->check(CLI::IsMember({"auto", "vulkan", "cpu"}));
+  app.add_option("--threads", threads, "cpu backend threads (default all cores)")->check(thread_count());
   app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)");
   app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
   app.add_flag("--quiet", quiet, "no progress output");
+  bool profile = false;
+  app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
   int replicates = 1;
   app.add_option("--replicates", replicates,
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
@@ -98,9 +101,11 @@ int run_experiment(int argc, char** argv) {
     std::fprintf(stderr, "repose experiment: %s\n", e.what());
     return 2;
   }
+  BackendChoice chosen = resolve_backend(backend, device);
   ExperimentRun run;
-  run.backend = backend;
-  run.device = device;
+  run.backend = chosen.backend;
+  run.device = chosen.device;
+  run.profile = profile;
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;

@@ -18,7 +18,7 @@
 namespace repose {
 
 struct CaseRunOptions {
-  std::string backend = "vulkan";
+  std::string backend = "auto";      // auto: a hardware GPU, else cpu (resolve_backend)
   int device = -1;
   unsigned threads = 0;                // cpu backend; 0: every core
   std::string variant;                 // kernel variant; empty: the backend's fastest

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "engine/buffer_table.h"
 #include "util/atomic_file.h"
 
 namespace repose {
@@ -17,6 +18,26 @@ template <class T>
 void put_array(std::ostream& out, const std::vector<T>& v) {
   out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(T)));
 }
+
+// The File rows of the buffer table, in binding order, each with its count from the header:
+// particles N (N + 1 for row starts), contacts C, bodies B, and R for contact state that only
+// some cases keep (the rolling springs). A new row of another shape needs a new format version.
+template <class State, class F>
+void for_each_file_array(State& s, F&& f) {
+  for_each_kept(s, [&](const BufferSpec& b, auto& v) {
+    if (b.keep == BufferKeep::File) f(b, v);
+  });
+}
+
+size_t file_count(const BufferSpec& b, uint32_t n, uint32_t c, uint32_t bodies, uint32_t r) {
+  switch (b.count) {
+    case BufferCount::Particles: return n;
+    case BufferCount::ParticlesPlusOne: return size_t(n) + 1;
+    case BufferCount::Bodies: return bodies;
+    default: return b.need == BufferNeed::Always ? c : r;
+  }
+}
+
 
 int version_of(const char magic[8]) {
   if (std::memcmp(magic, kStateMagic, 8) == 0) return 4;
@@ -40,16 +61,8 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
     put(out, uint32_t(s.rolling_spring.size()));
     put(out, step);
     put(out, time);
-    put_array(out, s.pos);
-    put_array(out, s.vel);
-    put_array(out, s.omega);
-    put_array(out, s.force);
-    put_array(out, s.torque);
-    put_array(out, s.row_start);
-    put_array(out, s.partner);
-    put_array(out, s.history);
-    put_array(out, s.bodies);
-    put_array(out, s.rolling_spring);
+    for_each_file_array(s, [&](const BufferSpec&, const auto& v) { put_array(out, v); });
+    // Version 4: the neighbour list's bookkeeping, so a restart continues with the same bytes.
     out.write(reinterpret_cast<const char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
     put_array(out, s.pos_at_build);
     put_array(out, s.owner);
@@ -81,20 +94,19 @@ HostState read_state_file(const std::string& path, StateFileInfo& info) {
     v.resize(k);
     in.read(reinterpret_cast<char*>(v.data()), std::streamsize(k * sizeof(v[0])));
   };
-  get(s.pos, n); get(s.vel, n); get(s.omega, n); get(s.force, n); get(s.torque, n);
-  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c);
-  if (version == 2) {
-    // Version 2 bodies are 144 B: the same fields without the trailing drag areas.
-    constexpr size_t kV2Body = 144;
-    static_assert(sizeof(gpu::Body) > kV2Body);
-    std::vector<char> raw(b * kV2Body);
-    in.read(raw.data(), std::streamsize(raw.size()));
-    s.bodies.assign(b, gpu::Body{});
-    for (size_t k = 0; k < b; ++k) std::memcpy(&s.bodies[k], raw.data() + k * kV2Body, kV2Body);
-  } else {
-    get(s.bodies, b);
-  }
-  get(s.rolling_spring, r);
+  for_each_file_array(s, [&](const BufferSpec& spec, auto& v) {
+    if (version == 2 && spec.binding == gpu::kBindBodies) {
+      // Version 2 bodies are 144 B: the same fields without the trailing drag areas.
+      constexpr size_t kV2Body = 144;
+      static_assert(sizeof(gpu::Body) > kV2Body);
+      std::vector<char> raw(b * kV2Body);
+      in.read(raw.data(), std::streamsize(raw.size()));
+      s.bodies.assign(b, gpu::Body{});
+      for (size_t k = 0; k < b; ++k) std::memcpy(&s.bodies[k], raw.data() + k * kV2Body, kV2Body);
+      return;
+    }
+    get(v, file_count(spec, n, c, b, r));
+  });
   if (version >= 4) {
     s.control.assign(gpu::kControlWords, 0u);
     in.read(reinterpret_cast<char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
