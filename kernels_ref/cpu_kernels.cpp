@@ -34,6 +34,7 @@ namespace repose::gpu {
 #define B_bodies buf.bodies
 #define B_subs buf.subs
 #define B_rolling_spring buf.rolling_spring
+#define B_candidates buf.candidates
 #define PC buf.push
 #define KERNEL(name) inline void name(Buffers& buf,
 #define KFN(ret, name) inline ret name(Buffers& buf,
@@ -98,14 +99,17 @@ void run_scan(Buffers& buf, const ScanPush& push) {
 
 void run_wall_reduce(Buffers& buf, uint n_walls) {
   constexpr uint W = kWallReduceWorkgroup;
-  uint total = buf.control[kCtlContacts];
+  uint limit = buf.control[kCtlContacts];
   for (uint w = 0; w < n_walls; ++w) {
     uint partner = buf.push.n_particles + w;
     float sx[W], sy[W], sz[W];
     for (uint t = 0; t < W; ++t) {
       vec3 acc(0.0f);
-      for (uint c = t; c < total; c += W)
-        if (buf.partner[c] == partner) acc = acc - xyz(buf.contact_force[c]);
+      for (uint i = t; i < buf.push.n_particles; i += W) {
+        uint end = min(buf.row_start[i + 1u], limit);
+        for (uint c = min(buf.row_start[i], limit); c < end; ++c)
+          if (buf.partner[c] == partner) acc = acc - xyz(buf.contact_force[c]);
+      }
       sx[t] = acc.x;
       sy[t] = acc.y;
       sz[t] = acc.z;

@@ -9,39 +9,11 @@
 
 namespace repose::gpu {
 
-// Pointers to every buffer of the descriptor set, in the shaders' names (B_pos -> pos, ...).
+// Pointers to every buffer of the table in repose_shared.h, in the shaders' names (B_pos -> pos).
 struct Buffers {
-  vec4* pos = nullptr;
-  vec4* vel = nullptr;
-  vec4* omega = nullptr;
-  vec4* force = nullptr;
-  vec4* torque = nullptr;
-  vec4* pos_at_build = nullptr;
-  uint* material = nullptr;
-  PairParams* pairs = nullptr;
-  WallState* walls = nullptr;
-  uint* control = nullptr;
-  uint* cell_of = nullptr;
-  uint* cell_start = nullptr;
-  uint* cell_fill = nullptr;
-  uint* sorted = nullptr;
-  uint* row_start = nullptr;
-  uint* partner = nullptr;
-  uint* owner = nullptr;
-  vec4* history = nullptr;
-  uint* old_row_start = nullptr;
-  uint* old_partner = nullptr;
-  vec4* old_history = nullptr;
-  vec4* contact_force = nullptr;
-  vec4* torque_i = nullptr;
-  vec4* torque_j = nullptr;
-  uint* trans_start = nullptr;
-  uint* trans_fill = nullptr;
-  uint* trans_list = nullptr;
-  vec4* wall_force = nullptr;
-  Body* bodies = nullptr;
-  SubSphere* subs = nullptr;
-  vec4* rolling_spring = nullptr;
+#define REPOSE_BUFFER_POINTER(binding, Name, name, type, count, need, keep) type* name = nullptr;
+  REPOSE_BUFFERS(REPOSE_BUFFER_POINTER)
+#undef REPOSE_BUFFER_POINTER
   SimPush push{};
 };
 

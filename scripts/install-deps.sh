@@ -7,6 +7,7 @@ packages=(
   glslc glslang-tools spirv-tools
   libeigen3-dev libglm-dev catch2 libtomlplusplus-dev libcli11-dev libstb-dev
   libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev
+  git
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -5,5 +5,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 ./build/repose devices
-./build/repose run cases/settle_box.toml --out out/settle_box --state-out out/settle_box/final.state "$@"
+# out/settle_box is this script's own folder: each run replaces the previous one's results.
+./build/repose run cases/settle_box.toml --out out/settle_box --overwrite --state-out out/settle_box/final.state "$@"
 echo "summary:"; cat out/settle_box/summary.json

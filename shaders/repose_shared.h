@@ -12,46 +12,79 @@ namespace repose::gpu {
 #define REPOSE_CONST const uint
 #endif
 
-// ---- Descriptor bindings: one storage-buffer set shared by every kernel (set 0). ----
-REPOSE_CONST kBindPos = 0;           // vec4 [N]   xyz position, w radius
-REPOSE_CONST kBindVel = 1;           // vec4 [N]   xyz velocity, w 1/mass
-REPOSE_CONST kBindOmega = 2;         // vec4 [N]   xyz angular velocity, w 1/moment of inertia
-REPOSE_CONST kBindForce = 3;         // vec4 [N]   xyz contact force sum (no gravity)
-REPOSE_CONST kBindTorque = 4;        // vec4 [N]   xyz contact torque sum
-REPOSE_CONST kBindPosAtBuild = 5;    // vec4 [N]   position when the contact list was built
-REPOSE_CONST kBindMaterial = 6;      // uint [N]
-REPOSE_CONST kBindPairs = 7;         // PairParams [M*M]
-REPOSE_CONST kBindWalls = 8;         // WallState [steps_per_batch * W]
-REPOSE_CONST kBindControl = 9;       // uint [kControlWords]
-REPOSE_CONST kBindCellOf = 10;       // uint [N]   hash bucket of each particle
-REPOSE_CONST kBindCellStart = 11;    // uint [T+2] counts, scanned in place to starts
-REPOSE_CONST kBindCellFill = 12;     // uint [T+1] scatter cursor
-REPOSE_CONST kBindSorted = 13;       // uint [N]   particle ids by bucket, by id within a bucket
-REPOSE_CONST kBindRowStart = 14;     // uint [N+1] contacts per owner, scanned in place (CSR)
-REPOSE_CONST kBindPartner = 15;      // uint [C]   j > i for particles, N + w for walls
-REPOSE_CONST kBindOwner = 16;        // uint [C]   i
-REPOSE_CONST kBindHistory = 17;      // vec4 [C]   xyz tangential spring, w contact age (steps)
-REPOSE_CONST kBindOldRowStart = 18;  // uint [N+1] the list before a rebuild
-REPOSE_CONST kBindOldPartner = 19;   // uint [C]   same memory as trans_list (see below)
-REPOSE_CONST kBindOldHistory = 20;   // vec4 [C]   same memory as contact_force (see below)
-REPOSE_CONST kBindContactForce = 21; // vec4 [C]   force on the owner i (j gets minus it)
-REPOSE_CONST kBindTorqueI = 22;      // vec4 [C]   torque on i
-REPOSE_CONST kBindTorqueJ = 23;      // vec4 [C]   torque on j
-REPOSE_CONST kBindTransStart = 24;   // uint [N+1] contacts in which a particle is the partner (CSR)
-REPOSE_CONST kBindTransFill = 25;    // uint [N]
-REPOSE_CONST kBindTransList = 26;    // uint [C]   contact indices, ascending within a row
-REPOSE_CONST kBindWallForce = 27;    // vec4 [W]   force on each wall (output only)
-REPOSE_CONST kBindBodies = 28;       // Body [B]   rigid bodies (clumps), only with kFlagBodies
-REPOSE_CONST kBindSubSpheres = 29;   // SubSphere [N] each particle's body and body-frame offset
-REPOSE_CONST kBindRollingSpring = 30;  // vec4 [2C] with kFlagRollingSpring: xyz rolling spring
-                                       // torque of contact c at [c]; a rebuild keeps the old
-                                       // list's at [capacity + c] (one binding, not two: the
-                                       // per-stage limit on lavapipe is 32)
-REPOSE_CONST kBindingCount = 31;
+// ---- Device buffers: one table, one row per storage buffer (descriptor set 0). ----
+// Everything about a buffer follows from its row: the kBind* index below, its GLSL declaration
+// (B_name in kernels/glsl_prelude.glsl), the CPU twin's pointer (kernels_ref/cpu_kernels.h),
+// its size on both backends, whether the host keeps a copy (HostState) and writes it to state
+// files (host/engine/buffer_table.h). Adding per-contact state is a row here plus the kernel
+// that uses it. Columns:
+//   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
+//   count:  Particles N, ParticlesPlusOne N+1, Contacts C (the list capacity), ContactsTwice 2C,
+//           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
+//           Pairs M*M, WallRows steps_per_batch*W, Walls W, Bodies B, Control kControlWords,
+//           CandidateSlots N*kCandidateSlots,
+//   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
+//           Alias (another view of its binding's memory: a second declaration at that binding,
+//           which costs no descriptor; no kernel uses both names of one buffer),
+//   keep:   Scratch (rewritten by the kernels), State (the host keeps a copy between batches),
+//           File (kept, and written to state files in table order), Constant (uploaded once),
+//           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
-// rebuild; trans_list (transpose_fill) and contact_force (contact kernel) are rewritten after
-// that in the same step, and no kernel touches both names of one buffer. Both backends bind one
-// buffer to both bindings.
+// rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
+// contact_force and torque_i (the contact kernel) are rewritten after that in the same step.
+// The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
+// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
+#define REPOSE_BUFFERS(X) \
+  X(0, Pos, pos, vec4, Particles, Always, File)               /* xyz position, w radius */ \
+  X(1, Vel, vel, vec4, Particles, Always, File)               /* xyz velocity, w 1/mass */ \
+  X(2, Omega, omega, vec4, Particles, Always, File)           /* xyz angular velocity, w 1/I */ \
+  X(3, Force, force, vec4, Particles, Always, File)           /* xyz contact force sum */ \
+  X(4, Torque, torque, vec4, Particles, Always, File)         /* xyz contact torque sum */ \
+  X(5, PosAtBuild, pos_at_build, vec4, Particles, Always, State)  /* position at the list's build */ \
+  X(6, Material, material, uint, Particles, Always, Constant) \
+  X(7, Pairs, pairs, PairParams, Pairs, Always, Constant)     /* per material pair */ \
+  X(8, Walls, walls, WallState, WallRows, Always, Walls)      /* every wall at every step of a batch */ \
+  X(9, Control, control, uint, Control, Always, State)        /* kCtl* words */ \
+  X(10, CellOf, cell_of, uint, Particles, Always, Scratch)    /* hash bucket of each particle */ \
+  X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch)  /* counts, scanned to starts */ \
+  X(12, CellFill, cell_fill, uint, Buckets, Always, Scratch)  /* scatter cursor */ \
+  X(13, Sorted, sorted, uint, Particles, Always, Scratch)     /* ids by bucket, by id within one */ \
+  X(14, RowStart, row_start, uint, ParticlesPlusOne, Always, File)  /* contacts per owner, scanned (CSR) */ \
+  X(15, Partner, partner, uint, Contacts, Always, File)       /* j > i, or N + w for wall w */ \
+  X(16, Owner, owner, uint, Contacts, Always, State)          /* i */ \
+  X(17, History, history, vec4, Contacts, Always, File)       /* xyz tangential spring, w age (steps) */ \
+  X(18, OldRowStart, old_row_start, uint, ParticlesPlusOne, Always, Scratch)  /* the list before a rebuild */ \
+  X(19, ContactForce, contact_force, vec4, Contacts, Always, Scratch)  /* force on the owner i */ \
+  X(20, TorqueI, torque_i, vec4, Contacts, Always, Scratch)   /* torque on i */ \
+  X(21, TorqueJ, torque_j, vec4, Contacts, FullEntries, Scratch)  /* torque on j */ \
+  X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
+  X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
+  X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, ascending per row */ \
+  X(25, WallForce, wall_force, vec4, Walls, Always, Scratch)  /* force on each wall (output) */ \
+  X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
+  X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
+  X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
+  X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
+  X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
+  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */
+
+// Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
+// again). 16 slots of 4 bytes fit in torque_i's 16 bytes per contact while the list has room
+// for 4 contacts per particle (Simulation allocates at least that).
+REPOSE_CONST kCandidateSlots = 16u;
+
+#define REPOSE_BINDING_CONSTANT(binding, Name, name, type, count, need, keep) REPOSE_CONST kBind##Name = binding;
+#define REPOSE_BINDING_COUNT(binding, Name, name, type, count, need, keep) REPOSE_COUNT_##need
+#define REPOSE_COUNT_Always +1u
+#define REPOSE_COUNT_FullEntries +1u
+#define REPOSE_COUNT_Bodies +1u
+#define REPOSE_COUNT_RollingSprings +1u
+#define REPOSE_COUNT_Alias
+REPOSE_BUFFERS(REPOSE_BINDING_CONSTANT)
+// Descriptors: the rows that are not aliases.
+REPOSE_CONST kBindingCount = 0u REPOSE_BUFFERS(REPOSE_BINDING_COUNT);
+#undef REPOSE_BINDING_CONSTANT
+#undef REPOSE_BINDING_COUNT
 
 // ---- Control words: flags and indirect-dispatch arguments written on the device. ----
 REPOSE_CONST kCtlNeedRebuild = 0;    // set by the skin check, read by rebuild_args

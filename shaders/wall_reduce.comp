@@ -1,6 +1,7 @@
 #version 450
-// Force on each wall: one workgroup per wall sums -F over the contacts with that wall, strided
-// per thread in contact order, then a fixed tree. The CPU twin repeats the same order exactly.
+// Force on each wall: one workgroup per wall sums -F over the contacts with that wall, each
+// thread over every 256th particle's row (by particle, not by list slot, so the sum does not
+// depend on what else the list holds), then a fixed tree. The CPU twin repeats the same order.
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/common.h"
 
@@ -12,10 +13,13 @@ void main() {
   uint w = gl_WorkGroupID.x;
   uint t = gl_LocalInvocationID.x;
   uint partner = PC.n_particles + w;
-  uint total = B_control[kCtlContacts];
+  uint limit = B_control[kCtlContacts];
   precise vec3 acc = vec3(0.0f);
-  for (uint c = t; c < total; c += kWallReduceWorkgroup)
-    if (B_partner[c] == partner) acc = acc - xyz(B_contact_force[c]);
+  for (uint i = t; i < PC.n_particles; i += kWallReduceWorkgroup) {
+    uint end = min(B_row_start[i + 1u], limit);
+    for (uint c = min(B_row_start[i], limit); c < end; ++c)
+      if (B_partner[c] == partner) acc = acc - xyz(B_contact_force[c]);
+  }
   sum_x[t] = acc.x;
   sum_y[t] = acc.y;
   sum_z[t] = acc.z;

@@ -2,8 +2,11 @@
 // together) and its exit status. Shared by the test folders that exercise verbs end to end.
 #pragma once
 #include <cstdio>
+#include <fcntl.h>
 #include <string>
 #include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
 
 namespace repose::test {
 
@@ -12,8 +15,9 @@ struct CliRun {
   std::string output;  // stdout and stderr
 };
 
-inline CliRun run_repose(const std::string& arguments) {
-  const std::string command = std::string(REPOSE_BINARY) + " " + arguments + " 2>&1";
+inline CliRun run_repose(const std::string& arguments, const std::string& cwd = "") {
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(REPOSE_BINARY) + " " +
+                              arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return {-1, "popen failed for: " + command};
   std::string output;
@@ -22,6 +26,21 @@ inline CliRun run_repose(const std::string& arguments) {
   while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+// Starts `repose ARGS...` in the background (stdout and stderr to `log`), for tests that signal
+// it; returns its process id (waitpid it).
+inline pid_t spawn_repose(const std::vector<std::string>& args, const std::string& log) {
+  pid_t pid = fork();
+  if (pid != 0) return pid;
+  int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  dup2(fd, 1);
+  dup2(fd, 2);
+  std::vector<char*> argv{const_cast<char*>(REPOSE_BINARY)};
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(REPOSE_BINARY, argv.data());
+  _exit(127);
 }
 
 }  // namespace repose::test

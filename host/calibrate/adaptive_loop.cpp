@@ -11,6 +11,7 @@
 #include "calibrate/design_runs.h"
 #include "calibrate/gaussian_process.h"
 #include "stats/halton.h"
+#include "stats/local_search.h"
 
 namespace repose::calibrate {
 
@@ -42,37 +43,12 @@ std::string loop_id(int index) {
 
 // Maximises `score` over the given points and quasi-random candidates, then polishes the best by
 // a shrinking compass search inside the coded cube.
-template <class Score>
-Eigen::VectorXd maximise(int k, const Eigen::MatrixXd& extra, Score score, double& top) {
-  Eigen::VectorXd arg;
-  top = -INFINITY;
-  auto consider = [&](const Eigen::VectorXd& p) {
-    double v = score(p);
-    if (v > top) {
-      top = v;
-      arg = p;
-    }
-  };
-  for (int i = 0; i < extra.rows(); ++i) consider(extra.row(i).transpose());
-  for (const auto& p : halton_points(k, 1, 1024 * k)) consider(p);
-  for (double step = 0.05; step > 1e-4; step *= 0.5) {
-    bool moved = true;
-    while (moved) {
-      moved = false;
-      for (int d = 0; d < k; ++d)
-        for (double dir : {-1.0, 1.0}) {
-          Eigen::VectorXd p = arg;
-          p[d] = std::clamp(p[d] + dir * step, -1.0, 1.0);
-          double v = score(p);
-          if (v > top + 1e-15) {
-            top = v;
-            arg = p;
-            moved = true;
-          }
-        }
-    }
-  }
-  return arg;
+Eigen::VectorXd maximise(int k, const Eigen::MatrixXd& extra, const std::function<double(const Eigen::VectorXd&)>& score,
+                         double& top) {
+  std::vector<Eigen::VectorXd> candidates;
+  for (int i = 0; i < extra.rows(); ++i) candidates.push_back(extra.row(i).transpose());
+  for (const auto& p : halton_points(k, 1, 1024 * k)) candidates.push_back(p);
+  return stats::compass_maximise(score, candidates, top);
 }
 
 // Expected improvement towards the target, `best` the smallest |mean - target| at the runs so far
@@ -108,6 +84,21 @@ double noise_sd(const GaussianProcess& gp) {
 }
 
 }  // namespace
+
+std::uint64_t loop_seed(const CampaignPlan& plan, int index) {
+  return plan.adaptive.seed_per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index)
+                                    : plan.base_seed;
+}
+
+std::vector<RunSpec> adaptive_start_runs(const CampaignPlan& plan) {
+  std::vector<RunSpec> start;
+  int index = 0;
+  for (const auto& p : halton_points(int(plan.factors.size()), 1, plan.adaptive.initial)) {
+    ++index;
+    start.push_back({loop_id(index), "loop", index, 0, loop_seed(plan, index), to_actual(plan, p)});
+  }
+  return start;
+}
 
 std::vector<Eigen::VectorXd> halton_points(int k, int first, int count) {
   static const int primes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
@@ -149,18 +140,10 @@ LoopDecision decide(const CampaignPlan& plan, const Eigen::MatrixXd& x, const Ei
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet) {
   const int k = int(plan.factors.size());
   const double target = plan.measured, tol = plan.absolute_tolerance();
-  const bool per_run = plan.adaptive.seed_per_run;
-  auto seed_of = [&](int index) {
-    return per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index) : plan.base_seed;
-  };
+  auto seed_of = [&](int index) { return loop_seed(plan, index); };
   AdaptiveOutcome out;
   out.initial = plan.adaptive.initial;
-  std::vector<RunSpec> start;
-  int index = 0;
-  for (const auto& p : halton_points(k, 1, plan.adaptive.initial)) {
-    ++index;
-    start.push_back({loop_id(index), "loop", index, 0, seed_of(index), to_actual(plan, p)});
-  }
+  std::vector<RunSpec> start = adaptive_start_runs(plan);
   executor.run(start, "loop start");
   std::vector<double> proposal_ei(start.size(), 0.0);
 

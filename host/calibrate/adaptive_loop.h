@@ -46,6 +46,9 @@ LoopDecision decide(const CampaignPlan& plan, const Eigen::MatrixXd& x, const Ei
 
 // Points of the space-filling start: Halton points 1..n of the coded cube [-1, 1]^k.
 std::vector<Eigen::VectorXd> halton_points(int k, int first, int count);
+// The loop's space-filling start (loop-001 ...), and the packing seed of loop run `index`.
+std::vector<RunSpec> adaptive_start_runs(const CampaignPlan& plan);
+std::uint64_t loop_seed(const CampaignPlan& plan, int index);
 
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet);
 

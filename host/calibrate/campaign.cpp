@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <limits>
 #include <filesystem>
+#include <sstream>
 #include <set>
 
 #include "calibrate/adaptive_loop.h"
@@ -101,7 +102,13 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   std::printf("calibrate %s: %s, %d simulations (%d run now)\n", plan.name.c_str(), res.method.c_str(), record.simulations,
               executor.simulated());
   for (const auto& p : res.parameters)
-    std::printf("  %s = %.6g +- %.3g  (target met for %.6g .. %.6g)\n", p.name.c_str(), p.value, p.uncertainty, p.set_low, p.set_high);
+    if (res.target_reached)
+      std::printf("  %s = %.6g +- %.3g  (target met for %.6g .. %.6g)\n", p.name.c_str(), p.value, p.uncertainty, p.set_low, p.set_high);
+    else
+      std::printf("  %s = %.6g  (the closest the model gets: the target is out of reach in the factor ranges)\n", p.name.c_str(), p.value);
+  if (!res.target_reached)
+    std::printf("  the model predicts %s = %.6g at best, the target is %.6g +- %.3g: widen the ranges or check the measured value\n",
+                plan.response.c_str(), res.predicted, plan.measured, plan.absolute_tolerance());
   if (record.loop) {
     std::printf("  surrogate at the chosen point: %s = %.6g +- %.3g (run noise sd %.3g)\n", plan.response.c_str(),
                 res.predicted, res.predicted_sd, res.run_noise_sd);
@@ -110,11 +117,37 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
     else
       std::printf("  target not met within the loop's budget of %d\n", plan.adaptive.budget);
   }
-  std::printf("  verification: %s = %.6g +- %.3g over %zu runs, measured %.6g, error %+.2f %%%s\n", plan.response.c_str(),
-              res.verification_mean, res.verification_sd, res.verification.size(), plan.measured, 100 * res.verification_error,
-              res.target_reached ? "" : " (target NOT reached)");
+  if (res.verification.empty())
+    std::printf("  verification: none (verification.runs = 0): the calibrated parameters are not checked by simulation\n");
+  else
+    std::printf("  verification: %s = %.6g +- %.3g over %zu runs, measured %.6g, error %+.2f %%%s\n", plan.response.c_str(),
+                res.verification_mean, res.verification_sd, res.verification.size(), plan.measured, 100 * res.verification_error,
+                res.target_reached ? "" : " (target NOT reached)");
   std::printf("  report: %s, database: %s\n", summary.report_path.c_str(), db_path.c_str());
   return summary;
+}
+
+std::string describe_planned_runs(const CampaignPlan& plan) {
+  std::ostringstream out;
+  auto line = [&](const RunSpec& r) {
+    out << "  " << r.id << "  seed " << r.seed;
+    for (size_t i = 0; i < plan.factors.size(); ++i) out << "  " << plan.factors[i].name << " = " << r.x[i];
+    out << "\n";
+  };
+  if (plan.mode == CampaignMode::design) {
+    std::vector<RunSpec> design = design_runs(plan);
+    out << design.size() << " design runs, in run order:\n";
+    for (const auto& r : design) line(r);
+  } else {
+    std::vector<RunSpec> start = adaptive_start_runs(plan);
+    out << start.size() << " start runs of the adaptive loop (space-filling):\n";
+    for (const auto& r : start) line(r);
+    out << "then up to " << plan.adaptive.budget - int(start.size())
+        << " runs where the surrogate expects the largest improvement (budget " << plan.adaptive.budget << ")\n";
+  }
+  out << "then " << plan.verification_runs << " verification run" << (plan.verification_runs == 1 ? "" : "s")
+      << " at the calibrated parameters\n";
+  return out.str();
 }
 
 }  // namespace repose::calibrate

@@ -27,4 +27,8 @@ struct CampaignSummary {
 
 CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi);
 
+// The runs a plan asks for, one line each (id, seed, factor values), as `calibrate --check`
+// prints them: the design's, or the adaptive loop's start and budget; then the verification.
+std::string describe_planned_runs(const CampaignPlan& plan);
+
 }  // namespace repose::calibrate

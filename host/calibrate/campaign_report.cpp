@@ -5,18 +5,16 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "io/provenance.h"
 #include "util/atomic_file.h"
+#include "util/hash.h"
+#include "util/number_text.h"
 
 namespace repose::calibrate {
 
 namespace {
 
-std::string num(double v, int digits = 6) {
-  if (std::isinf(v)) return "inf";
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string num(double v, int digits = 6) { return std::isinf(v) ? "inf" : format_g(v, digits); }
 
 std::string percent(double fraction) {
   char buf[40];
@@ -83,7 +81,7 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
      << "|---|---|---|---|---|\n";
   for (const auto& p : res.parameters)
     md << "| " << p.name << " | " << num(p.value) << " | " << num(p.uncertainty, 3) << " | " << num(p.slope, 4) << " | "
-       << num(p.set_low) << " .. " << num(p.set_high) << " |\n";
+       << (res.target_reached ? num(p.set_low) + " .. " + num(p.set_high) : std::string("none: out of reach")) << " |\n";
   md << "\nUncertainty: sigma_y / |slope| with sigma_y = sqrt(measured_sd^2 + replicate_sd^2) = " << num(res.sigma_response, 4)
      << " (measured sd " << num(plan.measured_sd, 4) << ", replicate sd " << num(res.replicate_sd, 4) << " on "
      << res.replicate_df << " df from runs that differ only by their packing seed), each parameter moved alone.";
@@ -152,15 +150,26 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
     j["predicted_sd"] = res.predicted_sd;
     j["run_noise_sd"] = res.run_noise_sd;
   }
+  // No range meets an unreachable target, and no verification says nothing: null, not numbers.
+  auto reached = [&](double v) { return res.target_reached ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
   for (const auto& p : res.parameters)
     j["parameters"][p.name] = {{"value", p.value}, {"uncertainty", std::isfinite(p.uncertainty) ? nlohmann::ordered_json(p.uncertainty) : nlohmann::ordered_json(nullptr)},
-                               {"slope", p.slope}, {"set_low", p.set_low}, {"set_high", p.set_high}};
+                               {"slope", p.slope}, {"set_low", reached(p.set_low)}, {"set_high", reached(p.set_high)}};
   j["replicate_sd"] = res.replicate_sd;
   j["replicate_df"] = res.replicate_df;
   j["sigma_response"] = res.sigma_response;
-  j["verification"] = {{"mean", res.verification_mean}, {"sd", res.verification_sd},
-                       {"relative_error", res.verification_error}, {"runs", runs_json(plan, res.verification)}};
+  auto verified = [&](double v) { return res.verification.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); };
+  j["verification"] = {{"mean", verified(res.verification_mean)}, {"sd", verified(res.verification_sd)},
+                       {"relative_error", verified(res.verification_error)}, {"runs", runs_json(plan, res.verification)}};
   j["model_runs"] = runs_json(plan, rec.model_runs);
+  Provenance prov;
+  prov.case_path = plan.case_path;
+  prov.case_hash = fnv1a_hex(plan.case_identity);
+  for (const auto& setting : plan.settings) prov.overrides.push_back(setting.key + "=" + setting.value);
+  prov.seed = plan.base_seed;
+  prov.backend = plan.backend;
+  for (const auto& h : rec.hosts) prov.device += (prov.device.empty() ? "" : ", ") + h;  // host:rank of the runs
+  j["provenance"] = provenance_json(prov);
   for (const auto& f : rec.figures) j["figures"].push_back(f.file);
   write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
 }

@@ -68,6 +68,11 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
   std::string first_error;
   // Hands out the next job unless a run failed; called with the mutex held.
   auto take = [&]() -> const RunJob* { return (!failed && next < pending.size()) ? &pending[next++] : nullptr; };
+  auto fail = [&](const std::string& error) {
+    std::lock_guard lock(mutex);
+    if (!failed) first_error = error;
+    failed = true;
+  };
 
   std::vector<std::thread> threads;
   for (int t = 0; t < jobs_ && t < int(pending.size()); ++t)
@@ -79,7 +84,13 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
           job = take();
         }
         if (!job) return;
-        JobOutcome out = execute_job(*job, mpi_.rank());
+        JobOutcome out;
+        try {
+          out = execute_job(*job, mpi_.rank());
+        } catch (const std::exception& e) {  // execute_job reports errors itself; this is a last guard
+          out.record.spec = job->spec;
+          out.error = e.what();
+        }
         std::lock_guard lock(mutex);
         finished.push_back(std::move(out));
         wake.notify_one();
@@ -88,15 +99,16 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
 
   size_t received = 0;
   const auto start = std::chrono::steady_clock::now();
+  // Stores one outcome; a failed run or a failed insert stops handing out work, and the runs
+  // still in flight are stored as they finish.
   auto store_outcome = [&](JobOutcome& out) {
     ++received;
-    if (!out.error.empty()) {
-      std::lock_guard lock(mutex);
-      if (!failed) first_error = "run " + out.record.spec.id + " failed: " + out.error;
-      failed = true;
-      return;
+    if (!out.error.empty()) return fail("run " + out.record.spec.id + " failed: " + out.error);
+    try {
+      store_.insert(out.record);
+    } catch (const std::exception& e) {
+      return fail("run " + out.record.spec.id + " finished but could not be stored: " + e.what());
     }
-    store_.insert(out.record);
     ++simulated_;
     if (quiet_) return;
     double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -116,37 +128,44 @@ void Executor::run(const std::vector<RunSpec>& specs, const std::string& label) 
     return true;
   };
 
-  for (;;) {
-    // Ranks left waiting by an earlier batch get work first.
-    while (remote && !idle_ranks.empty() && send_job(idle_ranks.back())) idle_ranks.pop_back();
-    bool busy = false;
-    while (remote && mpi_message_waiting()) {
-      busy = true;
-      int from = 0, tag = 0;
-      std::string text = mpi_receive_text(MPI_ANY_SOURCE, MPI_ANY_TAG, &from, &tag);
-      if (tag == kTagRequest) {
-        if (!send_job(from)) idle_ranks.push_back(from);
-      } else if (tag == kTagResult) {
-        JobOutcome out = outcome_from_text(text);
-        store_outcome(out);
+  try {
+    for (;;) {
+      // Ranks left waiting by an earlier batch get work first.
+      while (remote && !idle_ranks.empty() && send_job(idle_ranks.back())) idle_ranks.pop_back();
+      bool busy = false;
+      while (remote && mpi_message_waiting()) {
+        busy = true;
+        int from = 0, tag = 0;
+        std::string text = mpi_receive_text(MPI_ANY_SOURCE, MPI_ANY_TAG, &from, &tag);
+        if (tag == kTagRequest) {
+          if (!send_job(from)) idle_ranks.push_back(from);
+        } else if (tag == kTagResult) {
+          JobOutcome out = outcome_from_text(text);
+          store_outcome(out);
+        }
       }
+      std::deque<JobOutcome> local;
+      {
+        std::unique_lock lock(mutex);
+        if (finished.empty() && !busy)
+          wake.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200));
+        local.swap(finished);
+      }
+      for (auto& out : local) store_outcome(out);
+      size_t handed;
+      {
+        std::lock_guard lock(mutex);
+        handed = next;
+      }
+      if (received == handed && (failed || handed == pending.size())) break;
     }
-    std::deque<JobOutcome> local;
-    {
-      std::unique_lock lock(mutex);
-      if (finished.empty() && !busy)
-        wake.wait_for(lock, std::chrono::milliseconds(remote ? 1 : 200));
-      local.swap(finished);
-    }
-    for (auto& out : local) store_outcome(out);
-    size_t handed;
-    {
-      std::lock_guard lock(mutex);
-      handed = next;
-    }
-    if (received == handed && (failed || handed == pending.size())) break;
+  } catch (const std::exception& e) {
+    // The coordinating loop itself failed (a message it could not read): the local runs in
+    // flight finish and are stored before the error is reported.
+    fail(e.what());
   }
   for (auto& t : threads) t.join();
+  for (auto& out : finished) store_outcome(out);
   if (failed) throw std::runtime_error(first_error);
 }
 

@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "util/math.h"
+
 namespace repose::calibrate {
 
 namespace {
@@ -39,7 +41,7 @@ double condition(GaussianProcess& gp, const Eigen::VectorXd& y) {
 }
 
 double normal_cdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
-double normal_pdf(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2 * M_PI); }
+double normal_pdf(double z) { return std::exp(-0.5 * z * z) / std::sqrt(2 * kPi); }
 
 }  // namespace
 

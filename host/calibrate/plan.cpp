@@ -9,14 +9,20 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <algorithm>
+#include <iterator>
 #include <sstream>
 
 #include "calibrate/design_runs.h"
 #include "calibrate/experiment_runner.h"
+#include "case/toml_section.h"
 #include "stats/csv_table.h"
 #include "stats/errors.h"
 #include "stats/model_terms.h"
 #include "stats/regression.h"
+#include "util/hash.h"
+#include "util/input_file.h"
+#include "util/number_text.h"
 
 namespace repose::calibrate {
 
@@ -24,66 +30,20 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One table of the plan with the plan's file name, so every problem is located.
-class PlanTable {
+// A table of the plan, read as the case loader reads a case's (located errors, unknown keys with
+// the nearest allowed one), with the plan's own rules.
+class PlanTable : public Section {
  public:
-  PlanTable(const toml::table& table, std::string file, std::string prefix, int line)
-      : table_(table), file_(std::move(file)), prefix_(std::move(prefix)), line_(line) {}
-
-  std::string key(std::string_view k) const { return prefix_.empty() ? std::string(k) : prefix_ + "." + std::string(k); }
-  int line_of(std::string_view k) const {
-    const toml::node* n = table_.get(k);
-    return n ? int(n->source().begin.line) : line_;
-  }
-  SourceRef where(std::string_view k) const { return {file_, key(k), line_of(k)}; }
-  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
-    throw CaseError(where(k), problem);
-  }
-  [[noreturn]] void fail_table(const std::string& problem) const {
-    throw CaseError({file_, prefix_, line_}, problem);
-  }
+  PlanTable(const toml::table& table, const std::string& file, std::string prefix)
+      : Section(table, std::move(prefix), file) {}
 
   void allow_only(const std::vector<std::string>& allowed) const {
-    for (auto&& [k, node] : table_) {
-      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw CaseError({file_, key(k.str()), int(k.source().begin.line)},
-                      "unknown key" + (prefix_.empty() ? std::string() : " in [" + prefix_ + "]") +
-                          " (allowed: " + list + ")");
-    }
-  }
-
-  std::optional<std::string> text(std::string_view k) const {
-    const toml::node* n = table_.get(k);
-    if (!n) return std::nullopt;
-    if (!n->is_string()) fail(k, "expected a string");
-    return n->value<std::string>();
+    Section::allow_only(allowed, prefix().empty() ? std::string("the plan") : "[" + prefix() + "]");
   }
   std::string required_text(std::string_view k) const {
-    auto v = text(k);
-    if (!v) fail(k, "missing required value");
-    if (v->empty()) fail(k, "must not be empty");
-    return *v;
-  }
-  std::optional<double> number(std::string_view k) const {
-    const toml::node* n = table_.get(k);
-    if (!n) return std::nullopt;
-    if (!n->is_number()) fail(k, "expected a number");
-    double v = *n->value<double>();
-    if (!std::isfinite(v)) fail(k, "must be finite");
+    std::string v = Section::required_text(k);
+    if (v.empty()) fail(k, "must not be empty");
     return v;
-  }
-  double required_number(std::string_view k) const {
-    auto v = number(k);
-    if (!v) fail(k, "missing required value");
-    return *v;
-  }
-  std::optional<int64_t> integer(std::string_view k) const {
-    const toml::node* n = table_.get(k);
-    if (!n) return std::nullopt;
-    if (!n->is_integer()) fail(k, "expected an integer");
-    return *n->value<int64_t>();
   }
   int integer_at_least(std::string_view k, int fallback, int least) const {
     auto v = integer(k);
@@ -92,19 +52,6 @@ class PlanTable {
     if (*v > 100000) fail(k, "is unreasonably large");
     return int(*v);
   }
-  const toml::table* sub(std::string_view k) const {
-    const toml::node* n = table_.get(k);
-    if (!n) return nullptr;
-    if (!n->is_table()) fail(k, "expected a table [" + key(k) + "]");
-    return n->as_table();
-  }
-  const toml::table& table() const { return table_; }
-  const std::string& file() const { return file_; }
-
- private:
-  const toml::table& table_;
-  std::string file_, prefix_;
-  int line_;
 };
 
 // A TOML value as override text: strings bare, everything else as TOML writes it.
@@ -124,6 +71,7 @@ bool valid_name(const std::string& n) {
 }
 
 std::string read_text(const std::string& path) {
+  if (!why_not_input_file(path, 16u << 20).empty()) return {};
   std::ifstream in(path, std::ios::binary);
   if (!in) return {};
   std::ostringstream s;
@@ -184,12 +132,12 @@ void read_factors(const toml::node& node, const std::string& file, CampaignPlan&
   std::set<std::string> names, keys;
   for (size_t i = 0; i < list->size(); ++i) {
     const toml::table& ft = *list->get(i)->as_table();
-    PlanTable t(ft, file, "factor." + std::to_string(i), int(ft.source().begin.line));
+    PlanTable t(ft, file, "factor." + std::to_string(i));
     t.allow_only({"name", "key", "low", "high"});
     PlanFactor f;
     f.key = t.required_text("key");
     f.name = t.text("name").value_or(f.key.substr(f.key.rfind('.') + 1));
-    PlanTable named(ft, file, "factor." + f.name, int(ft.source().begin.line));
+    PlanTable named(ft, file, "factor." + f.name);
     if (!valid_name(f.name)) named.fail("name", "'" + f.name + "': use letters, digits and _, starting with a letter");
     if (!names.insert(f.name).second) named.fail("name", "a factor named '" + f.name + "' is listed twice");
     if (!keys.insert(f.key).second) named.fail("key", "'" + f.key + "' is already a factor");
@@ -223,7 +171,7 @@ void read_design(const PlanTable& t, CampaignPlan& plan) {
         d.table_rows.push_back(row);
       }
       if (d.table_rows.empty()) throw stats::TableError(d.table, 0, 0, "no runs in the table");
-    } catch (const stats::StatsError& e) {
+    } catch (const InputError& e) {
       t.fail("table", std::string("design table: ") + e.what());
     }
   } else if (t.table().get("table")) {
@@ -269,7 +217,7 @@ void read_design(const PlanTable& t, CampaignPlan& plan) {
   try {
     design = build_design(plan);
   } catch (const std::exception& e) {
-    t.fail_table(e.what());
+    t.fail(std::string(e.what()));
   }
   // The model must be estimable from the design's distinct points (replicates add no rank).
   std::vector<int> first = first_identical_rows(design, k);
@@ -306,7 +254,7 @@ void read_adaptive(const PlanTable& t, CampaignPlan& plan) {
 
 // Tries the settings and every factor's extremes on the base case, so an unknown key or a value
 // the case refuses is reported at the plan line that asks for it, before anything runs.
-void check_against_case(const CampaignPlan& plan, const SourceRef& set_where) {
+void check_against_case(CampaignPlan& plan, const SourceRef& set_where) {
   std::vector<CaseOverride> base;
   for (const auto& s : plan.settings) base.push_back({s.key, s.value});
   CaseSpec spec;
@@ -315,6 +263,7 @@ void check_against_case(const CampaignPlan& plan, const SourceRef& set_where) {
   } catch (const CaseError& e) {
     throw CaseError(set_where, std::string("the base case refuses the settings: ") + e.what());
   }
+  plan.case_identity = spec.identity;
   if (!spec.experiment.type.empty() && spec.experiment.type != plan.experiment)
     throw CaseError({plan.path, "campaign.experiment", 0},
                     "the base case " + plan.case_path + " is a '" + spec.experiment.type + "' experiment, not '" + plan.experiment + "'");
@@ -340,27 +289,19 @@ std::vector<std::string> CampaignPlan::factor_names() const {
   return n;
 }
 
-std::string exact_number(double value) {
-  // The shortest of %.15g .. %.17g that reads back as the same double: exact, yet "0.3".
-  char text[40];
-  for (int digits = 15; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
-}
 
 CampaignPlan load_plan(const std::string& path) {
   CampaignPlan plan;
   plan.path = path;
-  if (!fs::is_regular_file(path)) throw CaseError({path, "", 0}, "no such plan file");
+  if (!fs::exists(path)) throw CaseError({path, "", 0}, "no such plan file");
+  if (auto why = why_not_input_file(path, 16u << 20); !why.empty()) throw CaseError({path, "", 0}, "not a plan file: " + why);
   toml::table root;
   try {
     root = toml::parse_file(path);
   } catch (const toml::parse_error& e) {
     throw CaseError({path, "", int(e.source().begin.line)}, std::string(e.description()), int(e.source().begin.column));
   }
-  PlanTable top(root, path, "", 1);
+  PlanTable top(root, path, "");
   top.allow_only({"campaign", "response", "set", "factor", "design", "verification", "adaptive"});
   auto section = [&](const char* name, bool required) -> std::optional<PlanTable> {
     const toml::node* n = root.get(name);
@@ -369,13 +310,13 @@ CampaignPlan load_plan(const std::string& path) {
       return std::nullopt;
     }
     if (!n->is_table()) top.fail(name, std::string("expected a table [") + name + "]");
-    return PlanTable(*n->as_table(), path, name, int(n->source().begin.line));
+    return PlanTable(*n->as_table(), path, name);
   };
   read_campaign(*section("campaign", true), plan);
   read_response(*section("response", true), plan);
   SourceRef set_where{path, "set", 0};
   if (auto set = section("set", false)) {
-    set_where.line = set->line_of("");
+    set_where.line = set->where().line;
     for (auto&& [k, node] : set->table())
       plan.settings.push_back({std::string(k.str()), value_text(node), {path, "set." + std::string(k.str()), int(k.source().begin.line)}});
     if (const toml::node* n = root.get("set")) set_where.line = int(n->source().begin.line);
@@ -394,12 +335,12 @@ CampaignPlan load_plan(const std::string& path) {
   auto design = section("design", false);
   auto adaptive = section("adaptive", false);
   if (plan.mode == CampaignMode::design) {
-    if (adaptive) adaptive->fail_table("an [adaptive] table needs campaign.mode = \"adaptive\"");
-    read_design(design ? *design : PlanTable(toml::table{}, path, "design", 0), plan);
+    if (adaptive) adaptive->fail("an [adaptive] table needs campaign.mode = \"adaptive\"");
+    read_design(design ? *design : PlanTable(toml::table{}, path, "design"), plan);
   } else {
-    if (design) design->fail_table("a [design] table belongs to campaign.mode = \"design\"");
+    if (design) design->fail("a [design] table belongs to campaign.mode = \"design\"");
     static const toml::table empty;
-    read_adaptive(adaptive ? *adaptive : PlanTable(empty, path, "adaptive", 0), plan);
+    read_adaptive(adaptive ? *adaptive : PlanTable(empty, path, "adaptive"), plan);
   }
   if (auto v = section("verification", false)) {
     v->allow_only({"runs"});
@@ -425,7 +366,9 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   kv["campaign.seed_key"] = p.seed_key;
   kv["campaign.base_seed"] = std::to_string(p.base_seed);
   kv["campaign.case"] = fs::path(p.case_path).filename().string();
-  kv["campaign.case_content_hash"] = plan_hash(p.case_text);
+  // What the base case parsed to and the files it reads, not its text: a comment does not
+  // change the runs, an edited template or mesh does.
+  kv["campaign.case_hash"] = plan_hash(p.case_identity);
   kv["response.name"] = p.response;
   kv["response.measured"] = exact_number(p.measured);
   kv["response.measured_sd"] = exact_number(p.measured_sd);
@@ -467,41 +410,67 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   kv["verification.runs"] = std::to_string(p.verification_runs);
   std::string text;
   for (const auto& [k, v] : kv) text += k + " = " + v + "\n";
+  // The base case as parsed, line by line, so a change can be named (describe_plan_change).
+  std::istringstream identity(p.case_identity);
+  for (std::string line; std::getline(identity, line);)
+    if (!line.empty()) text += kCaseLinePrefix + line + "\n";
   return text;
 }
 
-std::string plan_hash(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a offset basis
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
+std::string plan_hash(const std::string& text) { return fnv1a_hex(text); }
+
+namespace {
+
+struct CanonicalParts {
+  std::map<std::string, std::string> settings;  // "key = value" lines
+  std::multiset<std::string> case_lines;        // the base case as parsed
+};
+
+CanonicalParts split_canonical(const std::string& text) {
+  CanonicalParts parts;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(kCaseLinePrefix, 0) == 0) {
+      parts.case_lines.insert(line.substr(std::string(kCaseLinePrefix).size()));
+      continue;
+    }
+    auto eq = line.find(" = ");
+    if (eq != std::string::npos) parts.settings[line.substr(0, eq)] = line.substr(eq + 3);
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", (unsigned long long)h);
-  return hex;
+  return parts;
 }
 
-std::string describe_plan_change(const std::string& stored, const std::string& current) {
-  auto parse = [](const std::string& text) {
-    std::map<std::string, std::string> kv;
-    std::istringstream in(text);
-    std::string line;
-    while (std::getline(in, line)) {
-      auto eq = line.find(" = ");
-      if (eq != std::string::npos) kv[line.substr(0, eq)] = line.substr(eq + 3);
-    }
-    return kv;
+// "base case: `a = 1` -> `a = 2`" from the lines only one side has (at most four shown).
+std::string describe_case_change(const std::multiset<std::string>& a, const std::multiset<std::string>& b) {
+  std::vector<std::string> gone, added;
+  std::set_difference(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(gone));
+  std::set_difference(b.begin(), b.end(), a.begin(), a.end(), std::back_inserter(added));
+  auto list = [](const std::vector<std::string>& lines) {
+    std::string s;
+    for (size_t k = 0; k < lines.size() && k < 4; ++k) s += (k ? ", `" : "`") + lines[k] + "`";
+    if (lines.size() > 4) s += " and " + std::to_string(lines.size() - 4) + " more";
+    return s.empty() ? std::string("(nothing)") : s;
   };
-  auto a = parse(stored), b = parse(current);
+  return "base case (as parsed, files by content): " + list(gone) + " -> " + list(added);
+}
+
+}  // namespace
+
+std::string describe_plan_change(const std::string& stored, const std::string& current) {
+  auto a = split_canonical(stored), b = split_canonical(current);
   std::string out;
   auto add = [&](const std::string& s) { out += (out.empty() ? "" : "; ") + s; };
-  for (const auto& [k, v] : a) {
-    auto it = b.find(k);
-    if (it == b.end()) add(k + ": " + v + " -> (removed)");
+  bool case_lines = !a.case_lines.empty() && !b.case_lines.empty();
+  for (const auto& [k, v] : a.settings) {
+    if (case_lines && k == "campaign.case_hash") continue;  // named line by line below
+    auto it = b.settings.find(k);
+    if (it == b.settings.end()) add(k + ": " + v + " -> (removed)");
     else if (it->second != v) add(k + ": " + v + " -> " + it->second);
   }
-  for (const auto& [k, v] : b)
-    if (!a.count(k)) add(k + ": (new) " + v);
+  for (const auto& [k, v] : b.settings)
+    if (!a.settings.count(k)) add(k + ": (new) " + v);
+  if (case_lines && a.case_lines != b.case_lines) add(describe_case_change(a.case_lines, b.case_lines));
   return out.empty() ? "no difference" : out;
 }
 

@@ -9,6 +9,7 @@
 
 #include "case/case_error.h"
 #include "case/case_loader.h"
+#include "util/number_text.h"
 
 namespace repose::calibrate {
 
@@ -56,7 +57,8 @@ struct CampaignPlan {
   std::string name;
   std::string experiment;  // registered experiment type
   std::string case_path;   // base case, resolved against the plan's folder
-  std::string case_text;   // its content (sent to MPI ranks, hashed into the plan)
+  std::string case_text;   // its content (sent to MPI ranks)
+  std::string case_identity;  // CaseSpec::identity of the base case with [set] (hashed into the plan)
   CampaignMode mode = CampaignMode::design;
   std::string backend = "cpu";
   std::string seed_key = "simulation.seed";
@@ -79,8 +81,10 @@ struct CampaignPlan {
 // naming the plan key that leads to it).
 CampaignPlan load_plan(const std::string& path);
 
-// What identifies the runs: every parsed setting as sorted "key = value" lines plus a hash of the
-// base case's text. Comments, layout and key order do not change it.
+// What identifies the runs: every parsed setting as sorted "key = value" lines, then the base case
+// as parsed (CaseSpec::identity, files it reads by content), each line after kCaseLinePrefix.
+// Comments, layout and key order do not change it.
+constexpr const char* kCaseLinePrefix = "case| ";
 std::string canonical_plan_text(const CampaignPlan& plan);
 std::string plan_hash(const std::string& canonical_text);  // FNV-1a 64, hex
 // "factor.e.high: 0.55 -> 0.6; design.centre: 3 -> 5" between two canonical texts.
@@ -89,7 +93,5 @@ std::string describe_plan_change(const std::string& stored, const std::string& c
 // The overrides of one run: the plan's [set], the factors at `x` (actual values), the seed.
 std::vector<CaseOverride> run_overrides(const CampaignPlan& plan, const std::vector<double>& x,
                                         std::uint64_t seed);
-// The shortest text that reads back as exactly `value` (overrides, canonical plan text).
-std::string exact_number(double value);
 
 }  // namespace repose::calibrate

@@ -3,7 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "calibrate/plot.h"
+#include "plot/chart.h"
+#include "util/units.h"
 
 namespace repose::calibrate {
 
@@ -12,6 +13,11 @@ namespace {
 double actual(const PlanFactor& f, double coded) { return 0.5 * (f.low + f.high) + coded * 0.5 * (f.high - f.low); }
 double coded(const PlanFactor& f, double a) { return (a - 0.5 * (f.low + f.high)) / (0.5 * (f.high - f.low)); }
 double response(const RunRecord& r, const std::string& name) { return r.responses.at(name); }
+// "e", "G (Pa)": a factor's name with the unit of its case key.
+std::string factor_label(const PlanFactor& f) {
+  std::string unit = quantity_unit(f.key);
+  return unit.empty() ? f.name : f.name + " (" + unit + ")";
+}
 
 struct Range {
   double lo = INFINITY, hi = -INFINITY;
@@ -32,8 +38,9 @@ struct Range {
 Figure contour(const CampaignPlan& plan, const CalibrationResult& res, const std::vector<RunRecord>& runs,
                const std::string& dir) {
   const PlanFactor &fa = plan.factors[0], &fb = plan.factors[1];
-  const double e = res.coded_extent;
-  Chart chart(760, 620, actual(fa, -e), actual(fa, e), actual(fb, -e), actual(fb, e));
+  // A margin beyond the outermost runs (axial points) so none sits on the frame.
+  const double e = res.coded_extent * 1.08;
+  Chart chart(900, 700, actual(fa, -e), actual(fa, e), actual(fb, -e), actual(fb, e), true);
   auto at = [&](double a, double b) {
     Eigen::VectorXd c = res.chosen_coded;
     c[0] = coded(fa, a);
@@ -45,16 +52,18 @@ Figure contour(const CampaignPlan& plan, const CalibrationResult& res, const std
     for (int j = 0; j <= 40; ++j) r.add(at(actual(fa, -e + 2 * e * i / 40), actual(fb, -e + 2 * e * j / 40)));
   std::vector<double> levels;
   for (int i = 1; i < 10; ++i) levels.push_back(r.lo + (r.hi - r.lo) * i / 10);
-  chart.response_map(at, levels, {plan.measured});
-  for (const auto& run : runs) chart.marker(run.spec.x[0], run.spec.x[1], colours::black, 4);
+  chart.response_map(at, levels, {plan.measured}, quantity_label(plan.response));
+  for (const auto& run : runs) chart.marker(run.spec.x[0], run.spec.x[1], colours::black, 5);
   chart.cross(res.chosen[0], res.chosen[1], colours::red, 9);
   chart.title(plan.response + ": model over " + fa.name + ", " + fb.name);
-  chart.labels(fa.name, fb.name);
-  chart.legend({{"measured " + plan.response + " (contour)", colours::black}, {"chosen point", colours::red}});
+  chart.labels(factor_label(fa), factor_label(fb));
+  chart.legend_above({{"measured " + plan.response + " (contour)", colours::black}, {"runs", colours::black},
+                      {"chosen point", colours::red}});
   chart.save(dir + "/contour.png");
   std::string others = plan.factors.size() > 2 ? " (other factors at their calibrated values)" : "";
   return {"contour.png", "Response surface of " + plan.response + " over " + fa.name + " and " + fb.name + others +
-                             ": grey lines every tenth of its range, black the measured value, dots the runs, red cross the chosen point."};
+                             ": colours as the bar shows, grey lines every tenth of its range, black the measured value, dots the "
+                             "runs, red cross the chosen point."};
 }
 
 Figure main_effects(const CampaignPlan& plan, const CalibrationResult& res, const std::string& dir) {
@@ -73,7 +82,7 @@ Figure main_effects(const CampaignPlan& plan, const CalibrationResult& res, cons
     }
   r.add(plan.measured);
   r.pad(0.08);
-  Chart chart(760, 520, -e, e, r.lo, r.hi);
+  Chart chart(860, 560, -e, e, r.lo, r.hi);
   std::vector<std::pair<std::string, Colour>> legend;
   for (int j = 0; j < k; ++j) {
     Colour c = colours::series()[j % colours::series().size()];
@@ -82,7 +91,7 @@ Figure main_effects(const CampaignPlan& plan, const CalibrationResult& res, cons
   }
   chart.horizontal(plan.measured, colours::black, 1);
   chart.title("Main effects on " + plan.response + " (others at the centre)");
-  chart.labels("coded factor level (-1 = low, +1 = high)", plan.response);
+  chart.labels("coded factor level (-1 = low, +1 = high)", quantity_label(plan.response));
   chart.legend(legend);
   chart.save(dir + "/main_effects.png");
   return {"main_effects.png", "Main effects: the model's " + plan.response +
@@ -116,7 +125,7 @@ Figure calibration_curve(const CampaignPlan& plan, const CalibrationResult& res,
   for (auto* run : shown) r.add(response(*run, plan.response));
   r.add(plan.measured);
   r.pad(0.08);
-  Chart chart(760, 520, xs.front(), xs.back(), r.lo, r.hi);
+  Chart chart(860, 560, xs.front(), xs.back(), r.lo, r.hi);
   const double tol = plan.absolute_tolerance();
   chart.horizontal_band(plan.measured - tol, plan.measured + tol, colours::green);
   if (res.predict_sd) chart.band(xs, lo, hi, colours::blue);
@@ -125,7 +134,7 @@ Figure calibration_curve(const CampaignPlan& plan, const CalibrationResult& res,
   for (auto* run : shown) chart.marker(run->spec.x[j], response(*run, plan.response), colours::black, 4);
   chart.vertical(res.chosen[j], colours::red, 2);
   chart.title("Calibration curve: " + plan.response + " vs " + f.name);
-  chart.labels(f.name + " (" + f.key + ")", plan.response);
+  chart.labels(factor_label(f) + ", " + f.key, quantity_label(plan.response));
   std::vector<std::pair<std::string, Colour>> legend = {{"model", colours::blue}, {"measured +- tolerance", colours::green},
                                                         {"calibrated " + f.name, colours::red}};
   if (!shown.empty()) legend.push_back({"simulated runs", colours::black});
@@ -154,12 +163,12 @@ Figure predicted_vs_simulated(const CampaignPlan& plan, const CalibrationResult&
     r.add(res.predicted);
   }
   r.pad(0.08);
-  Chart chart(620, 600, r.lo, r.hi, r.lo, r.hi);
+  Chart chart(760, 700, r.lo, r.hi, r.lo, r.hi);
   chart.polyline({r.lo, r.hi}, {r.lo, r.hi}, colours::grey, 1);
   for (const auto& [s, p] : pts) chart.marker(s, p, colours::blue, 4);
   for (const auto& v : res.verification) chart.marker(response(v, plan.response), res.predicted, colours::red, 5);
   chart.title("Predicted vs simulated " + plan.response);
-  chart.labels("simulated", "predicted");
+  chart.labels("simulated " + quantity_label(plan.response), "predicted " + quantity_label(plan.response));
   chart.legend({{"model runs", colours::blue}, {"verification", colours::red}});
   chart.save(dir + "/predicted_vs_simulated.png");
   return {"predicted_vs_simulated.png", "Predicted against simulated " + plan.response +
@@ -174,13 +183,13 @@ Figure verification(const CampaignPlan& plan, const CalibrationResult& res, cons
   for (const auto& v : res.verification) r.add(response(v, plan.response));
   r.pad(0.1);
   const int n = int(res.verification.size());
-  Chart chart(620, 460, 0.5, n + 0.5, r.lo, r.hi);
+  Chart chart(760, 520, 0.5, n + 0.5, r.lo, r.hi);
   chart.horizontal_band(plan.measured - tol, plan.measured + tol, colours::green);
   chart.horizontal(plan.measured, colours::green, 2);
   chart.horizontal(res.verification_mean, colours::red, 1);
   for (int i = 0; i < n; ++i) chart.marker(i + 1, response(res.verification[i], plan.response), colours::red, 5);
   chart.title("Verification runs at the calibrated point");
-  chart.labels("run (its own packing seed)", plan.response);
+  chart.labels("run (its own packing seed)", quantity_label(plan.response));
   chart.legend({{"measured +- tolerance", colours::green}, {"runs and their mean", colours::red}});
   chart.save(dir + "/verification.png");
   return {"verification.png", "The verification runs (each with its own packing seed) against the measured value and its tolerance band."};
@@ -216,7 +225,7 @@ Figure write_convergence_figure(const CampaignPlan& plan, const AdaptiveOutcome&
   r.add(0);
   r.add(100 * plan.tolerance);
   r.pad(0.05);
-  Chart chart(700, 480, 0.5, xs.size() + 0.5, 0, r.hi);
+  Chart chart(860, 540, 0.5, xs.size() + 0.5, 0, r.hi);
   chart.horizontal(100 * plan.tolerance, colours::green, 2);
   chart.vertical(loop.initial + 0.5, colours::grey, 1);
   chart.polyline(xs, best, colours::blue, 3);

@@ -8,6 +8,9 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 namespace repose::calibrate {
 
@@ -49,17 +52,50 @@ std::string utc_now() {
   return buf;
 }
 
+// Takes DB.lock for as long as the process holds it (the kernel drops it when the process ends,
+// even by kill -9); returns the descriptor. Two campaigns on one database would run the same
+// runs twice and collide on inserting them.
+int lock_database(const std::string& path) {
+  std::string lock_path = path + ".lock";
+  int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(lock_path + ": cannot create the campaign's lock file");
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    char holder[64] = {0};
+    ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+    ::close(fd);
+    std::string who = n > 0 ? std::string(holder, size_t(n)) : "another process";
+    while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+    throw std::runtime_error(path + " is in use by another campaign (" + who +
+                             "): wait for it to finish, or give this one another --db");
+  }
+  std::string me = "process " + std::to_string(::getpid()) + ", since " + utc_now() + "\n";
+  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) < 0) { /* the lock holds without the note */ }
+  return fd;
+}
+
 }  // namespace
 
 RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh)
     : path_(path), factor_names_(plan.factor_names()) {
   namespace fs = std::filesystem;
+  if (fs::path(path).has_parent_path()) fs::create_directories(fs::path(path).parent_path());
+  lock_fd_ = lock_database(path);
+  try {
+    open(plan, fresh);
+  } catch (...) {
+    sqlite3_close(db_);
+    ::close(lock_fd_);
+    throw;
+  }
+}
+
+void RunStore::open(const CampaignPlan& plan, bool fresh) {
+  namespace fs = std::filesystem;
+  const std::string& path = path_;
   if (fresh)
     for (const char* suffix : {"", "-journal", "-wal", "-shm"}) fs::remove(path + suffix);
-  if (fs::path(path).has_parent_path()) fs::create_directories(fs::path(path).parent_path());
   if (sqlite3_open(path.c_str(), &db_) != SQLITE_OK) {
     std::string msg = db_ ? sqlite3_errmsg(db_) : "out of memory";
-    sqlite3_close(db_);
     throw std::runtime_error(path + ": cannot open the campaign database: " + msg);
   }
   sqlite3_busy_timeout(db_, 10000);
@@ -75,7 +111,7 @@ RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh
   {
     Statement q(db_, "SELECT hash, canonical, plan_file FROM plan WHERE id = 1");
     if (q.step()) {
-      if (q.text(0) != hash_)
+      if (q.text(0) != hash_ && !adopt_older_plan_row(q.text(0), canonical, plan))
         throw std::runtime_error(path + ": this database belongs to another version of the plan (" + q.text(2) +
                                  "); changed since: " + describe_plan_change(q.text(1), canonical) +
                                  ". Restore the plan, or start over with --new (discards the " +
@@ -92,7 +128,29 @@ RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh
   load_runs();
 }
 
-RunStore::~RunStore() { sqlite3_close(db_); }
+RunStore::~RunStore() {
+  sqlite3_close(db_);
+  ::close(lock_fd_);
+}
+
+// Databases made before the plan hashed its parsed base case (they hashed the case's text as
+// campaign.case_content_hash) are adopted when that text is unchanged: their runs are the same.
+bool RunStore::adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical,
+                                    const CampaignPlan& plan) {
+  const std::string key = "campaign.case_hash = ";
+  size_t at = canonical.find(key);
+  if (at == std::string::npos) return false;
+  size_t end = canonical.find('\n', at);
+  size_t case_lines = canonical.find(kCaseLinePrefix);
+  std::string older = canonical.substr(0, at) + "campaign.case_content_hash = " + plan_hash(plan.case_text) +
+                      canonical.substr(end, case_lines == std::string::npos ? std::string::npos : case_lines - end);
+  if (plan_hash(older) != stored_hash) return false;
+  Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
+  up.bind(1, hash_);
+  up.bind(2, canonical);
+  up.step();
+  return true;
+}
 
 void RunStore::exec(const std::string& sql) {
   char* err = nullptr;

@@ -17,7 +17,8 @@ namespace repose::calibrate {
 class RunStore {
  public:
   // Opens (creating if needed) the database at `path` for `plan`. With `fresh`, an existing
-  // database is replaced. Throws std::runtime_error when the stored plan differs.
+  // database is replaced. Throws std::runtime_error when the stored plan differs, or when another
+  // campaign has the database open (a lock on PATH.lock, held until this store closes).
   RunStore(const std::string& path, const CampaignPlan& plan, bool fresh);
   ~RunStore();
   RunStore(const RunStore&) = delete;
@@ -31,6 +32,8 @@ class RunStore {
   const std::string& path() const { return path_; }
 
  private:
+  void open(const CampaignPlan& plan, bool fresh);
+  bool adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical, const CampaignPlan& plan);
   void exec(const std::string& sql);
   void load_runs();
 
@@ -38,6 +41,7 @@ class RunStore {
   std::string hash_;
   std::vector<std::string> factor_names_;
   sqlite3* db_ = nullptr;
+  int lock_fd_ = -1;  // flock on PATH.lock while this store is open
   std::map<std::string, RunRecord> runs_;
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "case/case_spec.h"
+#include "util/number_text.h"
 
 namespace repose {
 
@@ -40,10 +41,6 @@ class CaseError : public std::runtime_error {
 };
 
 // A number as case-file messages quote it: 6 significant digits.
-inline std::string format_number(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
-}
+inline std::string format_number(double value) { return format_g(value, 6); }
 
 }  // namespace repose

@@ -19,12 +19,15 @@
 #include "case/experiment_keys.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
+#include "case/physical_ranges.h"
 #include "case/spelling.h"
 #include "case/toml_section.h"
 #include "case/time_step.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
 #include "geometry/templates.h"
+#include "util/hash.h"
+#include "util/input_file.h"
 
 namespace repose {
 namespace {
@@ -43,6 +46,7 @@ class CaseReader {
   CaseReader(const toml::table& root, const std::string& path) : root_(root), file_(path) {}
 
   CaseSpec read() {
+    spec_.identity = toml_identity(root_);
     Section top(root_, "", file_);
     top.allow_only({"simulation", "contact", "neighbour", "output", "experiment", "air_drag", "material",
                     "interaction", "template", "sphere", "clump", "fill", "lattice", "wall"},
@@ -72,10 +76,67 @@ class CaseReader {
     check_interactions_cover_use();
     expand_particles(spec_);
     check_time_step();
+    check_case_ranges(spec_);
     return std::move(spec_);
   }
 
  private:
+  // The parsed document as sorted "dotted.key = value" lines ("material.0.density = 850"),
+  // numbers in their shortest exact form: no comments or layout of the source.
+  static std::string toml_identity(const toml::table& root) {
+    std::string lines;
+    flatten(root, "", lines);
+    return lines;
+  }
+
+  static std::string value_text(const toml::node& node) {
+    if (auto a = node.as_array()) {
+      std::string text = "[";
+      for (size_t k = 0; k < a->size(); ++k) text += (k ? ", " : "") + value_text(*a->get(k));
+      return text + "]";
+    }
+    if (auto t = node.as_table()) {
+      std::string text;
+      flatten(*t, "", text);
+      return "{" + text + "}";
+    }
+    if (node.is_floating_point()) return shortest_number(node.as_floating_point()->get());
+    std::ostringstream text;
+    text << toml::toml_formatter(node, toml::format_flags::none);
+    return text.str();
+  }
+
+  static void flatten(const toml::table& table, const std::string& prefix, std::string& lines) {
+    for (const auto& [key, node] : table) {
+      std::string path = prefix + std::string(key.str());
+      if (auto t = node.as_table()) {
+        flatten(*t, path + ".", lines);
+      } else if (auto a = node.as_array(); a && a->is_array_of_tables()) {
+        for (size_t k = 0; k < a->size(); ++k) flatten(*a->get(k)->as_table(), path + "." + std::to_string(k) + ".", lines);
+      } else {
+        lines += path + " = " + value_text(node) + "\n";
+      }
+    }
+  }
+
+  static std::string shortest_number(double v) {
+    char text[32];
+    for (int digits = 1; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, v);
+      if (std::strtod(text, nullptr) == v) break;
+    }
+    return text;
+  }
+
+  // A file the case reads goes into its identity by content, so an edited template or mesh is
+  // a different case (a campaign does not mix two geometries).
+  void note_input_file(const std::string& as_written, const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    spec_.identity += "# file " + as_written + " fnv1a " + fnv1a_hex(bytes.str()) + "\n";
+  }
+
   // The elements of an array of tables ([[material]] ...), each as a Section "material[i]".
   std::vector<Section> entries(const std::string& name) {
     std::vector<Section> sections;
@@ -120,6 +181,7 @@ class CaseReader {
 
     TimeSpec& time = spec_.time;
     time.end_time = s->required_number("end_time", " (simulated time in s)");
+    time.end_where = s->where("end_time");
     if (!(time.end_time > 0)) s->fail("end_time", format_number(time.end_time) + " must be greater than 0");
     bool has_dt = s->has("dt"), has_fraction = s->has("rayleigh_fraction");
     if (has_dt && has_fraction) {
@@ -200,8 +262,10 @@ class CaseReader {
   void read_output() {
     auto s = table("output");
     if (!s) return;
-    s->allow_only({"interval", "vtk"}, "[output]");
+    s->allow_only({"interval", "vtk", "checkpoint_interval"}, "[output]");
     if (auto interval = s->number("interval")) spec_.output.interval = non_negative(*s, "interval", *interval);
+    if (auto every = s->number("checkpoint_interval"))
+      spec_.output.checkpoint_interval = non_negative(*s, "checkpoint_interval", *every);
     spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
   }
 
@@ -304,6 +368,13 @@ class CaseReader {
     } else {
       s.missing("shear_modulus", ": give shear_modulus or youngs_modulus (Pa)");
     }
+    auto where_of = [&](std::initializer_list<const char*> keys) {
+      for (const char* k : keys)
+        if (s.has(k)) return s.where(k);
+      return s.where();
+    };
+    check_density(m.density, where_of({"density", "preset"}), spec_.warnings);
+    check_shear_modulus(m.shear_modulus, where_of({"shear_modulus", "youngs_modulus", "preset"}), spec_.warnings);
     spec_.materials.push_back(m);
   }
 
@@ -466,6 +537,7 @@ class CaseReader {
       } catch (const std::exception& error) {
         s.fail("file", error.what());
       }
+      note_input_file(file, path);
     }
     t.clump.name = t.name;
     if (auto mass = s.number("mass")) t.mass = positive(s, "mass", *mass);
@@ -765,6 +837,7 @@ class CaseReader {
     } catch (const std::exception& e) {
       s.fail("file", e.what());
     }
+    note_input_file(file, path);
     auto mesh = std::make_shared<WallMesh>();
     mesh->file = path.string();
     for (const auto& v : stl.mesh.vertices)
@@ -868,7 +941,12 @@ CaseSpec load_case_from_string(const std::string& toml_text, const std::string& 
   return CaseReader(root, virtual_path).read();
 }
 
+std::string case_hash(const CaseSpec& spec) { return fnv1a_hex(spec.identity); }
+
 CaseSpec load_case(const std::string& path, const std::vector<CaseOverride>& overrides) {
+  // A case is a short TOML text; particles and meshes go in the CSV and STL files it names.
+  if (auto why = why_not_input_file(path, 16u << 20); !why.empty())
+    throw CaseError({path, "", 0}, "not a case file: " + why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw CaseError({path, "", 0}, std::string("cannot read the case file: ") + std::strerror(errno));
   std::ostringstream text;

@@ -23,6 +23,10 @@ CaseOverride parse_override(const std::string& text);
 // followed by the spheres of every [[lattice]] and [[fill]]. Throws CaseError.
 CaseSpec load_case(const std::string& path, const std::vector<CaseOverride>& overrides = {});
 
+// Hash of CaseSpec::identity (16 hex digits): the same case parsed from differently commented
+// or laid-out text gives the same hash; an edited value, override or input file changes it.
+std::string case_hash(const CaseSpec& spec);
+
 // The same from text in memory; virtual_path names the file in messages and in CaseSpec::path.
 CaseSpec load_case_from_string(const std::string& toml_text, const std::string& virtual_path,
                                const std::vector<CaseOverride>& overrides = {});

@@ -10,10 +10,9 @@
 #include <vector>
 
 #include "geometry/clump.h"
+#include "util/math.h"
 
 namespace repose {
-
-using Vec3d = std::array<double, 3>;
 
 // Where in a case file a value came from: "cases/box.toml", key "fill[0].count", line 12.
 struct SourceRef {
@@ -188,7 +187,8 @@ struct TimeSpec {
   std::optional<double> dt;                 // s
   std::optional<double> rayleigh_fraction;  // dt = fraction * Rayleigh time
   double end_time = 0;                      // s
-  SourceRef where;
+  SourceRef where;                          // dt or rayleigh_fraction
+  SourceRef end_where;                      // end_time
 };
 
 struct NeighbourSpec {
@@ -199,6 +199,7 @@ struct NeighbourSpec {
 struct OutputSpec {
   double interval = 0;  // s between VTK frames; 0: no frames
   bool vtk = true;
+  double checkpoint_interval = 0;  // s between checkpoint.state files of `repose run`; 0: none
 };
 
 // The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]).
@@ -225,6 +226,9 @@ struct ExperimentSpec {
   // repose
   std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
   double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
+  bool end_when_clear = true;      // the lift is also over once the lifted wall has touched no
+                                   // particle for two samples: the rest of its motion cannot
+                                   // change the heap (repose.cpp)
   double settle_energy = 1e-4;     // J: settled when no particle (or body) has more
   std::string view = "y";          // camera looks along +y ("y") or +x ("x")
   std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
@@ -263,6 +267,12 @@ struct CaseSpec {
   std::vector<FillSpec> fills;
   std::vector<LatticeSpec> lattices;
   std::vector<WallSpec> walls;
+  // What the case is, for hashing (case_hash): the parsed TOML with overrides applied, without
+  // comments or layout, then every file it read (templates, STL meshes) with a hash of its bytes.
+  std::string identity;
+  // Unusual values found while loading, as "FILE:LINE: KEY: warning: ..." (case/physical_ranges.h);
+  // the verbs print them before the run.
+  std::vector<std::string> warnings;
 };
 
 }  // namespace repose

@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "case/case_error.h"
+#include "util/math.h"
 
 namespace repose {
 
 double rayleigh_time(double radius, const Material& material) {
-  return std::numbers::pi * radius * std::sqrt(material.density / material.shear_modulus) /
+  return kPi * radius * std::sqrt(material.density / material.shear_modulus) /
          (0.1631 * material.poisson + 0.8766);
 }
 

@@ -59,6 +59,7 @@ class Section {
 
   bool has(std::string_view k) const { return table_.contains(k); }
   const toml::table& table() const { return table_; }
+  const std::string& prefix() const { return prefix_; }
   const std::string& file() const { return file_; }
 
   [[noreturn]] void missing(std::string_view k, const std::string& hint = "") const {

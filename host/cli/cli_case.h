@@ -1,5 +1,6 @@
 // Loading a case for a verb: --set overrides applied, and a CaseError printed as the one-line
-// `FILE:LINE: KEY: problem` message with exit code 2 (nothing is written before that).
+// `FILE:LINE: KEY: problem` message with exit code 2 (nothing is written before that); the
+// case's warnings (unusual values, case/physical_ranges.h) are printed on stderr.
 #pragma once
 #include <optional>
 #include <string>

@@ -6,6 +6,7 @@
 #include "calibrate/campaign.h"
 #include "calibrate/mpi_session.h"
 #include "calibrate/plan.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 
 namespace repose::cli {
@@ -30,10 +31,12 @@ int run_calibrate(int argc, char** argv) {
   app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)");
   app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)");
   app.add_flag("--new", options.fresh, "discard an existing database and start over");
-  app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun)");
+  app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun; "
+                 "0 under mpirun: rank 0 only coordinates)")
+      ->check(whole_number(0, 1024));
   app.add_option("--threads", options.threads,
                  "cpu backend threads of each simulation (default 1; a loop that proposes one run at a time can use them)")
-      ->check(CLI::Range(1, 256));
+      ->check(whole_number(1, 256));
   app.add_flag("--quiet", options.quiet, "no per-run progress lines");
   app.add_flag("--check", check_only, "load and check the plan, print the runs it asks for, run nothing");
   try {
@@ -47,17 +50,32 @@ int run_calibrate(int argc, char** argv) {
     plan = load_plan(plan_path);
   } catch (const CaseError& e) {
     std::fprintf(stderr, "%s\n", e.what());
+    mpi.stop_workers();
     return 2;
   }
+  if (jobs == 0 && !mpi.has_workers()) {
+    mpi.stop_workers();
+    return usage_error("--jobs 0 leaves no one to simulate: it is for rank 0 under mpirun with other ranks");
+  }
   if (check_only) {
-    std::printf("%s: plan is valid (%s mode, %zu factors); canonical form:\n%s", plan_path.c_str(),
-                plan.mode == CampaignMode::design ? "design" : "adaptive", plan.factors.size(), canonical_plan_text(plan).c_str());
+    std::printf("%s: plan is valid (%s mode, %zu factors, plan hash %s)\n%s", plan_path.c_str(),
+                plan.mode == CampaignMode::design ? "design" : "adaptive", plan.factors.size(),
+                plan_hash(canonical_plan_text(plan)).c_str(), describe_planned_runs(plan).c_str());
+    mpi.stop_workers();
     return 0;
   }
   if (jobs < 0) jobs = mpi.active() ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
   options.jobs = jobs;
-  CampaignSummary s = run_campaign(plan, options, mpi);
-  return s.target_reached ? 0 : 3;
+  try {
+    CampaignSummary s = run_campaign(plan, options, mpi);
+    return s.target_reached ? 0 : 3;
+  } catch (const std::exception& e) {
+    // Finished runs are in the database already; the other ranks are told to stop.
+    mpi.stop_workers();
+    std::fprintf(stderr, "repose calibrate: %s\n(every finished run is kept: run the same command again to resume)\n",
+                 e.what());
+    return 1;
+  }
 }
 
 }  // namespace

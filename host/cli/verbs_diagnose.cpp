@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "case/case_error.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "diagnosis/diagnose.h"
 #include "diagnosis/diagnosis_report.h"
@@ -61,7 +62,7 @@ int run_diagnose(int argc, char** argv) {
   app.add_option("data", data_path, "measured data CSV (README, 'Measured data')")->required();
   app.add_option("--params", params_path, "calibrated parameters (TOML of case keys); the baseline is then not refitted");
   app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)");
-  app.add_option("--threads", threads, "simulations run in parallel (default 2)");
+  app.add_option("--threads", threads, "simulations run in parallel (default 2)")->check(thread_count());
   app.add_option("--candidates", candidates, "comma-separated extension ids to test (default: all that apply)");
   app.add_option("--sim-replicates", sim_replicates,
                  "simulated replicates per condition for a stochastic model (a clump at random orientations; default 8)")
@@ -110,22 +111,22 @@ int run_synth_data(int argc, char** argv) {
   double restitution = -1, grain_friction = -1, plate_friction = -1;
   app.add_option("case", truth.case_path, "drop, heap, slide or roll case (TOML)")->required();
   app.add_option("--extension", extension, "hidden effect ID=VALUE[,VALUE] (e.g. air_drag=0.8); none by default");
-  app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)");
+  app.add_option("--restitution", restitution, "body-plate restitution of the truth (default: the case's)")->check(finite_between(1e-6, 1));
   app.add_option("--heights", truth.heights, "drop heights, m; for a heap, slide or roll case the values of --condition")
       ->delimiter(',')
       ->required();
   app.add_option("--condition", truth.condition_key,
                  "heap, slide or roll case: the key the conditions vary (default fill.0.count, "
                  "experiment.slope_distance, material.0.density)");
-  app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth");
+  app.add_option("--grain-friction", grain_friction, "heap case: the grains' sliding friction of the truth")->check(finite_between(0, 10));
   app.add_option("--plate-friction", plate_friction,
-                 "slide case: the body-plate sliding friction of the truth; roll case: its rolling friction");
-  app.add_option("--angle-noise", truth.angle_noise, "heap, slide, tilt-roll case: SD of one measured angle, deg (default 0.5)");
+                 "slide case: the body-plate sliding friction of the truth; roll case: its rolling friction")->check(finite_between(0, 10));
+  app.add_option("--angle-noise", truth.angle_noise, "heap, slide, tilt-roll case: SD of one measured angle, deg (default 0.5)")->check(finite_between(0, 45));
   app.add_flag("--bed-only", truth.bed_height_only, "heap case: bed heights only (the bed alone is simulated, no lift)");
-  app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
-  app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)");
-  app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");
-  app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)");
+  app.add_option("--replicates", truth.replicates, "replicates per height (default 5)")->check(whole_number(1, 10000));
+  app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)")->check(finite_between(0, 10));
+  app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)")->check(finite_positive());
+  app.add_option("--series-noise", truth.series_noise, "SD of one tracked height, m (default 0.001)")->check(finite_between(0, 10));
   app.add_option("--series-correlation", truth.series_correlation,
                  "lag-1 correlation of a track's noise from frame to frame, AR(1) (default 0: independent)")
       ->check(CLI::Range(0.0, 0.99));

@@ -1,21 +1,25 @@
 // `repose devices`, `repose run`, `repose bench`: the engine's verbs.
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "cli/cli_case.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "engine/backend_factory.h"
+#include "engine/buffer_table.h"
 #include "engine/bench_bed.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
-#include "io/run_summary.h"
+#include "io/case_run.h"
+#include "io/output_dir.h"
 #include "io/state_file.h"
-#include "io/vtk_writer.h"
 #include "util/progress.h"
 #include "vk/context.h"
 
@@ -29,7 +33,7 @@ namespace fs = std::filesystem;
 KernelVariant parse_variant(const std::string& text) { return KernelVariant::parse(text); }
 
 int run_devices(int argc, char** argv) {
-  CLI::App app{"List the Vulkan devices and which one `repose run` uses."};
+  CLI::App app{"List the Vulkan devices, and the backend `repose run` and the experiments use by default, and why."};
   CLI11_PARSE(app, argc, argv);
   auto devices = vk::Context::list_devices();
   if (devices.empty()) {
@@ -41,110 +45,137 @@ int run_devices(int argc, char** argv) {
     std::printf("%s [%u] %s (%s; %s; %.1f GiB device-local)\n", int(d.index) == chosen ? "*" : " ",
                 d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
                 d.device_local_bytes / 1073741824.0);
-  std::printf("* = used by default (--device N chooses another)\n");
+  std::printf("* = the device of --backend vulkan (--device N chooses another)\n");
+  BackendChoice c = choose_backend(devices);
+  std::printf("default backend: %s%s: %s\n", c.backend.c_str(),
+              c.backend == "cpu" ? (" with " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
+                                    " threads").c_str()
+                                 : (" on device [" + std::to_string(c.device) + "]").c_str(),
+              c.reason.c_str());
   return 0;
 }
 
 int run_case(int argc, char** argv) {
-  CLI::App app{"Run a case file: progress on stderr, VTK frames and summary.json in --out."};
-  std::string case_path, backend = "vulkan", out_dir, state_out, variant_text;
-  int device = -1;
-  unsigned threads = 0;
-  int64_t steps = -1;
-  double sim_time = -1;
-  bool quiet = false;
-  std::vector<std::string> sets;
+  CLI::App app{"Run a case file: progress on stderr; VTK frames, wall forces and summary.json in --out."};
+  std::string case_path;
+  CaseRunOptions o;
+  uint64_t steps = 0;
+  double sim_time = 0;
   app.add_option("case", case_path, "case file (TOML)")->required();
-  app.add_option("--backend", backend, "vulkan (default) or cpu")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--device", device, "Vulkan device index (see `repose devices`)");
-  app.add_option("--threads", threads, "cpu backend threads (default: all cores)");
-  auto* steps_opt = app.add_option("--steps", steps, "run this many steps instead of the case's end time");
-  app.add_option("--time", sim_time, "run this much simulated time (s)")->excludes(steps_opt);
-  app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
-  app.add_option("--state-out", state_out, "write the final state here (docs/state-format.md)");
-  app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--variant", variant_text,
+  app.add_option("--backend", o.backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), vulkan or cpu")
+      ->check(CLI::IsMember({"auto", "vulkan", "cpu"}));
+  app.add_option("--device", o.device, "Vulkan device index (see `repose devices`)")->check(whole_number(0, 63));
+  app.add_option("--threads", o.threads, "cpu backend threads (default: all cores)")->check(thread_count());
+  auto* steps_opt = app.add_option("--steps", steps, "run this many steps instead of the case's end time (with --restart: this many more)")
+                        ->check(whole_number(0, 1000000000000LL));
+  auto* time_opt = app.add_option("--time", sim_time, "run this much simulated time, s (with --restart: this much more)")
+                       ->excludes(steps_opt)->check(finite_positive());
+  app.add_option("--out", o.out_dir, "output folder, new or empty (default out/CASE_NAME)");
+  app.add_flag("--overwrite", o.overwrite, "delete what --out holds before the run");
+  app.add_option("--state-out", o.state_out, "write the final state here (docs/state-format.md)");
+  app.add_option("--restart", o.restart,
+                 "continue from a state file (--state-out or a checkpoint): same bytes as a run that never stopped");
+  app.add_option("--set", o.overrides, "override a case key: KEY=VALUE (repeatable)");
+  app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N (default: vulkan contact,lean; cpu contact)");
-  app.add_flag("--quiet", quiet, "no progress output");
+  app.add_flag("--quiet", o.quiet, "no progress output");
   CLI11_PARSE(app, argc, argv);
+  if (o.backend == "vulkan" && app.count("--threads"))
+    return usage_error("--threads applies to the cpu backend (the vulkan backend uses the device)");
+  if (o.backend == "cpu" && app.count("--device")) return usage_error("--device applies to the vulkan backend");
+  if (steps_opt->count()) o.steps = steps;
+  if (time_opt->count()) o.time = sim_time;
+  try {
+    KernelVariant::parse(o.variant);
+  } catch (const std::invalid_argument& e) {
+    return usage_error(std::string("--variant: ") + e.what());
+  }
 
   // Everything that can fail on bad input happens before anything is written.
-  auto loaded = load_case_or_report(case_path, sets);
+  auto loaded = load_case_or_report(case_path, o.overrides);
   if (!loaded) return 2;
-  CaseSpec& spec = *loaded;
-  // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
-  // EPSD rolling springs and spinning friction need the full entry (torques stored per contact).
-  bool springs = needs_full_contact_entries(spec);
-  if (variant_text.empty()) variant_text = backend == "vulkan" && !springs ? "contact,lean" : "contact";
-  KernelVariant variant = parse_variant(variant_text);
-  Model model = build_model(spec);
-  uint64_t total_steps = steps >= 0 ? uint64_t(steps)
-                       : uint64_t(std::llround((sim_time >= 0 ? sim_time : model.end_time) / model.dt));
-  if (out_dir.empty()) out_dir = "out/" + spec.name;
-  auto engine = make_backend(backend, device, threads, variant.workgroup);
-  std::string backend_name = engine->describe();
-
-  // Frames at the output interval: batches end exactly on frame steps.
-  uint64_t frame_every = model.output_interval > 0
-                             ? std::max<uint64_t>(1, std::llround(model.output_interval / model.dt))
-                             : 0;
-  uint32_t batch = frame_every ? uint32_t(std::min<uint64_t>(frame_every, 200)) : 200;
-  while (frame_every && frame_every % batch) --batch;
-  Simulation sim(std::move(model), std::move(engine), variant, batch);
-  const Model& m = sim.model();
-
-  fs::create_directories(out_dir);
-  bool frames = m.vtk && frame_every > 0;
-  if (frames) fs::create_directories(out_dir + "/frames");
-  unsigned frame_count = 0;
-  std::ofstream walls_csv;
-  if (!m.walls.empty()) {
-    walls_csv.open(out_dir + "/wall_forces.csv");
-    walls_csv << "time";
-    for (const auto& name : m.wall_group_names()) walls_csv << "," << name << ".fx," << name << ".fy," << name << ".fz";
-    walls_csv << "\n";
+  BackendChoice chosen = resolve_backend(o.backend, o.device);
+  o.backend = chosen.backend;
+  o.device = chosen.device;
+  try {
+    return run_case_to_folder(*loaded, o);
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose run: %s\n", e.what());
+    return 2;
   }
-  // Every output interval: a VTK frame (unless vtk = false) and a row of wall forces.
-  auto write_frame = [&](Simulation& s) {
-    if (frames) {
-      char name[64];
-      std::snprintf(name, sizeof name, "/frames/%s_%05u.vtk", spec.name.c_str(), frame_count++);
-      write_vtk_frame(out_dir + name, s.state(), s.time());
-    }
-    if (walls_csv.is_open()) {
-      walls_csv << s.time();
-      for (const auto& w : s.wall_forces()) walls_csv << "," << w.fx << "," << w.fy << "," << w.fz;
-      walls_csv << "\n";
-    }
-  };
-  if (!quiet)
-    std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), %llu steps on %s\n",
-                 spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time,
-                 m.rayleigh_time, (unsigned long long)total_steps, backend_name.c_str());
-  if (frame_every) write_frame(sim);
-  Progress progress(spec.name, total_steps, m.dt, !quiet);
-  auto t0 = std::chrono::steady_clock::now();
-  sim.advance(total_steps, [&](const Simulation& s) {
-    if (frame_every && s.step() % frame_every == 0) write_frame(const_cast<Simulation&>(s));
-    progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
-  });
-  progress.finish();
-  double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
-  RunInfo info{backend_name, variant.name(), wall, frame_count, sim.wall_forces()};
-  write_run_summary(out_dir + "/summary.json", sim, info);
-  if (!state_out.empty()) write_state_file(state_out, sim.state(), sim.step(), sim.time());
-  auto e = sim.kinetic_energy();
-  std::printf("%s: %llu steps, t = %.4g s, %u contacts, kinetic energy %.6g J, %.3g particle-steps/s (%s)\n",
-              spec.name.c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
-              wall > 0 ? double(m.n_particles) * sim.step() / wall : 0.0, format_duration(wall).c_str());
-  for (const auto& w : info.wall_forces)
-    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
-      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
-  std::printf("wrote %s/summary.json%s%s\n", out_dir.c_str(),
-              frames ? (", " + std::to_string(frame_count) + " VTK frames in " + out_dir + "/frames").c_str() : "",
-              state_out.empty() ? "" : (", state " + state_out).c_str());
-  return 0;
+// The bed or case to benchmark, settled for `settle` simulated seconds on the cpu backend once
+// and cached in `cache_dir` (the file name carries the size, the settling time and the skin).
+Model settled_bench_model(CaseSpec spec, bool own_case, double settle, double skin, unsigned threads,
+                          const std::string& cache_dir, double& energy) {
+  if (skin >= 0) spec.neighbour.skin = skin;
+  Model model = build_model(spec);
+  uint32_t n = model.n_particles;
+  fs::create_directories(cache_dir);
+  char tail[64];
+  std::snprintf(tail, sizeof tail, "_%u_%gs.state", n, settle);
+  std::string cache = cache_dir + "/" + (own_case ? fs::path(spec.path).stem().string() : "bed") + tail;
+  HostState s;
+  if (fs::exists(cache)) {
+    s = read_state_file(cache);
+    std::fprintf(stderr, "bench: settled state of %u particles from %s\n", n, cache.c_str());
+  } else {
+    std::fprintf(stderr, "bench: settling %u particles for %.2f s (once; cached in %s)\n", n, settle, cache.c_str());
+    Simulation sim(model, make_backend("cpu", -1, threads, gpu::kDefaultWorkgroup));
+    uint64_t settle_steps = uint64_t(std::llround(settle / model.dt));
+    Progress p("settle", settle_steps, model.dt);
+    sim.advance(settle_steps, [&](const Simulation& x) { p.update(x.step()); });
+    p.finish();
+    write_state_file(cache, sim.state(), sim.step(), sim.time());
+    s = sim.state();
+  }
+  model.pos = s.pos;
+  model.vel = s.vel;
+  model.omega = s.omega;
+  if (!s.bodies.empty()) model.bodies = s.bodies;
+  energy = kinetic_energy(s).total();
+  return model;
+}
+
+// Touching entries of the list (a contact's age counts the steps it has touched).
+size_t touching_contacts(const HostState& s) {
+  size_t k = 0;
+  for (const auto& h : s.history) k += h.w > 0;
+  return k;
+}
+
+// One backend and variant on the settled model: speed, list size and memory, then where the
+// time goes (every kernel timed over the same number of steps).
+void bench_one(const Model& model, const std::string& backend, const std::string& variant_text, int device,
+               unsigned threads, uint32_t steps) {
+  KernelVariant v = parse_variant(variant_text);
+  Simulation sim(model, make_backend(backend, device, threads, v.workgroup), v, 50);
+  sim.advance(50);  // warm up: list built, caches hot
+  uint32_t rebuilds_before = sim.rebuilds();
+  auto t0 = std::chrono::steady_clock::now();
+  std::clock_t c0 = std::clock();
+  sim.advance(steps);
+  double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double cpu_secs = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
+  double contacts = sim.contacts(), n = model.n_particles;
+  // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
+  Layout probe;
+  probe.lean_contacts = v.lean;
+  probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
+  size_t per_contact_bytes = bytes_per_contact(probe);
+  double bytes_per_particle = double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
+  std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9u %8.3g\n", backend.c_str(), v.name().c_str(),
+              n * steps / secs, contacts * steps / secs, contacts, touching_contacts(sim.state()),
+              bytes_per_particle, per_contact_bytes, rebuilds, cpu_secs);
+  sim.set_profiling(true);
+  sim.take_profile();
+  sim.advance(steps);
+  RunProfile p = sim.take_profile();
+  std::printf("         %s, every kernel timed:\n%s         per step: %s\n", sim.backend().describe().c_str(),
+              format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str());
+  std::fflush(stdout);
 }
 
 int run_bench(int argc, char** argv) {
@@ -155,8 +186,8 @@ int run_bench(int argc, char** argv) {
   unsigned threads = 0;
   int device = -1;
   uint32_t steps = 200;
-  double settle = 0.6;
-  std::string cache_dir = "out/bench";
+  double settle = 0.6, skin = -1;
+  std::string cache_dir = "out/bench", case_path;
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
@@ -164,86 +195,35 @@ int run_bench(int argc, char** argv) {
   app.add_option("--variant", variants, "kernel variants to compare, e.g. contact rows,wg=128");
   app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
   app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.6)");
+  app.add_option("--skin", skin, "neighbour skin (m; default the case's): results do not depend on it");
   app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
-  std::string case_path;
-  app.add_option("--case", case_path,
-                 "benchmark this case instead of the bed, after --settle simulated seconds of it");
+  app.add_option("--case", case_path, "benchmark this case instead of the bed, after --settle simulated seconds of it");
   CLI11_PARSE(app, argc, argv);
 
   bool own_case = !case_path.empty();
-  CaseSpec bed;
+  CaseSpec spec;
   if (own_case) {
     auto loaded = load_case_or_report(case_path, {});
     if (!loaded) return 2;
-    bed = *loaded;
+    spec = *loaded;
   } else {
-    bed = bench_bed_case(n);
+    spec = bench_bed_case(n);
   }
-  Model model = build_model(bed);
+  double energy = 0;
+  Model model = settled_bench_model(spec, own_case, settle, skin, threads, cache_dir, energy);
   n = model.n_particles;
-  fs::create_directories(cache_dir);
-  std::string cache = cache_dir + "/" + (own_case ? fs::path(case_path).stem().string() : "bed") + "_" +
-                      std::to_string(n) + (own_case ? "_" + std::to_string(settle) : "") + ".state";
-  if (fs::exists(cache)) {
-    HostState s = read_state_file(cache);
-    model.pos = s.pos;
-    model.vel = s.vel;
-    model.omega = s.omega;
-    if (!s.bodies.empty()) model.bodies = s.bodies;
-    std::fprintf(stderr, "bench: settled state of %u particles from %s\n", n, cache.c_str());
-  } else {
-    std::fprintf(stderr, "bench: settling %u spheres for %.2f s (once; cached in %s)\n", n, settle, cache.c_str());
-    Simulation s(model, make_backend("cpu", -1, threads, gpu::kDefaultWorkgroup));
-    uint64_t settle_steps = uint64_t(std::llround(settle / model.dt));
-    Progress p("settle", settle_steps, model.dt);
-    s.advance(settle_steps, [&](const Simulation& x) { p.update(x.step()); });
-    p.finish();
-    write_state_file(cache, s.state(), s.step(), s.time());
-    model.pos = s.state().pos;
-    model.vel = s.state().vel;
-    model.omega = s.state().omega;
-    if (!s.state().bodies.empty()) model.bodies = s.state().bodies;
-  }
-
   if (own_case)
-    std::printf("%s after %.3g s: %u particles, %zu bodies, dt = %.3g s, %u timed steps\n",
-                case_path.c_str(), settle, n, model.bodies.size(), model.dt, steps);
+    std::printf("%s after %.3g s: %u particles, %zu bodies, dt = %.3g s, skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
+                case_path.c_str(), settle, n, model.bodies.size(), model.dt, 1e3 * model.skin, energy, steps);
   else
-    std::printf("settled bed: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), %u timed steps\n",
-                n, model.dt, steps);
-  std::printf("%-8s %-20s %14s %14s %10s %10s %10s %9s\n", "backend", "variant", "particle-st/s",
-              "contacts/s", "contacts", "B/particle", "B/contact", "rebuilds");
-  for (const auto& b : backends) {
-    for (const auto& vt : variants) {
-      KernelVariant v = parse_variant(vt);
-      Simulation sim(model, make_backend(b, device, threads, v.workgroup), v, 50);
-      sim.advance(50);  // warm up: list built, caches hot
-      uint32_t rebuilds_before = sim.rebuilds();
-      auto t0 = std::chrono::steady_clock::now();
-      sim.advance(steps);
-      double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
-      double contacts = sim.contacts();
-      // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
-      Layout probe;
-      probe.lean_contacts = v.lean;
-      probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
-      size_t per_contact_bytes = bytes_per_contact(probe);
-      double bytes_per_particle =
-          double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
-      std::printf("%-8s %-20s %14.4g %14.4g %10.0f %10.0f %10zu %9u\n", b.c_str(), v.name().c_str(),
-                  double(n) * steps / secs, contacts * steps / secs, contacts, bytes_per_particle,
-                  per_contact_bytes, rebuilds);
-      auto times = sim.time_kernels(10);
-      double total = 0;
-      for (const auto& [k, t] : times) total += t;
-      std::printf("         time per step by kernel (%s):", sim.backend().describe().c_str());
-      for (const auto& [k, t] : times)
-        if (t / total > 0.01) std::printf(" %s %.2f ms,", k.c_str(), 1e3 * t / 10);
-      std::printf("\n");
-      std::fflush(stdout);
-    }
-  }
+    std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
+                settle, n, model.dt, 1e3 * model.skin, energy, steps);
+  // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
+  // figure to compare on a shared machine.
+  std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
+              "contacts", "touching", "B/particle", "B/contact", "rebuilds", "cpu s");
+  for (const auto& b : backends)
+    for (const auto& vt : variants) bench_one(model, b, vt, device, threads, steps);
   return 0;
 }
 

@@ -3,11 +3,16 @@
 // writes TYPE.json with the files it declares (time series as CSV, wall forces, a heap's picture).
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "cli/cli_case.h"
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "engine/backend_factory.h"
 #include "experiments/registry.h"
+#include "io/output_dir.h"
+#include "io/provenance.h"
 
 namespace repose::cli {
 
@@ -19,35 +24,66 @@ std::string listed(const std::vector<std::string>& words) {
   return text;
 }
 
+// The shortest text that reads back as exactly `value`.
+std::string exact_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  for (int digits = 1; digits <= 17; ++digits) {
+    char shorter[32];
+    std::snprintf(shorter, sizeof shorter, "%.*g", digits, value);
+    if (std::strtod(shorter, nullptr) == value) return shorter;
+  }
+  return text;
+}
+
+// What produced an experiment's result (io/provenance.h); creating the backend names its device.
+nlohmann::ordered_json experiment_provenance(const CaseSpec& spec, const std::vector<std::string>& sets,
+                                             const ExperimentRun& run) {
+  Provenance p = provenance_of(spec, sets);
+  p.backend = run.backend;
+  p.device = make_backend(run.backend, run.device, run.threads, gpu::kDefaultWorkgroup)->describe();
+  return provenance_json(p);
+}
+
 int run_experiment(int argc, char** argv) {
   std::string descriptions;
   for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
   CLI::App app{"Run a virtual experiment: " + descriptions + "."};
-  std::string type, case_path, backend = "cpu", out_dir;
-  unsigned threads = 1;
+  std::string type, case_path, backend = "auto", out_dir;
+  unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
-  double height = -1;
-  bool quiet = false;
+  double height = 0;
+  bool quiet = false, overwrite = false;
   app.add_option("type", type, "experiment: " + listed(experiment_types()))
       ->required()
       ->check(CLI::IsMember(experiment_types()));
   app.add_option("case", case_path, "case file (TOML) with an [experiment] table")->required();
-  app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case");
-  app.add_option("--backend", backend, "cpu (default) or vulkan")->check(CLI::IsMember({"vulkan", "cpu"}));
-  app.add_option("--threads", threads, "cpu backend threads (default 1)");
-  app.add_option("--device", device, "Vulkan device index");
+  auto* height_opt = app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case")
+                         ->check(finite_positive());
+  app.add_option("--backend", backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), cpu or vulkan")
+      ->check(CLI::IsMember({"auto", "vulkan", "cpu"}));
+  app.add_option("--threads", threads, "cpu backend threads (default all cores)")->check(thread_count());
+  app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--out", out_dir, "output folder (default out/CASE_NAME)");
+  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)");
+  app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
   app.add_flag("--quiet", quiet, "no progress output");
+  bool profile = false;
+  app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
   int replicates = 1;
   app.add_option("--replicates", replicates,
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
-      ->check(CLI::Range(1, 1000));
+      ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
+  if (replicates > 1 && type != "drop") return usage_error("--replicates applies to the drop experiment");
+  if (height_opt->count() && type != "drop") return usage_error("--height applies to the drop experiment");
 
   std::vector<CaseOverride> extra;
-  if (height > 0) extra.push_back({"experiment.drop_height", std::to_string(height)});
+  if (height_opt->count()) {
+    extra.push_back({"experiment.drop_height", exact_text(height)});
+    sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
+  }
   auto loaded = load_case_or_report(case_path, sets, extra);
   if (!loaded) return 2;
   CaseSpec& spec = *loaded;
@@ -57,17 +93,27 @@ int run_experiment(int argc, char** argv) {
                  spec.experiment.type.c_str(), type.c_str());
     return 2;
   }
-  if (out_dir.empty()) out_dir = "out/" + spec.name;
+  // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
+  if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
+  try {
+    prepare_output_dir(out_dir, overwrite, {case_path});
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose experiment: %s\n", e.what());
+    return 2;
+  }
+  BackendChoice chosen = resolve_backend(backend, device);
   ExperimentRun run;
-  run.backend = backend;
-  run.device = device;
+  run.backend = chosen.backend;
+  run.device = chosen.device;
+  run.profile = profile;
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
   try {
-    std::filesystem::create_directories(out_dir);
     ExperimentOutcome outcome = experiment->run(spec, run);
-    for (const std::string& line : write_outcome(measured_or_throw(outcome), type + ".json", out_dir))
+    measured_or_throw(outcome);
+    outcome.json["provenance"] = experiment_provenance(spec, sets, run);
+    for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -10,7 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "util/hash.h"
+#include "util/version.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
@@ -108,6 +111,14 @@ class JsonOut {
   bool first_ = true;
 };
 
+// FNV-1a of a file's bytes, for the provenance of a result computed from it.
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return fnv1a_hex(bytes.str());
+}
+
 void write_text_file(const std::string& path, const std::string& text) {
   std::ofstream out(path, std::ios::binary);
   if (!out) throw std::runtime_error(path + ": cannot open for writing");
@@ -149,13 +160,13 @@ int run_clump(int argc, char** argv) {
   std::vector<double> com, inertia;
   UnionIntegration integration;
   app.add_option("file", file, "CSV with x,y,z,radius columns (metres)")->required();
-  app.add_option("--density", density, "kg/m^3, applied to the union volume (default 1000)");
+  app.add_option("--density", density, "kg/m^3, applied to the union volume (default 1000)")->check(finite_positive());
   app.add_flag("--json", json, "print JSON instead of text");
   app.add_option("--depth", integration.refine_depth,
                  "edge refinement depth of the integration (default 4: ~1e-5 relative; 6: ~1e-6)");
   app.add_option("--principal-out", principal_out,
                  "write the template re-expressed in its principal frame to this CSV");
-  app.add_option("--mass", mass, "explicit mass, kg (with --com and --inertia, as EDEM allows)");
+  app.add_option("--mass", mass, "explicit mass, kg (with --com and --inertia, as EDEM allows)")->check(finite_positive());
   app.add_option("--com", com, "explicit centre of mass x,y,z (m)")->expected(3)->delimiter(',');
   app.add_option("--inertia", inertia, "explicit inertia Ixx,Iyy,Izz,Ixy,Ixz,Iyz about the centre of mass (kg m^2)")
       ->expected(6)
@@ -308,13 +319,13 @@ int run_heap_angle(int argc, char** argv) {
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
   app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)");
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)")->check(finite_positive());
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)");
-  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)");
-  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)");
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)")->check(finite_number());
+  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
+  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
@@ -341,22 +352,22 @@ int run_heap_angle(int argc, char** argv) {
   std::optional<HeapViewsAngle> around;
   if (views > 1) {
     around = measure_heap_angle_views(spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
-    std::printf("%d views     about (%.6g, %.6g) m: mean %.3f deg, sd %.3f deg over %d slopes\n", views, around->centre.x,
-                around->centre.y, around->mean_deg, around->sd_deg, around->valid_slopes);
+    std::printf("%d views     about (%.6g, %.6g) m: %s\n", views, around->centre.x, around->centre.y,
+                describe_views(*around).c_str());
     for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
       std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", around->azimuth_deg[k], around->left_deg[k], around->right_deg[k]);
   }
   std::optional<AxisymmetricHeapAngle> a;
   if (axisymmetric) {
     a = measure_axisymmetric_heap_angle(spheres, axi);
-    std::printf("3D fit       %d of %zu sectors, centre (%.6g, %.6g) m: mean %.3f deg, spread %.3f deg, range %.3f-%.3f deg\n",
-                a->valid_sectors, a->sectors.size(), a->centre.x, a->centre.y, a->mean_deg, a->spread_deg, a->min_deg,
-                a->max_deg);
+    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
+    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
+    std::printf("\n");
     for (const SectorFit& s : a->sectors)
       std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
   }
   if (!png.empty()) {
-    write_heap_angle_png(png, m);
+    write_heap_angle_png(png, m, horizontal);
     std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {
@@ -388,6 +399,7 @@ int run_heap_angle(int argc, char** argv) {
       }
       j.close(']').close();
     }
+    j.open("provenance").string("version", repose_version()).string("input_fnv1a", file_hash(file)).close();
     j.close();
     write_text_file(json, j.text() + "\n");
     std::printf("results      %s\n", json.c_str());

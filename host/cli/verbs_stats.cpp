@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "io/provenance.h"
 #include "stats/anova.h"
 #include "util/atomic_file.h"
 #include "stats/calibration_curve.h"
@@ -21,6 +23,7 @@
 #include "stats/json.h"
 #include "stats/optimize.h"
 #include "stats/report.h"
+#include "util/number_text.h"
 
 namespace repose::cli {
 
@@ -36,9 +39,7 @@ std::string join_args(int argc, char** argv) {
 
 std::string num(double v, int digits = 6) {
   if (std::fabs(v) < 1e-12) v = 0;  // coded centres computed as (x - c) / h come out as +-3e-15
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return format_g(v, digits);
 }
 
 // Index of a factor given by name or by its letter (A, B, ...).
@@ -77,14 +78,14 @@ int run_design(int argc, char** argv) {
       ->check(CLI::IsMember({"pb12", "pb20", "factorial", "fractional", "ccd", "bbd", "path"}));
   app.add_option("--factors", factor_list, "NAME:LOW:HIGH,... actual values coded -1 and +1");
   app.add_option("--centre,--center", centre,
-                 "centre points (default: 6 for ccd, 5 for bbd, 0 otherwise)");
+                 "centre points (default: 6 for ccd, 5 for bbd, 0 otherwise)")->check(whole_number(0, 1000));
   app.add_option("--alpha", alpha, "ccd axial distance: rotatable, orthogonal, face, or a number");
   app.add_option("--generators", generators, "fractional: generators such as D=ABC,E=-ABD")->delimiter(',');
-  app.add_option("--fraction", fraction, "fractional: p of 2^(k-p), with standard generators");
+  app.add_option("--fraction", fraction, "fractional: p of 2^(k-p), with standard generators")->check(whole_number(0, 30));
   app.add_option("--seed", seed, "randomise the run order with this seed (std::mt19937_64)");
   app.add_option("--fit", fit_path, "path: a first-order fit (repose fit --json) to follow");
-  app.add_option("--steps", steps, "path: number of steps (default 5)");
-  app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)");
+  app.add_option("--steps", steps, "path: number of steps (default 5)")->check(whole_number(1, 1000));
+  app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)")->check(finite_positive());
   app.add_flag("--descent", descent, "path: descend instead of ascend");
   app.add_option("--out", out, "output CSV (default: standard output)");
   CLI11_PARSE(app, argc, argv);
@@ -164,7 +165,7 @@ int run_fit(int argc, char** argv) {
       ->delimiter(',');
   app.add_option("--snap-alpha", snap,
                  "replace axial levels printed rounded (1.682) by the exact alpha: rotatable or a number");
-  app.add_option("--reduce", reduce, "drop terms with p above this value, one at a time, keeping hierarchy");
+  app.add_option("--reduce", reduce, "drop terms with p above this value, one at a time, keeping hierarchy")->check(finite_between(1e-12, 1));
   app.add_flag("--no-hierarchy", no_hierarchy, "with --reduce: allow dropping terms that others contain");
   app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
       ->check(CLI::IsMember({"partial", "sequential"}));
@@ -181,6 +182,7 @@ int run_fit(int argc, char** argv) {
     for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
     return out;
   };
+  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
   DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
   if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
   const int k = static_cast<int>(factors.size());
@@ -223,7 +225,9 @@ int run_fit(int argc, char** argv) {
   std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
               format_equations(fit, response, factors, data.ranges).c_str());
   if (!json_out.empty()) {
-    repose::write_file_atomically(json_out, fit_to_json(fit, data, table_path, chosen, result->removed).dump());
+    Json saved = fit_to_json(fit, data, table_path, chosen, result->removed);
+    saved.set("provenance", Json::parse(input_provenance({table_path}).dump(), "provenance"));
+    repose::write_file_atomically(json_out, saved.dump());
     std::printf("wrote %s\n", json_out.c_str());
   }
   return 0;
@@ -258,126 +262,146 @@ DesirabilityGoal parse_goal(const std::string& spec, const SavedFit& fit) {
   return g;
 }
 
-int run_optimize(int argc, char** argv) {
-  CLI::App app{"Optimise fitted models (repose fit --json) inside the design region, and report "
-               "every parameter set that does about as well."};
+// What `repose optimize` was asked.
+struct OptimizeRequest {
   std::vector<std::string> fit_paths, goals, fixes, fixes_coded, compare;
   bool minimize = false, maximize = false;
   std::optional<double> target, tolerance;
   std::string within = "data", json_out;
-  app.add_option("fits", fit_paths, "fit files; several with --goal each: desirability")->required();
-  auto* o_min = app.add_flag("--minimize,--minimise", minimize, "minimise the response");
-  auto* o_max = app.add_flag("--maximize,--maximise", maximize, "maximise the response");
-  auto* o_tgt = app.add_option("--target", target, "bring the response to this value");
-  o_min->excludes(o_max)->excludes(o_tgt);
-  o_max->excludes(o_tgt);
-  app.add_option("--goal", goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
-  app.add_option("--fix", fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
-  app.add_option("--fix-coded", fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
-  app.add_option("--within", within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
-  app.add_option("--tolerance", tolerance, "width of the reported near-optimal set, in response units");
-  app.add_option("--compare", compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
-  app.add_option("--json", json_out, "write the optimum and the near-optimal set to this file");
-  CLI11_PARSE(app, argc, argv);
+};
 
+// The optimum found and what it optimised: one response's goal, or the overall desirability.
+struct OptimizeOutcome {
   std::vector<SavedFit> fits;
-  for (const auto& p : fit_paths) fits.push_back(read_fit_file(p));
-  const SavedFit& first = fits[0];
-  const int k = static_cast<int>(first.factor_names.size());
-  for (const auto& f : fits)
-    if (f.factor_names != first.factor_names)
-      throw StatsError(f.source + ": its factors differ from those of " + first.source);
-  const bool single = fits.size() == 1;
-  if (single && !goals.empty() && (minimize || maximize || target))
-    throw StatsError("give either --minimize/--maximize/--target or --goal");
-  if (single && goals.empty() && !minimize && !maximize && !target)
-    throw StatsError("say what to do: --minimize, --maximize or --target V");
-  if (!single && goals.size() != fits.size())
-    throw StatsError("several fits need one --goal each (" + std::to_string(fits.size()) + " fits, " +
-                     std::to_string(goals.size()) + " goals)");
-
+  std::vector<Objective> responses;
   Box box;
-  if (within == "data") {
+  std::vector<std::string> fixed_names;
+  Goal goal;
+  Optimum best;
+  std::string what;  // the response's name, or "desirability"
+  bool desirability() const { return what == "desirability"; }
+  // A factor's actual value at a coded one (coded when the fit has no ranges).
+  double actual(int i, double coded) const {
+    return fits[0].ranges.empty() ? coded : fits[0].ranges[size_t(i)].to_actual(coded);
+  }
+};
+
+std::vector<SavedFit> read_fits(const OptimizeRequest& q) {
+  std::vector<SavedFit> fits;
+  for (const auto& p : q.fit_paths) fits.push_back(read_fit_file(p));
+  for (const auto& f : fits)
+    if (f.factor_names != fits[0].factor_names)
+      throw StatsError(f.source + ": its factors differ from those of " + fits[0].source);
+  const bool single = fits.size() == 1;
+  if (single && !q.goals.empty() && (q.minimize || q.maximize || q.target))
+    throw StatsError("give either --minimize/--maximize/--target or --goal");
+  if (single && q.goals.empty() && !q.minimize && !q.maximize && !q.target)
+    throw StatsError("say what to do: --minimize, --maximize or --target V");
+  if (!single && q.goals.size() != fits.size())
+    throw StatsError("several fits need one --goal each (" + std::to_string(fits.size()) + " fits, " +
+                     std::to_string(q.goals.size()) + " goals)");
+  return fits;
+}
+
+// The region searched (--within) with the factors held by --fix and --fix-coded.
+Box optimisation_box(const OptimizeRequest& q, const SavedFit& first, std::vector<std::string>& fixed_names) {
+  const int k = static_cast<int>(first.factor_names.size());
+  Box box;
+  if (q.within == "data") {
     box = Box{first.coded_min, first.coded_max};
-  } else if (within == "cube") {
+  } else if (q.within == "cube") {
     box = Box::cube(k, 1);
   } else {
     double r = 0;
-    if (!parse_number(within, r) || !(r > 0)) throw StatsError("--within '" + within + "' is not data, cube or a radius");
+    if (!parse_number(q.within, r) || !(r > 0))
+      throw StatsError("--within '" + q.within + "' is not data, cube or a radius");
     box = Box::cube(k, r);
   }
-  std::vector<std::string> fixed_names;
-  for (const auto& s : fixes) {
+  for (const auto& s : q.fixes) {
     auto [name, v] = parse_assignment(s, "--fix");
     int i = find_factor(first.factor_names, name, "--fix");
     if (first.ranges.empty()) throw StatsError("--fix needs factor ranges in the fit; use --fix-coded");
     box.fix(i, first.ranges[i].to_coded(v));
     fixed_names.push_back(first.factor_names[i]);
   }
-  for (const auto& s : fixes_coded) {
+  for (const auto& s : q.fixes_coded) {
     auto [name, v] = parse_assignment(s, "--fix-coded");
     int i = find_factor(first.factor_names, name, "--fix-coded");
     box.fix(i, v);
     fixed_names.push_back(first.factor_names[i]);
   }
+  return box;
+}
 
+OptimizeOutcome find_optimum(const OptimizeRequest& q) {
+  OptimizeOutcome o;
+  o.fits = read_fits(q);
+  o.box = optimisation_box(q, o.fits[0], o.fixed_names);
   OptimizeOptions opt;
-  if (tolerance) opt.tolerance = *tolerance;
-  std::vector<Objective> responses;
-  for (const auto& f : fits) responses.push_back([p = f.coded](const Eigen::VectorXd& x) { return p(x); });
-  Optimum best;
-  Goal goal;
-  std::string what;
-  if (single && goals.empty()) {
-    goal.kind = minimize ? GoalKind::minimize : maximize ? GoalKind::maximize : GoalKind::target;
-    if (target) goal.target = *target;
-    best = optimize(responses[0], box, goal, opt);
-    what = first.response;
-  } else {
-    std::vector<DesirabilityGoal> dg;
-    for (size_t i = 0; i < fits.size(); ++i) dg.push_back(parse_goal(goals[i], fits[i]));
-    if (single) {
-      // One fit with --goal: plain optimisation of that goal.
-      goal.kind = dg[0].kind;
-      goal.target = dg[0].target;
-      best = optimize(responses[0], box, goal, opt);
-      what = first.response;
-    } else {
-      best = optimize_desirability(responses, dg, box, opt);
-      what = "desirability";
-    }
+  if (q.tolerance) opt.tolerance = *q.tolerance;
+  for (const auto& f : o.fits) o.responses.push_back([p = f.coded](const Eigen::VectorXd& x) { return p(x); });
+  const bool single = o.fits.size() == 1;
+  if (single && q.goals.empty()) {
+    o.goal.kind = q.minimize ? GoalKind::minimize : q.maximize ? GoalKind::maximize : GoalKind::target;
+    if (q.target) o.goal.target = *q.target;
+    o.best = optimize(o.responses[0], o.box, o.goal, opt);
+    o.what = o.fits[0].response;
+    return o;
   }
+  std::vector<DesirabilityGoal> dg;
+  for (size_t i = 0; i < o.fits.size(); ++i) dg.push_back(parse_goal(q.goals[i], o.fits[i]));
+  if (single) {
+    // One fit with --goal: plain optimisation of that goal.
+    o.goal.kind = dg[0].kind;
+    o.goal.target = dg[0].target;
+    o.best = optimize(o.responses[0], o.box, o.goal, opt);
+    o.what = o.fits[0].response;
+  } else {
+    o.best = optimize_desirability(o.responses, dg, o.box, opt);
+    o.what = "desirability";
+  }
+  return o;
+}
 
-  auto actual = [&](int i, double coded) { return first.ranges.empty() ? coded : first.ranges[i].to_actual(coded); };
-  const bool desir = what == "desirability";
-  std::printf("Goal: %s %s", desir ? "maximise overall" : goal_name(goal).c_str(), what.c_str());
-  if (!fixed_names.empty()) {
+void print_optimum(const OptimizeOutcome& o) {
+  const SavedFit& first = o.fits[0];
+  const int k = static_cast<int>(first.factor_names.size());
+  const Optimum& best = o.best;
+  std::printf("Goal: %s %s", o.desirability() ? "maximise overall" : goal_name(o.goal).c_str(), o.what.c_str());
+  if (!o.fixed_names.empty()) {
     std::printf("; fixed:");
-    for (const auto& n : fixed_names) std::printf(" %s", n.c_str());
+    for (const auto& n : o.fixed_names) std::printf(" %s", n.c_str());
   }
   std::printf("\nRegion (coded):");
   for (int i = 0; i < k; ++i)
-    std::printf(" %s [%s, %s]", first.factor_names[i].c_str(), num(box.lower[i]).c_str(), num(box.upper[i]).c_str());
-  std::printf("\n\nOptimum: %s = %s\n", what.c_str(), num(best.value, 8).c_str());
-  if (desir)
-    for (size_t r = 0; r < fits.size(); ++r)
-      std::printf("  %s = %s\n", fits[r].response.c_str(), num(responses[r](best.x), 8).c_str());
+    std::printf(" %s [%s, %s]", first.factor_names[i].c_str(), num(o.box.lower[i]).c_str(), num(o.box.upper[i]).c_str());
+  std::printf("\n\nOptimum: %s = %s\n", o.what.c_str(), num(best.value, 8).c_str());
+  if (o.desirability())
+    for (size_t r = 0; r < o.fits.size(); ++r)
+      std::printf("  %s = %s\n", o.fits[r].response.c_str(), num(o.responses[r](best.x), 8).c_str());
   for (int i = 0; i < k; ++i)
-    std::printf("  %-12s %-12s (coded %s)\n", first.factor_names[i].c_str(), num(actual(i, best.x[i]), 8).c_str(),
+    std::printf("  %-12s %-12s (coded %s)\n", first.factor_names[i].c_str(), num(o.actual(i, best.x[i]), 8).c_str(),
                 num(best.x[i], 6).c_str());
-  if (goal.kind == GoalKind::target && !desir && !best.target_reached)
-    std::printf("  the target %s is NOT reachable in this region (closest %s)\n", num(goal.target).c_str(),
+  if (o.goal.kind == GoalKind::target && !o.desirability() && !best.target_reached)
+    std::printf("  the target %s is NOT reachable in this region (closest %s)\n", num(o.goal.target).c_str(),
                 num(best.value).c_str());
+}
 
-  std::string band = desir ? "desirability within " + num(best.tolerance) + " of the best"
-                   : goal.kind == GoalKind::target ? what + " within " + num(best.tolerance) + " of the target"
-                                                   : what + " within " + num(best.tolerance) + " of the optimum";
+// The near-optimal set: its extent per factor, the direction it extends along, its members.
+void print_near_set(const OptimizeOutcome& o) {
+  const SavedFit& first = o.fits[0];
+  const int k = static_cast<int>(first.factor_names.size());
+  const Optimum& best = o.best;
+  const std::string& what = o.what;
+  std::string band = o.desirability()                ? "desirability within " + num(best.tolerance) + " of the best"
+                     : o.goal.kind == GoalKind::target ? what + " within " + num(best.tolerance) + " of the target"
+                                                       : what + " within " + num(best.tolerance) + " of the optimum";
   std::printf("\nNear-optimal set (%s): %d of %d sampled points\n", band.c_str(), best.set_size, best.sampled);
   std::printf("  %-12s %-26s %s\n", "factor", "coded extent", "actual extent");
   for (int i = 0; i < k; ++i)
     std::printf("  %-12s %-26s %s .. %s\n", first.factor_names[i].c_str(),
                 (num(best.set_lower[i], 4) + " .. " + num(best.set_upper[i], 4)).c_str(),
-                num(actual(i, best.set_lower[i]), 6).c_str(), num(actual(i, best.set_upper[i]), 6).c_str());
+                num(o.actual(i, best.set_lower[i]), 6).c_str(), num(o.actual(i, best.set_upper[i]), 6).c_str());
   if (best.principal_direction.norm() > 0) {
     std::string dir;
     for (int i = 0; i < k; ++i) {
@@ -394,62 +418,98 @@ int run_optimize(int argc, char** argv) {
   std::printf(" %12s\n", what.c_str());
   for (size_t r = 0; r < best.representatives.size(); ++r) {
     std::printf(" ");
-    for (int i = 0; i < k; ++i) std::printf(" %12s", num(actual(i, best.representatives[r][i])).c_str());
+    for (int i = 0; i < k; ++i) std::printf(" %12s", num(o.actual(i, best.representatives[r][i])).c_str());
     std::printf(" %12s\n", num(best.representative_values[r]).c_str());
   }
+}
 
-  Json out = Json::object();
-  if (!compare.empty()) {
-    if (desir) throw StatsError("--compare works with a single response");
-    Eigen::VectorXd point = best.x;
-    for (const auto& s : compare) {
-      auto [name, v] = parse_assignment(s, "--compare");
-      int i = find_factor(first.factor_names, name, "--compare");
-      point[i] = first.ranges.empty() ? v : first.ranges[i].to_coded(v);
-    }
-    PointComparison c = compare_point(responses[0], goal, best, box, point);
-    std::printf("\nCompared point:");
-    for (int i = 0; i < k; ++i) std::printf(" %s=%s", first.factor_names[i].c_str(), num(actual(i, point[i])).c_str());
-    std::printf("\n  %s there = %s; optimum %s; %s by %s\n", what.c_str(), num(c.value, 6).c_str(),
-                num(best.value, 6).c_str(), c.gap > 0 ? "worse" : "not worse", num(std::fabs(c.gap), 4).c_str());
-    if (!c.inside_box) std::printf("  the point lies outside the optimisation region\n");
-    std::printf("  %s\n", c.in_near_set ? "it belongs to the near-optimal set"
-                                          : "it is NOT near-optimal: the fitted model disagrees with this point");
-    Json cj = Json::object();
-    Json p = Json::array();
-    for (int i = 0; i < k; ++i) p.push(actual(i, point[i]));
-    cj.set("point", p);
-    cj.set("value", c.value);
-    cj.set("gap", c.gap);
-    cj.set("near_optimal", c.in_near_set);
-    out.set("compared", cj);
+// --compare: a reported point against the optimum, printed and as JSON.
+Json compare_with_optimum(const OptimizeOutcome& o, const std::vector<std::string>& compare) {
+  if (o.desirability()) throw StatsError("--compare works with a single response");
+  const SavedFit& first = o.fits[0];
+  const int k = static_cast<int>(first.factor_names.size());
+  Eigen::VectorXd point = o.best.x;
+  for (const auto& s : compare) {
+    auto [name, v] = parse_assignment(s, "--compare");
+    int i = find_factor(first.factor_names, name, "--compare");
+    point[i] = first.ranges.empty() ? v : first.ranges[i].to_coded(v);
   }
-  if (!json_out.empty()) {
-    Json names = Json::array(), x = Json::array(), lo = Json::array(), hi = Json::array(), reps = Json::array();
-    for (int i = 0; i < k; ++i) {
-      names.push(first.factor_names[i]);
-      x.push(actual(i, best.x[i]));
-      lo.push(actual(i, best.set_lower[i]));
-      hi.push(actual(i, best.set_upper[i]));
-    }
-    for (size_t r = 0; r < best.representatives.size(); ++r) {
-      Json row = Json::array();
-      for (int i = 0; i < k; ++i) row.push(actual(i, best.representatives[r][i]));
-      row.push(best.representative_values[r]);
-      reps.push(row);
-    }
-    out.set("goal", desir ? std::string("desirability") : goal_name(goal));
-    out.set("factors", names);
-    out.set("optimum", x);
-    out.set("value", best.value);
-    out.set("tolerance", best.tolerance);
-    out.set("set_size", best.set_size);
-    out.set("sampled", best.sampled);
-    out.set("set_lower", lo);
-    out.set("set_upper", hi);
-    out.set("representatives", reps);
-    repose::write_file_atomically(json_out, out.dump());
-    std::printf("\nwrote %s\n", json_out.c_str());
+  PointComparison c = compare_point(o.responses[0], o.goal, o.best, o.box, point);
+  std::printf("\nCompared point:");
+  for (int i = 0; i < k; ++i) std::printf(" %s=%s", first.factor_names[i].c_str(), num(o.actual(i, point[i])).c_str());
+  std::printf("\n  %s there = %s; optimum %s; %s by %s\n", o.what.c_str(), num(c.value, 6).c_str(),
+              num(o.best.value, 6).c_str(), c.gap > 0 ? "worse" : "not worse", num(std::fabs(c.gap), 4).c_str());
+  if (!c.inside_box) std::printf("  the point lies outside the optimisation region\n");
+  std::printf("  %s\n", c.in_near_set ? "it belongs to the near-optimal set"
+                                        : "it is NOT near-optimal: the fitted model disagrees with this point");
+  Json cj = Json::object();
+  Json p = Json::array();
+  for (int i = 0; i < k; ++i) p.push(o.actual(i, point[i]));
+  cj.set("point", p);
+  cj.set("value", c.value);
+  cj.set("gap", c.gap);
+  cj.set("near_optimal", c.in_near_set);
+  return cj;
+}
+
+// The optimum and the near-optimal set in actual units (--json), after `out`'s comparison.
+void add_optimum_json(const OptimizeOutcome& o, Json& out) {
+  const SavedFit& first = o.fits[0];
+  const int k = static_cast<int>(first.factor_names.size());
+  const Optimum& best = o.best;
+  Json names = Json::array(), x = Json::array(), lo = Json::array(), hi = Json::array(), reps = Json::array();
+  for (int i = 0; i < k; ++i) {
+    names.push(first.factor_names[i]);
+    x.push(o.actual(i, best.x[i]));
+    lo.push(o.actual(i, best.set_lower[i]));
+    hi.push(o.actual(i, best.set_upper[i]));
+  }
+  for (size_t r = 0; r < best.representatives.size(); ++r) {
+    Json row = Json::array();
+    for (int i = 0; i < k; ++i) row.push(o.actual(i, best.representatives[r][i]));
+    row.push(best.representative_values[r]);
+    reps.push(row);
+  }
+  out.set("goal", o.desirability() ? std::string("desirability") : goal_name(o.goal));
+  out.set("factors", names);
+  out.set("optimum", x);
+  out.set("value", best.value);
+  out.set("tolerance", best.tolerance);
+  out.set("set_size", best.set_size);
+  out.set("sampled", best.sampled);
+  out.set("set_lower", lo);
+  out.set("set_upper", hi);
+  out.set("representatives", reps);
+}
+
+int run_optimize(int argc, char** argv) {
+  CLI::App app{"Optimise fitted models (repose fit --json) inside the design region, and report "
+               "every parameter set that does about as well."};
+  OptimizeRequest q;
+  app.add_option("fits", q.fit_paths, "fit files; several with --goal each: desirability")->required();
+  auto* o_min = app.add_flag("--minimize,--minimise", q.minimize, "minimise the response");
+  auto* o_max = app.add_flag("--maximize,--maximise", q.maximize, "maximise the response");
+  auto* o_tgt = app.add_option("--target", q.target, "bring the response to this value")->check(finite_number());
+  o_min->excludes(o_max)->excludes(o_tgt);
+  o_max->excludes(o_tgt);
+  app.add_option("--goal", q.goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
+  app.add_option("--fix", q.fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
+  app.add_option("--fix-coded", q.fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
+  app.add_option("--within", q.within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
+  app.add_option("--tolerance", q.tolerance, "width of the reported near-optimal set, in response units")->check(finite_positive());
+  app.add_option("--compare", q.compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
+  app.add_option("--json", q.json_out, "write the optimum and the near-optimal set to this file");
+  CLI11_PARSE(app, argc, argv);
+
+  OptimizeOutcome o = find_optimum(q);
+  print_optimum(o);
+  print_near_set(o);
+  Json out = Json::object();
+  if (!q.compare.empty()) out.set("compared", compare_with_optimum(o, q.compare));
+  if (!q.json_out.empty()) {
+    add_optimum_json(o, out);
+    repose::write_file_atomically(q.json_out, out.dump());
+    std::printf("\nwrote %s\n", q.json_out.c_str());
   }
   return 0;
 }
@@ -463,8 +523,8 @@ int run_curve(int argc, char** argv) {
   app.add_option("sweep", path, "CSV table of the sweep")->required();
   app.add_option("--x", xcol, "swept parameter column")->required();
   app.add_option("--y", ycol, "response column")->required();
-  app.add_option("--at", at, "measured response to invert")->required();
-  app.add_option("--degree", degree, "polynomial degree (default 3)");
+  app.add_option("--at", at, "measured response to invert")->required()->check(finite_number());
+  app.add_option("--degree", degree, "polynomial degree (default 3)")->check(whole_number(1, 9));
   CLI11_PARSE(app, argc, argv);
   Table t = read_csv(path);
   std::vector<double> x = t.numeric_column(xcol), y = t.numeric_column(ycol);

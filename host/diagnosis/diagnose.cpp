@@ -31,7 +31,7 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   d.candidates.insert(d.candidates.end(), fits.failed.begin(), fits.failed.end());
   d.tried = fits.tried;
   // 3. The verdict, and what the winner gains on held-out conditions.
-  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted);
+  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted, d.lack_of_fit);
   d.verdict = verdict.verdict;
   d.cause = verdict.cause;
   d.mimics = verdict.mimics;

@@ -3,7 +3,8 @@
 // (diagnosis/diagnose_stages.h): fit the baseline; test its lack of fit against the replicate
 // scatter and the trends of its residuals; fit every candidate extension and compare it with the
 // baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error); the verdict names the
-// winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate". The
+// winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate", or
+// "unexplained" when the baseline misses the data and no tested candidate removes that. The
 // findings in words are written from those results (diagnosis_report.h).
 #pragma once
 #include <string>
@@ -79,8 +80,9 @@ struct Separation {
 };
 
 struct Diagnosis {
-  std::string verdict;             // adequate | effect | ambiguous
-  std::vector<std::string> cause;  // one id (effect), two or more (ambiguous), none (adequate)
+  std::string verdict;             // adequate | unexplained | effect | ambiguous
+  std::vector<std::string> cause;  // one id (effect), two or more (ambiguous), none (adequate,
+                                   // unexplained: the baseline misses the data, no candidate helps)
   std::string baseline_model;      // the experiment's baseline, in words
   ModelResult baseline;
   std::vector<ModelResult> candidates;  // untestable ones first, then those whose simulation

@@ -1,4 +1,5 @@
 #include "diagnosis/diagnose_stages.h"
+#include "diagnosis/measured_data.h"
 
 #include <algorithm>
 #include <cmath>
@@ -161,6 +162,19 @@ DiagnosisContext describe_data(const Observations& obs, Predictor& predictor) {
   c.scatter_scored = std::any_of(obs.groups.begin(), obs.groups.end(),
                                  [](const ObservationGroup& g) { return g.sigma_given && g.values.size() >= 2; });
   c.noise_df = obs.noise_df();
+  // A candidate adds a parameter to the baseline's: with no more means than that, nothing is left
+  // to test (one condition would come out "adequate" on zero degrees of freedom).
+  std::vector<FreeParameter> fitted = predictor.parameters(nullptr);
+  if (obs.groups.size() <= fitted.size() + 1) {
+    std::string names;
+    for (const auto& p : fitted) names += (names.empty() ? "" : ", ") + p.name;
+    throw DataError(obs.path + ": " + std::to_string(obs.groups.size()) + " measured mean" +
+                    (obs.groups.size() == 1 ? "" : "s") + " in " + std::to_string(obs.conditions.size()) + " condition" +
+                    (obs.conditions.size() == 1 ? "" : "s") + ", and the baseline fits " + std::to_string(fitted.size()) +
+                    " parameter" + (fitted.size() == 1 ? "" : "s") + (names.empty() ? "" : " (" + names + ")") +
+                    ": a candidate adds one more, which leaves no degree of freedom to test anything. Measure at least " +
+                    std::to_string(fitted.size() + 2) + " conditions (3 or more also let diagnose predict held-out ones)");
+  }
   return c;
 }
 
@@ -292,14 +306,17 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
   return out;
 }
 
-Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results) {
+Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results,
+                       const std::vector<LackOfFit>& lack) {
   Verdict v;
   std::vector<size_t> winners;
   for (size_t k = 0; k < results.size(); ++k)
     if (results[k].significant) winners.push_back(k);
   std::sort(winners.begin(), winners.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
   if (winners.empty()) {
-    v.verdict = "adequate";
+    // A baseline that misses the data is not adequate because nothing tested beats it.
+    bool missed = !lack.empty() && lack.front().p < kDiagnosisSignificance;
+    v.verdict = missed ? "unexplained" : "adequate";
     return v;
   }
   v.winner = int(winners[0]);

@@ -35,7 +35,8 @@ struct DiagnosisContext {
   int noise_df = 0;                // the smallest df of the noise over the measures
 };
 
-// Facts about the data the stages share (the context without its predictor and progress).
+// Facts about the data the stages share (the context without its predictor and progress). Throws
+// DataError when the data has too few measured means to test anything beyond the baseline.
 DiagnosisContext describe_data(const Observations& obs, Predictor& predictor);
 
 // Which candidate extensions the data can speak to (`requested` empty: all); the others come
@@ -72,8 +73,9 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
 // predicts held-out conditions better.
 void compare_with_baseline(ModelResult& candidate, const ModelResult& baseline, int noise_df, bool heldout_available);
 
-// The verdict: no significant candidate is "adequate"; the significant one with the lowest AIC is
-// the cause, unless a rival can mimic its predictions ("ambiguous", with what would separate them).
+// The verdict: no significant candidate is "adequate", or "unexplained" when the baseline's lack of
+// fit is significant all the same; the significant one with the lowest AIC is the cause, unless a
+// rival can mimic its predictions ("ambiguous", with what would separate them).
 struct Verdict {
   std::string verdict;
   std::vector<std::string> cause;
@@ -82,7 +84,8 @@ struct Verdict {
   double separation_chi2 = -1;
   Separation separation;
 };
-Verdict decide_verdict(DiagnosisContext& c, const ModelResult& baseline, const std::vector<ModelResult>& fitted);
+Verdict decide_verdict(DiagnosisContext& c, const ModelResult& baseline, const std::vector<ModelResult>& fitted,
+                       const std::vector<LackOfFit>& lack_of_fit);
 
 // Held-out error of the primary measure, baseline and the extended model (the winner, or the
 // baseline again when adequate), and the gain in percent.

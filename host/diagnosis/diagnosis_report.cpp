@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "diagnosis/plot_png.h"
+#include "io/provenance.h"
+#include "util/units.h"
 #include "util/atomic_file.h"
 
 namespace repose {
@@ -66,139 +68,158 @@ std::string safe(std::string s) {
   return s;
 }
 
-// The figures; returns (file, caption) in report order.
-std::vector<std::pair<std::string, std::string>> write_figures(const Observations& obs, const Diagnosis& d,
-                                                               const fs::path& dir) {
-  std::vector<std::pair<std::string, std::string>> figures;
-  const ModelResult* w = winner(d);
+using Figures = std::vector<std::pair<std::string, std::string>>;  // (file, caption) in report order
+
+bool is_series(const Observations& obs, const std::string& m) {
+  for (const auto& g : obs.groups)
+    if (g.measure == m && g.series) return true;
+  return false;
+}
+
+// Residuals of a scalar measure against one condition variable, baseline and winner.
+void residual_figure(const Observations& obs, const Diagnosis& d, const ModelResult* w, const std::string& m,
+                     const std::string& v, const fs::path& dir, Figures& figures) {
   std::string wname = w ? w->id : "";
-  for (const std::string& m : obs.measures) {
-    bool series = false;
-    for (const auto& g : obs.groups) series = series || (g.measure == m && g.series);
-    if (series) continue;
-    // Residuals against each condition variable.
-    for (const std::string& v : obs.variables) {
-      Plot p;
-      p.title = m + ": measured - simulated";
-      p.x_label = v;
-      p.y_label = with_unit(m) + " residual";
-      p.zero_line = true;
-      PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
-      // The extended model's points sit a little to the right, so both error bars show.
-      double lo = 1e300, hi = -1e300;
-      for (const auto& c : obs.conditions)
-        if (c.variables.count(v)) { lo = std::min(lo, c.variables.at(v)); hi = std::max(hi, c.variables.at(v)); }
-      double shift = 0.015 * (hi - lo);
-      for (size_t g = 0; g < obs.groups.size(); ++g) {
-        const auto& grp = obs.groups[g];
-        if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
-        double x = obs.conditions[grp.condition].variables.at(v);
-        double se = grp.sd / std::sqrt(double(grp.values.size()));
-        b.x.push_back(x);
-        b.y.push_back(grp.mean - d.baseline.predicted[g]);
-        b.error.push_back(se);
-        if (w) {
-          e.x.push_back(x + shift);
-          e.y.push_back(grp.mean - w->predicted[g]);
-          e.error.push_back(se);
-        }
-      }
-      p.series.push_back(b);
-      if (w) p.series.push_back(e);
-      std::string file = "residuals_" + safe(m) + "_vs_" + safe(v.substr(v.rfind('.') + 1)) + ".png";
-      write_plot_png(p, (dir / file).string());
-      figures.push_back({file, "Residuals of " + m + " against " + v +
-                                   " (bars: standard error of each mean from the replicate scatter)"});
+  Plot p;
+  p.title = m + ": measured - simulated";
+  p.x_label = quantity_label(v);
+  p.y_label = with_unit(m) + " residual";
+  p.zero_line = true;
+  PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  // The extended model's points sit a little to the right, so both error bars show.
+  double lo = 1e300, hi = -1e300;
+  for (const auto& c : obs.conditions)
+    if (c.variables.count(v)) { lo = std::min(lo, c.variables.at(v)); hi = std::max(hi, c.variables.at(v)); }
+  double shift = 0.015 * (hi - lo);
+  for (size_t g = 0; g < obs.groups.size(); ++g) {
+    const auto& grp = obs.groups[g];
+    if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
+    double x = obs.conditions[grp.condition].variables.at(v);
+    double se = grp.sd / std::sqrt(double(grp.values.size()));
+    b.x.push_back(x);
+    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    b.error.push_back(se);
+    if (w) {
+      e.x.push_back(x + shift);
+      e.y.push_back(grp.mean - w->predicted[g]);
+      e.error.push_back(se);
     }
-    // Measured against simulated.
-    Plot p;
-    p.title = m + ": measured vs simulated";
-    p.x_label = "simulated " + with_unit(m);
-    p.y_label = "measured " + with_unit(m);
-    p.diagonal = true;
-    PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
-    for (size_t g = 0; g < obs.groups.size(); ++g) {
-      const auto& grp = obs.groups[g];
-      if (grp.measure != m) continue;
-      double se = grp.sd / std::sqrt(double(grp.values.size()));
-      b.x.push_back(d.baseline.predicted[g]);
-      b.y.push_back(grp.mean);
-      b.error.push_back(se);
-      if (w) {
-        e.x.push_back(w->predicted[g]);
-        e.y.push_back(grp.mean);
-        e.error.push_back(se);
-      }
-    }
-    p.series.push_back(b);
-    if (w) p.series.push_back(e);
-    std::string file = "measured_vs_simulated_" + safe(m) + ".png";
-    write_plot_png(p, (dir / file).string());
-    figures.push_back({file, "Measured against simulated " + m + " (the line is measured = simulated)"});
   }
-  // Series: the residuals against time, every condition, and the trajectory of the last one.
-  for (const std::string& m : obs.measures) {
-    Plot r;
-    r.title = m + "(t): measured - simulated";
-    r.x_label = "t (s)";
-    r.y_label = with_unit(m) + " residual";
-    r.zero_line = true;
-    PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
-    Plot z;
-    size_t last = obs.conditions.size() - 1;
-    z.title = m + "(t), " + obs.conditions[last].label;
-    z.x_label = "t (s)";
-    z.y_label = with_unit(m);
-    PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
-        ze{wname, {}, {}, {}, kExtended, true, false};
-    for (size_t g = 0; g < obs.groups.size(); ++g) {
-      const auto& grp = obs.groups[g];
-      if (grp.measure != m || !grp.series) continue;
-      b.x.push_back(grp.t);
-      b.y.push_back(grp.mean - d.baseline.predicted[g]);
+  p.series.push_back(b);
+  if (w) p.series.push_back(e);
+  std::string file = "residuals_" + safe(m) + "_vs_" + safe(v.substr(v.rfind('.') + 1)) + ".png";
+  write_plot_png(p, (dir / file).string());
+  figures.push_back({file, "Residuals of " + m + " against " + v +
+                               " (bars: standard error of each mean from the replicate scatter)"});
+}
+
+// A scalar measure, measured against simulated, baseline and winner.
+void measured_vs_simulated_figure(const Observations& obs, const Diagnosis& d, const ModelResult* w,
+                                  const std::string& m, const fs::path& dir, Figures& figures) {
+  std::string wname = w ? w->id : "";
+  Plot p;
+  p.title = m + ": measured vs simulated";
+  p.x_label = "simulated " + with_unit(m);
+  p.y_label = "measured " + with_unit(m);
+  p.diagonal = true;
+  PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  for (size_t g = 0; g < obs.groups.size(); ++g) {
+    const auto& grp = obs.groups[g];
+    if (grp.measure != m) continue;
+    double se = grp.sd / std::sqrt(double(grp.values.size()));
+    b.x.push_back(d.baseline.predicted[g]);
+    b.y.push_back(grp.mean);
+    b.error.push_back(se);
+    if (w) {
+      e.x.push_back(w->predicted[g]);
+      e.y.push_back(grp.mean);
+      e.error.push_back(se);
+    }
+  }
+  p.series.push_back(b);
+  if (w) p.series.push_back(e);
+  std::string file = "measured_vs_simulated_" + safe(m) + ".png";
+  write_plot_png(p, (dir / file).string());
+  figures.push_back({file, "Measured against simulated " + m + " (the line is measured = simulated)"});
+}
+
+// A series: the residuals against time, every condition, and the series of the last condition.
+void series_figures(const Observations& obs, const Diagnosis& d, const ModelResult* w, const std::string& m,
+                    const fs::path& dir, Figures& figures) {
+  std::string wname = w ? w->id : "";
+  Plot r;
+  r.title = m + "(t): measured - simulated";
+  r.x_label = "t (s)";
+  r.y_label = with_unit(m) + " residual";
+  r.zero_line = true;
+  PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  Plot z;
+  size_t last = obs.conditions.size() - 1;
+  z.title = m + "(t), " + obs.conditions[last].label;
+  z.x_label = "t (s)";
+  z.y_label = with_unit(m);
+  PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
+      ze{wname, {}, {}, {}, kExtended, true, false};
+  for (size_t g = 0; g < obs.groups.size(); ++g) {
+    const auto& grp = obs.groups[g];
+    if (grp.measure != m || !grp.series) continue;
+    b.x.push_back(grp.t);
+    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    if (w) {
+      e.x.push_back(grp.t);
+      e.y.push_back(grp.mean - w->predicted[g]);
+    }
+    if (grp.condition == last) {
+      zm.x.push_back(grp.t);
+      zm.y.push_back(grp.mean);
+      zb.x.push_back(grp.t);
+      zb.y.push_back(d.baseline.predicted[g]);
       if (w) {
-        e.x.push_back(grp.t);
-        e.y.push_back(grp.mean - w->predicted[g]);
-      }
-      if (grp.condition == last) {
-        zm.x.push_back(grp.t);
-        zm.y.push_back(grp.mean);
-        zb.x.push_back(grp.t);
-        zb.y.push_back(d.baseline.predicted[g]);
-        if (w) {
-          ze.x.push_back(grp.t);
-          ze.y.push_back(w->predicted[g]);
-        }
+        ze.x.push_back(grp.t);
+        ze.y.push_back(w->predicted[g]);
       }
     }
-    if (b.x.empty()) continue;
-    r.series.push_back(b);
-    if (w) r.series.push_back(e);
-    std::string file = "residuals_" + safe(m) + "_vs_t.png";
-    write_plot_png(r, (dir / file).string());
-    figures.push_back({file, "Residuals of the " + m + " series against time, every condition"});
-    z.series = {zm, zb};
-    if (w) z.series.push_back(ze);
-    file = "series_" + safe(m) + ".png";
-    write_plot_png(z, (dir / file).string());
-    figures.push_back({file, "The " + m + " series of " + obs.conditions[last].label + ": measured means and simulations"});
   }
+  if (b.x.empty()) return;
+  r.series.push_back(b);
+  if (w) r.series.push_back(e);
+  std::string file = "residuals_" + safe(m) + "_vs_t.png";
+  write_plot_png(r, (dir / file).string());
+  figures.push_back({file, "Residuals of the " + m + " series against time, every condition"});
+  z.series = {zm, zb};
+  if (w) z.series.push_back(ze);
+  file = "series_" + safe(m) + ".png";
+  write_plot_png(z, (dir / file).string());
+  figures.push_back({file, "The " + m + " series of " + obs.conditions[last].label + ": measured means and simulations"});
+}
+
+// The figures, in report order: per scalar measure its residuals against each condition variable
+// and measured against simulated; then per series its residuals and the last condition's series.
+Figures write_figures(const Observations& obs, const Diagnosis& d, const fs::path& dir) {
+  Figures figures;
+  const ModelResult* w = winner(d);
+  for (const std::string& m : obs.measures) {
+    if (is_series(obs, m)) continue;
+    for (const std::string& v : obs.variables) residual_figure(obs, d, w, m, v, dir, figures);
+    measured_vs_simulated_figure(obs, d, w, m, dir, figures);
+  }
+  for (const std::string& m : obs.measures) series_figures(obs, d, w, m, dir, figures);
   return figures;
 }
 
-}  // namespace
-
-void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::string& dir_name) {
-  fs::path dir(dir_name);
-  fs::create_directories(dir);
-  auto figures = write_figures(obs, d, dir);
-
+// diagnosis.json: the verdict, every model's fit, the tests, the noise and the figures' files.
+json diagnosis_json(const Observations& obs, const Diagnosis& d, const Figures& figures) {
   json j;
   j["data"] = obs.path;
   j["verdict"] = d.verdict;
   if (d.verdict == "effect") j["cause"] = d.cause[0];
   else if (d.verdict == "ambiguous") j["cause"] = d.cause;
   else j["cause"] = nullptr;
+  j["tried"] = d.tried;
+  j["untested"] = json::array();
+  for (const auto& c : d.candidates)
+    if (!c.tested || !c.simulation_error.empty())
+      j["untested"].push_back({{"id", c.id}, {"reason", c.simulation_error.empty() ? c.untested_reason : c.simulation_error}});
   j["baseline"] = model_json(d.baseline, d.heldout_available);
   j["candidates"] = json::array();
   for (const auto& c : d.candidates) j["candidates"].push_back(model_json(c, d.heldout_available));
@@ -237,8 +258,12 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   for (const auto& f : figures) j["figures"].push_back(f.first);
   j["simulations"] = d.simulations;
   j["seconds"] = d.seconds;
-  write_file_atomically((dir / "diagnosis.json").string(), j.dump(2) + "\n");
+  j["provenance"] = input_provenance({obs.path});
+  return j;
+}
 
+// report.md: the verdict, the findings in words, the candidates' table and the figures.
+std::string report_markdown(const Observations& obs, const Diagnosis& d, const Figures& figures) {
   std::ostringstream md;
   md << "# Diagnosis of " << fs::path(obs.path).filename().string() << "\n\n";
   md << "**Verdict: " << d.verdict << "**";
@@ -287,7 +312,17 @@ void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::str
   md << "\n## Figures\n\n";
   for (const auto& [file, caption] : figures) md << caption << ":\n\n![" << caption << "](" << file << ")\n\n";
   md << "---\n" << d.simulations << " simulations in " << d.seconds << " s.\n";
-  write_file_atomically((dir / "report.md").string(), md.str());
+  return md.str();
+}
+
+}  // namespace
+
+void write_diagnosis(const Observations& obs, const Diagnosis& d, const std::string& dir_name) {
+  fs::path dir(dir_name);
+  fs::create_directories(dir);
+  Figures figures = write_figures(obs, d, dir);
+  write_file_atomically((dir / "diagnosis.json").string(), diagnosis_json(obs, d, figures).dump(2) + "\n");
+  write_file_atomically((dir / "report.md").string(), report_markdown(obs, d, figures));
 }
 
 }  // namespace repose

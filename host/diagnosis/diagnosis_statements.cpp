@@ -3,16 +3,14 @@
 #include <cstdio>
 
 #include "diagnosis/diagnosis_report.h"
+#include "diagnosis/extensions.h"
+#include "util/number_text.h"
 
 namespace repose {
 
 namespace {
 
-std::string num(double v, int digits = 4) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
-}
+std::string num(double v, int digits = 4) { return format_g(v, digits); }
 
 // A length in mm, anything else in its own unit.
 std::string in_unit(double v, const std::string& unit) {
@@ -74,18 +72,32 @@ const ModelResult* candidate(const Diagnosis& d, const std::string& id) {
   return nullptr;
 }
 
+// "air_drag (needs a series), shape (needs sigma)": the candidates the data could not test.
+std::string untested_list(const Diagnosis& d) {
+  std::string list;
+  for (const auto& c : d.candidates)
+    if (!c.tested || !c.simulation_error.empty())
+      list += (list.empty() ? "" : "; ") + c.id + " (" + (c.simulation_error.empty() ? c.untested_reason : "simulation failed") + ")";
+  return list;
+}
+
 void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
   if (d.verdict == "adequate") {
-    out.push_back("Verdict: the baseline is adequate; no candidate extension explains the data better (each fails the "
-                  "F test at 1 % or the held-out comparison).");
-    if (d.lack_of_fit.front().p < kDiagnosisSignificance) {
-      std::string untested;
-      for (const auto& c : d.candidates)
-        if (!c.tested) untested += (untested.empty() ? "" : ", ") + c.id;
-      out.push_back("But the baseline does miss the data (lack of fit above): the cause lies outside the candidates "
-                    "tested" +
-                    (untested.empty() ? std::string(".") : " (not testable with these measures: " + untested + ")."));
-    }
+    out.push_back("Verdict: the baseline is adequate: it fits the data within the replicate scatter, and no candidate "
+                  "extension explains the data better (each fails the F test at 1 % or the held-out comparison).");
+  } else if (d.verdict == "unexplained") {
+    std::string tried;
+    for (const auto& id : d.tried) tried += (tried.empty() ? "" : ", ") + id;
+    std::string untested = untested_list(d);
+    std::string not_asked;  // left out by --candidates
+    for (const auto& e : model_extensions())
+      if (!candidate(d, e.id)) not_asked += (not_asked.empty() ? "" : ", ") + e.id;
+    if (!not_asked.empty()) untested += (untested.empty() ? "" : "; ") + not_asked + " (not asked for by --candidates)";
+    out.push_back("Verdict: unexplained. The baseline misses the data (lack of fit p = " + num(d.lack_of_fit.front().p, 2) +
+                  "), and no candidate tested removes that: tried " + (tried.empty() ? std::string("none") : tried) +
+                  "; not tested " + (untested.empty() ? std::string("none") : untested) +
+                  ". The cause lies outside what was tested: test the others (with the measures they need) or look "
+                  "beyond the candidates.");
   } else if (d.verdict == "effect") {
     out.push_back("Verdict: effect. The cause is " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) + ").");
   } else {
@@ -136,7 +148,7 @@ std::vector<std::string> diagnosis_statements(const Observations& obs, const Dia
     out.push_back(m.rival + " refitted to " + m.winner + "'s predictions misses them by chi^2 = " + num(m.chi2, 3) +
                   " (separable at 3 sigma above " + num(kSeparableChi2, 2) + "); AIC difference " + num(m.aic_difference, 3) + ".");
   verdict_statements(d, out);
-  if (d.heldout_available && d.verdict != "adequate")
+  if (d.heldout_available && !d.cause.empty())
     out.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " + d.primary_measure +
                   (d.scatter_scored ? " (mean and replicate SD)" : "") + " to " +
                   in_unit(d.heldout_error_extended, d.primary_unit) + " (RMS), the baseline to " +

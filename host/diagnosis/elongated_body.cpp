@@ -8,6 +8,7 @@
 
 #include "case/time_step.h"
 #include "geometry/union_moments.h"
+#include "util/math.h"
 
 namespace repose {
 
@@ -50,7 +51,6 @@ void make_body_elongated(CaseSpec& spec, double a) {
     auto it = volumes.find(a);
     v1 = it != volumes.end() ? it->second : (volumes[a] = union_moments(unit.spheres).volume);
   }
-  constexpr double kPi = 3.14159265358979323846;
   double rc = sphere.radius * std::cbrt(4.0 / 3.0 * kPi / v1);
   if (a == 1.0) rc = sphere.radius;  // the union is the central sphere exactly
   TemplateSpec templ;

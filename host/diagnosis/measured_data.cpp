@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "case/case_error.h"
+#include "util/input_file.h"
 #include "experiments/registry.h"
 
 namespace repose {
@@ -82,6 +83,7 @@ std::string unit_of(const std::string& measure) {
 }
 
 MeasuredData read_measured_data(const std::string& path) {
+  if (auto why = why_not_input_file(path, 256u << 20); !why.empty()) throw DataError(path + ": " + why);
   std::ifstream in(path);
   if (!in) throw DataError(path + ": cannot read the measured-data file");
   MeasuredData data;
@@ -163,6 +165,9 @@ MeasuredData read_measured_data(const std::string& path) {
       std::string problem = e->implausible(*info, m.value, spec);
       if (!problem.empty()) fail(path, line_no, cell("value"), "value", problem);
     }
+    if (info->unit == "m" && !info->series && m.value < 0)
+      fail(path, line_no, cell("value"), "value", "a " + m.measure + " cannot be negative: lengths are measured from the "
+                                                  "plate or floor upwards, in m");
     if (info->unit == "deg" && (m.value <= 0 || m.value >= 90))
       fail(path, line_no, cell("value"), "value", "an angle in degrees must lie in (0, 90)");
     data.rows.push_back(std::move(m));

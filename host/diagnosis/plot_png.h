@@ -1,5 +1,5 @@
 // Small x-y plots as PNG for the diagnosis report: points with error bars, lines, a legend,
-// axis ticks and labels (text drawn with stb_easy_font, written with stb_image_write).
+// axis ticks and labels, drawn by the shared chart (plot/chart.h).
 #pragma once
 #include <array>
 #include <cstdint>
@@ -8,7 +8,7 @@
 
 namespace repose {
 
-using PlotColour = std::array<uint8_t, 3>;
+using PlotColour = std::array<uint8_t, 3>;  // the chart's Colour
 
 struct PlotSeries {
   std::string label;
@@ -27,6 +27,6 @@ struct Plot {
 };
 
 // Throws std::runtime_error naming the path when it cannot write.
-void write_plot_png(const Plot& plot, const std::string& path, int width = 720, int height = 450);
+void write_plot_png(const Plot& plot, const std::string& path, int width = 860, int height = 540);
 
 }  // namespace repose

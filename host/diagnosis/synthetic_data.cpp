@@ -11,6 +11,8 @@
 #include "diagnosis/extensions.h"
 #include "experiments/registry.h"
 #include "util/atomic_file.h"
+#include "util/math.h"
+#include "util/number_text.h"
 
 namespace repose {
 
@@ -23,19 +25,14 @@ class Gaussian {
   explicit Gaussian(uint64_t seed) : rng_(seed) {}
   double operator()() {
     double u1 = ((rng_() >> 11) + 0.5) * 0x1.0p-53, u2 = (rng_() >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * 3.14159265358979323846 * u2);
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
   }
 
  private:
   std::mt19937_64 rng_;
 };
 
-std::string text(double v) {
-  std::ostringstream s;
-  s.precision(7);
-  s << v;
-  return s.str();
-}
+std::string text(double v) { return format_g(v, 7); }
 
 // The case column: the case's path relative to the CSV's folder.
 std::string case_column_of(const SyntheticTruth& truth, const std::string& csv_path) {
@@ -92,10 +89,7 @@ void add_series(Rows& rows, const SyntheticTruth& truth, const std::string& cond
     while (k + 1 < tr.size() && tr[k].first < t) ++k;
     double w = (t - tr[k - 1].first) / (tr[k].first - tr[k - 1].first);
     double z = tr[k - 1].second + w * (tr[k].second - tr[k - 1].second);
-    std::ostringstream ts;
-    ts.precision(7);
-    ts << t;
-    rows.add(condition, measure, z + truth.series_noise * error, rep, truth.series_noise, ts.str());
+    rows.add(condition, measure, z + truth.series_noise * error, rep, truth.series_noise, text(t));
   }
 }
 

@@ -25,20 +25,17 @@ struct Layout {
   bool rolling_springs = false;  // kFlagRollingSpring: a rolling spring per contact (and the old list's)
 };
 
-// Inputs that stay constant during a run, uploaded with every allocation.
+// Inputs that stay constant during a run, uploaded with every allocation: the table's
+// Constant rows (shaders/repose_shared.h; subs is empty without bodies).
 struct ConstantData {
-  std::vector<uint32_t> material;
-  std::vector<gpu::PairParams> pairs;
-  std::vector<gpu::SubSphere> subs;  // one per particle with bodies, else empty
+#define REPOSE_CONSTANT_MEMBER(binding, Name, name, type, count, need, keep) REPOSE_CONSTANT_##keep(type, name)
+#define REPOSE_CONSTANT_Constant(type, name) std::vector<gpu::type> name;
+#define REPOSE_CONSTANT_State(type, name)
+#define REPOSE_CONSTANT_File(type, name)
+#define REPOSE_CONSTANT_Scratch(type, name)
+#define REPOSE_CONSTANT_Walls(type, name)
+  REPOSE_BUFFERS(REPOSE_CONSTANT_MEMBER)
 };
-
-// Device bytes per contact-list entry: partner, owner and transposed index, history, and the
-// force entry (full: force, torque_i, torque_j; lean: two vec4). The rebuild-only old_partner
-// and old_history share the memory of trans_list and contact_force, which every rebuild
-// rewrites after it has read them (shaders/repose_shared.h).
-inline size_t bytes_per_contact(const Layout& l) {
-  return 3 * sizeof(uint32_t) + sizeof(gpu::vec4) * ((l.lean_contacts ? 3 : 4) + (l.rolling_springs ? 2 : 0));
-}
 
 // One kernel launch: `groups` workgroups, or the indirect arguments at control word
 // `indirect_word` (>= 0). Scan dispatches carry a ScanPush instead of a SimPush.
@@ -50,14 +47,17 @@ struct Dispatch {
   gpu::ScanPush scan{};
 };
 
-// The state that survives between steps, as host arrays (the used part of the contact list).
+// The state that survives between steps, as host arrays: one vector per State or File row of
+// the buffer table, named as the binding (pos, vel, ..., partner, history, bodies, ...), holding
+// the used part (contacts in the list, particles, bodies; empty when the case does not need it).
 struct HostState {
-  std::vector<gpu::vec4> pos, vel, omega, force, torque, pos_at_build;
-  std::vector<uint32_t> control;
-  std::vector<uint32_t> row_start, partner, owner, trans_start, trans_list;
-  std::vector<gpu::vec4> history;
-  std::vector<gpu::vec4> rolling_spring;  // one per contact with rolling springs, else empty
-  std::vector<gpu::Body> bodies;  // empty without bodies
+#define REPOSE_STATE_MEMBER(binding, Name, name, type, count, need, keep) REPOSE_STATE_##keep(type, name)
+#define REPOSE_STATE_State(type, name) std::vector<gpu::type> name;
+#define REPOSE_STATE_File(type, name) std::vector<gpu::type> name;
+#define REPOSE_STATE_Constant(type, name)
+#define REPOSE_STATE_Scratch(type, name)
+#define REPOSE_STATE_Walls(type, name)
+  REPOSE_BUFFERS(REPOSE_STATE_MEMBER)
 };
 
 // Seconds spent per kernel, summed over the dispatches timed.

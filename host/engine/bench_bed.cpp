@@ -4,6 +4,7 @@
 #include <random>
 
 #include "case/particle_factory.h"
+#include "util/math.h"
 
 namespace repose {
 
@@ -21,8 +22,7 @@ CaseSpec bench_bed_case(uint32_t n, uint64_t seed) {
   c.interactions.push_back({0, 1, 0.43, 0.67, 0.0476, {}});
 
   // Footprint L with a settled height ~L/2 at solid fraction ~0.6.
-  const double pi = 3.14159265358979323846;
-  double volume = n * 4.0 / 3.0 * pi * r * r * r / 0.6;
+  double volume = n * 4.0 / 3.0 * kPi * r * r * r / 0.6;
   double width = std::cbrt(2.0 * volume);
   double spacing = 2.2 * r;
   int per_side = std::max(1, int(std::floor((width - 2 * r) / spacing)));

@@ -1,7 +1,11 @@
-// The CPU twin backend: buffers are host vectors, dispatches run the C++ kernel bodies on a
-// thread pool. Results are byte-identical to the Vulkan backend's, with any thread count.
+// The CPU twin backend: buffers are host memory laid out as on the device, dispatches run the
+// C++ kernel bodies on a thread pool. Results are byte-identical to the Vulkan backend's, with
+// any thread count.
 #pragma once
+#include <array>
+#include <cstddef>
 #include <memory>
+#include <vector>
 
 #include "cpu_kernels.h"
 #include "engine/backend.h"
@@ -26,18 +30,12 @@ class CpuBackend : public Backend {
 
  private:
   void point_buffers();
+  template <class T>
+  void put(uint32_t binding, const std::vector<T>& src);
   ThreadPool pool_;
   Layout layout_;
-  // Storage, one vector per binding.
-  // No old_history_ / old_partner_: those bindings alias contact_force_ / trans_list_.
-  std::vector<gpu::vec4> pos_, vel_, omega_, force_, torque_, pos_at_build_, history_, rolling_spring_,
-      contact_force_, torque_i_, torque_j_, wall_force_;
-  std::vector<uint32_t> material_, control_, cell_of_, cell_start_, cell_fill_, sorted_,
-      row_start_, partner_, owner_, old_row_start_, trans_start_, trans_fill_, trans_list_;
-  std::vector<gpu::PairParams> pairs_;
-  std::vector<gpu::WallState> walls_;
-  std::vector<gpu::Body> bodies_;
-  std::vector<gpu::SubSphere> subs_;
+  // One block of memory per binding of the buffer table (none for aliases).
+  std::array<std::vector<std::byte>, gpu::kBindingCount> storage_;
   gpu::Buffers buf_;
 };
 

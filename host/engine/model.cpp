@@ -9,27 +9,11 @@
 #include "case/time_step.h"
 #include "geometry/clump.h"
 #include "geometry/projected_area.h"
+#include "util/math.h"
 
 namespace repose {
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-Vec3d add(Vec3d a, Vec3d b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Vec3d sub(Vec3d a, Vec3d b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-Vec3d mul(Vec3d a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-double dot(Vec3d a, Vec3d b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(Vec3d a, Vec3d b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-Vec3d unit(Vec3d a) { return mul(a, 1.0 / std::sqrt(dot(a, a))); }
-
-// Rodrigues rotation of v about the unit axis k by angle a.
-Vec3d rotate_about(Vec3d v, Vec3d k, double a) {
-  double c = std::cos(a), s = std::sin(a);
-  return add(add(mul(v, c), mul(cross(k, v), s)), mul(k, dot(k, v) * (1 - c)));
-}
 
 gpu::vec4 v4(Vec3d a, double w) {
   return gpu::vec4(float(a[0]), float(a[1]), float(a[2]), float(w));
@@ -354,6 +338,7 @@ Model build_model(const CaseSpec& spec) {
   m.dt = resolve_dt(spec);
   m.end_time = spec.time.end_time;
   m.output_interval = spec.output.interval;
+  m.checkpoint_interval = spec.output.checkpoint_interval;
   m.vtk = spec.output.vtk;
   m.gravity = spec.gravity;
   m.integrator = spec.integrator;

@@ -44,6 +44,7 @@ struct Model {
   double rayleigh_time = 0;
   double end_time = 0;
   double output_interval = 0;
+  double checkpoint_interval = 0;  // s between checkpoints of `repose run` (0: none)
   bool vtk = true;
   Vec3d gravity{};
   Integrator integrator = Integrator::VelocityVerlet;

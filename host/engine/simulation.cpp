@@ -1,6 +1,7 @@
 #include "engine/simulation.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -93,35 +94,36 @@ std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
 
 void Simulation::advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch) {
   uint64_t target = step_ + steps;
+  auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   while (step_ < target) {
+    auto t0 = std::chrono::steady_clock::now();
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
     upload_walls(k);
-    backend_->execute(batch_program(k));
+    backend_->execute(batch_program(k), profiling_ ? &profile_.kernels : nullptr);
     auto ctl = backend_->read_control();
     if (ctl[gpu::kCtlOverflow]) {
       // Redo the batch from its start with a larger list: nothing of it is kept.
       ++retries_;
       state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
       allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+      profile_.wall_seconds += since(t0);
       continue;
     }
+    uint32_t rebuilds_before = rebuilds();
     backend_->download_state(state_);
     step_ += k;
+    profile_.steps += k;
+    profile_.rebuilds += rebuilds() - rebuilds_before;
+    profile_.contact_steps += double(contacts()) * k;
+    profile_.wall_seconds += since(t0);
     if (on_batch) on_batch(*this);
   }
 }
 
-KernelTimes Simulation::time_kernels(uint64_t steps) {
-  KernelTimes times;
-  for (uint64_t s = 0; s < steps; ++s) {
-    upload_walls(1);
-    backend_->execute(step_program(model_, layout_, variant_, 0), &times);
-    auto ctl = backend_->read_control();
-    if (ctl[gpu::kCtlOverflow]) throw std::runtime_error("contact list overflow while timing");
-    ++step_;
-  }
-  backend_->download_state(state_);
-  return times;
+RunProfile Simulation::take_profile() {
+  RunProfile p = std::move(profile_);
+  profile_ = RunProfile{};
+  return p;
 }
 
 void Simulation::set_state(const HostState& s) {
@@ -129,10 +131,36 @@ void Simulation::set_state(const HostState& s) {
   backend_->upload_state(state_);
 }
 
-EnergySummary Simulation::kinetic_energy() const {
+void Simulation::restore(const HostState& s, uint64_t step) {
+  auto refuse = [](const std::string& what) { throw std::invalid_argument("the state does not fit the case: " + what); };
+  auto count = [](size_t k) { return std::to_string(k); };
+  if (s.pos.size() != model_.n_particles)
+    refuse(count(s.pos.size()) + " particles in the state, " + count(model_.n_particles) + " in the case");
+  if (s.bodies.size() != model_.bodies.size())
+    refuse(count(s.bodies.size()) + " bodies in the state, " + count(model_.bodies.size()) + " in the case");
+  if (layout_.rolling_springs != !s.rolling_spring.empty() && !s.partner.empty())
+    refuse(layout_.rolling_springs ? "the case has EPSD rolling springs, the state none"
+                                   : "the state has EPSD rolling springs, the case none");
+  if (s.control.size() != gpu::kControlWords || s.pos_at_build.size() != s.pos.size())
+    refuse("the state holds no neighbour-list bookkeeping (written by an older version)");
+  state_ = s;
+  // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
+  // early past the contact count, so only coverage matters).
+  uint32_t contacts = state_.control[gpu::kCtlContacts];
+  state_.control[gpu::kCtlArgsContacts] = (contacts + variant_.workgroup - 1) / variant_.workgroup;
+  state_.control[gpu::kCtlArgsContacts + 1] = 1;
+  state_.control[gpu::kCtlArgsContacts + 2] = 1;
+  uint32_t needed = std::max(contacts, state_.control[gpu::kCtlMaxContacts]);
+  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
+  step_ = step;
+}
+
+EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state_); }
+
+EnergySummary kinetic_energy(const HostState& state) {
   EnergySummary e;
-  if (!state_.bodies.empty()) {
-    for (const gpu::Body& b : state_.bodies) {
+  if (!state.bodies.empty()) {
+    for (const gpu::Body& b : state.bodies) {
       if (b.pos.w == 0.0f) continue;  // fixed: infinite mass at rest
       const auto& v = b.vel;
       e.translational += 0.5 / b.pos.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
@@ -141,9 +169,9 @@ EnergySummary Simulation::kinetic_energy() const {
     }
     return e;
   }
-  for (size_t i = 0; i < state_.vel.size(); ++i) {
-    const auto& v = state_.vel[i];
-    const auto& w = state_.omega[i];
+  for (size_t i = 0; i < state.vel.size(); ++i) {
+    const auto& v = state.vel[i];
+    const auto& w = state.omega[i];
     if (v.w == 0.0f) continue;  // fixed
     e.translational += 0.5 / v.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
     e.rotational += 0.5 / w.w * (double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);

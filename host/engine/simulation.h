@@ -9,6 +9,7 @@
 
 #include "engine/backend.h"
 #include "engine/model.h"
+#include "engine/run_profile.h"
 #include "engine/step_program.h"
 
 namespace repose {
@@ -23,6 +24,9 @@ struct EnergySummary {
   double rotational = 0;
   double total() const { return translational + rotational; }
 };
+
+// Translational and rotational kinetic energy of the spheres, or of the bodies when there are.
+EnergySummary kinetic_energy(const HostState& state);
 
 class Simulation {
  public:
@@ -51,8 +55,15 @@ class Simulation {
   std::vector<WallForce> wall_forces();
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
-  // Times each kernel of the next `steps` steps (for `repose bench`); state advances too.
-  KernelTimes time_kernels(uint64_t steps);
+  // Continues from a state written by write_state_file after `step` steps of this same model:
+  // the following steps give the bytes of a run that never stopped. Throws std::invalid_argument
+  // when the state does not fit the model (particle, body or rolling-spring counts).
+  void restore(const HostState& s, uint64_t step);
+  // With profiling on, advance() also times every kernel (a clock read per dispatch on the cpu
+  // backend, timestamp queries on Vulkan). The profile always counts steps, rebuilds, contacts
+  // and the wall time inside advance(); take_profile() returns it and starts a new one.
+  void set_profiling(bool on) { profiling_ = on; }
+  RunProfile take_profile();
 
  private:
   void allocate(uint32_t capacity);
@@ -66,6 +77,8 @@ class Simulation {
   HostState state_;
   uint64_t step_ = 0;
   uint32_t retries_ = 0;
+  bool profiling_ = false;
+  RunProfile profile_;
 };
 
 }  // namespace repose

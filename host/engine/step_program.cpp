@@ -13,6 +13,18 @@ std::string KernelVariant::name() const {
   return s;
 }
 
+namespace {
+
+// The number after "wg=" or "rebuild=": digits only, at most a million.
+uint32_t whole(const std::string& item, size_t from) {
+  std::string digits = item.substr(from);
+  if (digits.empty() || digits.size() > 7 || digits.find_first_not_of("0123456789") != std::string::npos)
+    throw std::invalid_argument("'" + item + "': expected a whole number after '='");
+  return uint32_t(std::stoul(digits));
+}
+
+}  // namespace
+
 KernelVariant KernelVariant::parse(const std::string& text) {
   KernelVariant v;
   std::stringstream ss(text);
@@ -23,8 +35,8 @@ KernelVariant KernelVariant::parse(const std::string& text) {
     else if (item == "rows") v.contact = ContactKernel::PerRow;
     else if (item == "lean") v.lean = true;
     else if (item == "full") v.lean = false;
-    else if (item.rfind("wg=", 0) == 0) v.workgroup = std::stoul(item.substr(3));
-    else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = std::stoul(item.substr(8));
+    else if (item.rfind("wg=", 0) == 0) v.workgroup = whole(item, 3);
+    else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = whole(item, 8);
     else throw std::invalid_argument("unknown variant item '" + item +
                                      "' (contact, rows, lean, full, wg=N, rebuild=N)");
   }

@@ -82,6 +82,18 @@ size_t find_wall(const CaseSpec& spec, const std::string& name, const std::strin
                            (name.empty() ? "" : " (named '" + name + "')"));
 }
 
+size_t first_moving_sphere(const HostState& state) {
+  for (size_t i = 0; i < state.vel.size(); ++i)
+    if (state.vel[i].w != 0.0f) return i;
+  return 0;
+}
+
+size_t first_moving_body(const HostState& state) {
+  for (size_t i = 0; i < state.bodies.size(); ++i)
+    if (state.bodies[i].pos.w != 0.0f) return i;
+  return 0;
+}
+
 Interaction& interaction_between(CaseSpec& spec, int a, int b, const std::string& what) {
   for (auto& in : spec.interactions)
     if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;

@@ -14,6 +14,10 @@ namespace repose {
 Vec3d body_centre(const HostState& state);
 // Speed of the centre of mass of everything.
 double body_speed(const HostState& state);
+// Index of the first free sphere, or of the first body, that moves (1/mass is not 0: fixed
+// particles are the rig's); 0 when none does.
+size_t first_moving_sphere(const HostState& state);
+size_t first_moving_body(const HostState& state);
 // Angular velocity of the first body (or free sphere), rad/s.
 Vec3d first_body_spin(const HostState& state);
 // Every sphere of the case as placed (free spheres and the bodies' sub-spheres).

@@ -14,12 +14,11 @@
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
 #include "util/atomic_file.h"
+#include "util/math.h"
 
 namespace repose {
 
 namespace {
-
-double dot(const Vec3d& a, const Vec3d& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 // Vertex of the parabola through three equally spaced samples (the camera's sub-frame estimate).
 double parabola_peak(double a, double b, double c) {
@@ -45,33 +44,29 @@ double centre_rise(const std::vector<double>& z) {
   return refined(top, 1.0) - refined(bottom, -1.0);
 }
 
+// Mean and sample standard deviation (0 for fewer than two values).
+std::pair<double, double> mean_sd(const std::vector<double>& x) {
+  double mean = 0, var = 0;
+  for (double v : x) mean += v / double(x.size());
+  for (double v : x) var += (v - mean) * (v - mean) / double(std::max<size_t>(1, x.size() - 1));
+  return {mean, std::sqrt(var)};
+}
+
 }  // namespace
 
-DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
-  CaseSpec spec = input;
-  const ExperimentSpec& ex = spec.experiment;
-  bool clump = spec.spheres.empty() && spec.bodies.size() == 1;
-  if (!clump && !(spec.spheres.size() == 1 && spec.bodies.empty()))
-    throw std::runtime_error(spec.path + ": a drop test needs exactly one body (a [[sphere]] or a [[clump]]); the case has " +
-                             std::to_string(spec.spheres.size()) + " spheres and " +
-                             std::to_string(spec.bodies.size()) + " clumps");
-  auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
-                            [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
-  if (plate == spec.walls.end())
-    throw std::runtime_error(spec.path + ": a drop test needs a plane [[wall]] as the plate");
-  double n_len = std::sqrt(dot(plate->normal, plate->normal));
-  Vec3d up = {plate->normal[0] / n_len, plate->normal[1] / n_len, plate->normal[2] / n_len};
-  double g_down = -dot(spec.gravity, up);
-  if (!(g_down > 0)) throw std::runtime_error(spec.path + ": a drop test needs gravity towards the plate");
+namespace {
 
-  // Release at rest, lowest point H above the plate, above where the case put the body; a
-  // clump at a random orientation drawn from the case's seed (one replicate per seed).
-  double H = ex.drop_height;
-  double plate_level = dot(plate->point, up);
+// Places the body (the case's first sphere that is not fixed, else its first such clump) at rest
+// with its lowest point `height` above the surface, above where the case put it; a clump at a
+// random orientation drawn from the case's seed (one replicate per seed) unless the options say
+// otherwise.
+void place_body(CaseSpec& spec, const DropSurface& surface, double height, const DropOptions& options) {
+  const Vec3d& up = surface.up;
   Vec3d* position = nullptr;
   double lowest = 0;  // of the body as placed, along `up`
-  if (clump) {
-    BodySpec& body = spec.bodies[0];
+  auto sphere = std::find_if(spec.spheres.begin(), spec.spheres.end(), [](const SphereSpec& s) { return !s.fixed; });
+  if (sphere == spec.spheres.end()) {
+    BodySpec& body = *std::find_if(spec.bodies.begin(), spec.bodies.end(), [](const BodySpec& b) { return !b.fixed; });
     if (options.random_orientation) {
       std::mt19937_64 engine(spec.seed);
       body.orientation = random_orientation([&engine] { return unit_interval(engine()); });
@@ -82,40 +77,47 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
       lowest = std::min(lowest, dot(s.position, up) - s.radius);
     position = &body.position;
   } else {
-    SphereSpec& body = spec.spheres[0];
+    SphereSpec& body = *sphere;
     body.velocity = body.angular_velocity = {0, 0, 0};
     lowest = dot(body.position, up) - body.radius;
     position = &body.position;
   }
-  for (int k = 0; k < 3; ++k) (*position)[k] += (plate_level + H - lowest) * up[k];
+  for (int k = 0; k < 3; ++k) (*position)[k] += (surface.level + height - lowest) * up[k];
+}
 
+// The camera's frames of the body's lowest point (particles that move: fixed ones are the rig's),
+// until past the rebound's apex; contact and lift-off from the body's speed along `up`.
+DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_down, const DropOptions& options) {
+  const ExperimentSpec& ex = spec.experiment;
+  const Vec3d& up = surface.up;
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
   Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
                  {}, frame_steps);
-  // The camera tracks the body's lowest point; the lift-off test uses its centre's speed.
   auto height = [&](const HostState& s) {
     double low = 1e300;
-    for (const auto& p : s.pos) low = std::min(low, dot({p.x, p.y, p.z}, up) - p.w);
-    return low - plate_level;
+    for (size_t i = 0; i < s.pos.size(); ++i)
+      if (s.vel[i].w != 0.0f) low = std::min(low, dot({s.pos[i].x, s.pos[i].y, s.pos[i].z}, up) - s.pos[i].w);
+    return low - surface.level;
   };
   auto normal_speed = [&](const HostState& s) {
-    const gpu::vec4& v = s.bodies.empty() ? s.vel[0] : s.bodies[0].vel;
+    const gpu::vec4& v = s.bodies.empty() ? s.vel[first_moving_sphere(s)] : s.bodies[first_moving_body(s)].vel;
     return double(v.x) * up[0] + double(v.y) * up[1] + double(v.z) * up[2];
   };
-
-  auto centre_height = [&](const HostState& s) { return dot(body_centre(s), up) - plate_level; };
-  auto touching = [&](const HostState& s) {
+  auto centre_height = [&](const HostState& s) { return dot(body_centre(s), up) - surface.level; };
+  auto touching = [&](const HostState& s) {  // moving spheres below the surface
     int n = 0;
-    for (const auto& p : s.pos) n += dot({p.x, p.y, p.z}, up) - p.w < plate_level ? 1 : 0;
+    for (size_t i = 0; i < s.pos.size(); ++i)
+      if (s.vel[i].w != 0.0f && dot({s.pos[i].x, s.pos[i].y, s.pos[i].z}, up) - s.pos[i].w < surface.level) ++n;
     return n;
   };
 
   DropResult r;
-  r.drop_height = H;
+  r.drop_height = ex.drop_height;
   r.trajectory.push_back({0.0, height(sim.state())});
   r.centre_trajectory.push_back(centre_height(sim.state()));
+  r.wall_forces.sample(sim);
   bool touched = false, left = false;
   double touch_time = 0, prev_speed = 0;
   uint64_t max_frames = uint64_t(ex.max_time / frame_dt) + 1;
@@ -125,7 +127,8 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
     r.trajectory.push_back({sim.time(), h});
     r.centre_trajectory.push_back(centre_height(sim.state()));
     if (!left) r.peak_touching = std::max(r.peak_touching, touching(sim.state()));
-    // A frame below the plate, or (a contact shorter than a frame) the fall turned into a rise.
+    r.wall_forces.sample(sim);
+    // A frame below the surface, or (a contact shorter than a frame) the fall turned into a rise.
     if (!touched && (h < 0 || (prev_speed < 0 && v > 0))) {
       touched = true;
       touch_time = sim.time();
@@ -153,14 +156,40 @@ DropResult run_drop(const CaseSpec& input, const DropOptions& options) {
   if (best == first_after || best + 1 >= r.trajectory.size()) r.rebound_height = r.trajectory[best].second;
   else r.rebound_height = parabola_peak(r.trajectory[best - 1].second, r.trajectory[best].second,
                                         r.trajectory[best + 1].second);
-  r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / H);
+  r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / ex.drop_height);
   r.centre_rise = centre_rise(r.centre_trajectory);
   return r;
 }
 
+}  // namespace
+
+DropResult drop_onto(const CaseSpec& input, const DropSurface& surface, const DropOptions& options) {
+  double g_down = -dot(input.gravity, surface.up);
+  if (!(g_down > 0)) throw std::runtime_error(input.path + ": a drop test needs gravity towards the plate");
+  CaseSpec spec = input;
+  place_body(spec, surface, spec.experiment.drop_height, options);
+  return film_drop(spec, surface, g_down, options);
+}
+
+DropResult run_drop(const CaseSpec& spec, const DropOptions& options) {
+  bool clump = spec.spheres.empty() && spec.bodies.size() == 1;
+  if (!clump && !(spec.spheres.size() == 1 && spec.bodies.empty()))
+    throw std::runtime_error(spec.path + ": a drop test needs exactly one body (a [[sphere]] or a [[clump]]); the case has " +
+                             std::to_string(spec.spheres.size()) + " spheres and " +
+                             std::to_string(spec.bodies.size()) + " clumps");
+  auto plate = std::find_if(spec.walls.begin(), spec.walls.end(),
+                            [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
+  if (plate == spec.walls.end())
+    throw std::runtime_error(spec.path + ": a drop test needs a plane [[wall]] as the plate");
+  double n_len = std::sqrt(dot(plate->normal, plate->normal));
+  DropSurface surface;
+  surface.up = {plate->normal[0] / n_len, plate->normal[1] / n_len, plate->normal[2] / n_len};
+  surface.level = dot(plate->point, surface.up);
+  return drop_onto(spec, surface, options);
+}
+
 void align_impact_phase(CaseSpec& spec) {
   if (spec.spheres.empty() && spec.bodies.empty()) return;
-  constexpr double kPi = 3.14159265358979323846;
   const Vec3d& gv = spec.gravity;
   double g = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
   double H = spec.experiment.drop_height;
@@ -169,8 +198,9 @@ void align_impact_phase(CaseSpec& spec) {
   // A clump body falls in vacuum (the engine's drag acts on free spheres only) and without
   // turning, so its lowest point meets the plate after sqrt(2 H / g) whatever its orientation.
   double k = 0;
-  if (!spec.spheres.empty()) {
-    const SphereSpec& body = spec.spheres[0];
+  auto sphere = std::find_if(spec.spheres.begin(), spec.spheres.end(), [](const SphereSpec& s) { return !s.fixed; });
+  if (sphere != spec.spheres.end()) {
+    const SphereSpec& body = *sphere;
     double r = body.radius;
     double mass = spec.materials.at(body.material).density * 4.0 / 3.0 * kPi * r * r * r;
     k = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi * r * r / mass;
@@ -187,7 +217,10 @@ void align_impact_phase(CaseSpec& spec) {
 // The registered experiment.
 
 void DropExperiment::read_keys(const Section& s, ExperimentSpec& ex) const {
-  if (auto h = s.number("drop_height")) ex.drop_height = positive(s, "drop_height", *h);
+  if (auto h = s.number("drop_height")) {
+    ex.drop_height = positive(s, "drop_height", *h);
+    if (ex.drop_height > 20) s.fail("drop_height", format_number(*h) + " m is no lab drop: millimetres written as metres?");
+  }
   if (auto f = s.number("camera_fps")) ex.camera_fps = positive(s, "camera_fps", *f);
 }
 
@@ -214,23 +247,26 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   j["contact_time"] = r.contact_time;
   j["camera_fps"] = spec.experiment.camera_fps;
   auto track = std::make_shared<DropResult>(r);
-  o.files.push_back({"trajectory.csv", [track](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,height,centre\n";
-                         for (size_t k = 0; k < track->trajectory.size(); ++k)
-                           out << track->trajectory[k].first << "," << track->trajectory[k].second << ","
-                               << track->centre_trajectory[k] << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("trajectory.csv", [track](std::ostream& out) {
+    out << "t,height,centre\n";
+    for (size_t k = 0; k < track->trajectory.size(); ++k)
+      out << track->trajectory[k].first << "," << track->trajectory[k].second << "," << track->centre_trajectory[k]
+          << "\n";
+  }));
   o.lines.push_back(printf_text("drop %s: H = %.4g m, rebound h = %.5g m, e = sqrt(h/H) = %.4f (impact %.3g m/s, contact %.3g ms)",
                                 spec.name.c_str(), r.drop_height, r.rebound_height, r.restitution, r.impact_speed,
                                 1e3 * r.contact_time));
-  o.written = [](const std::string& dir) { return "wrote " + dir + "/drop.json and " + dir + "/trajectory.csv"; };
+  auto forces = std::make_shared<WallForceSeries>(r.wall_forces);
+  o.files.push_back({"wall_forces.csv", [forces](const std::string& path) {
+                       write_file_atomically(path, [&](std::ostream& out) { forces->write_csv(out); });
+                     }});
+  o.written = [](const std::string& dir) { return "wrote " + dir + "/drop.json, trajectory.csv and wall_forces.csv"; };
   return o;
 }
 
 // Replicates 2..N of a drop: the same case with simulation.seed + k (a clump lands at a new
 // random orientation each time); their rebound heights and e go into drop.json with mean and sd.
+// A replicate whose body never leaves the plate is recorded as such, and the others go on.
 void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, const ExperimentRun& run,
                                     const DropResult& first) const {
   OrderedJson list = OrderedJson::array();
@@ -238,7 +274,15 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
   for (int k = 0; k < run.replicates; ++k) {
     CaseSpec replicate = spec;
     replicate.seed = spec.seed + uint64_t(k);
-    DropResult r = k == 0 ? first : drop(replicate, {run.backend, run.device, run.threads});
+    DropOptions options{run.backend, run.device, run.threads};
+    options.require_rebound = false;
+    DropResult r = k == 0 ? first : drop(replicate, options);
+    if (!r.rebounded) {
+      list.push_back({{"seed", replicate.seed}, {"problem", no_rebound(replicate)}});
+      o.lines.push_back(printf_text("  replicate %d (seed %llu): no rebound within max_time = %g s", k + 1,
+                                    (unsigned long long)replicate.seed, replicate.experiment.max_time));
+      continue;
+    }
     e.push_back(r.restitution);
     h.push_back(r.rebound_height);
     rise.push_back(r.centre_rise);
@@ -247,18 +291,14 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
     o.lines.push_back(printf_text("  replicate %d (seed %llu): h = %.5g m, e = %.4f, centre rise %.5g m", k + 1,
                                   (unsigned long long)replicate.seed, r.rebound_height, r.restitution, r.centre_rise));
   }
-  auto mean_sd = [](const std::vector<double>& x) {
-    double mean = 0, var = 0;
-    for (double v : x) mean += v / double(x.size());
-    for (double v : x) var += (v - mean) * (v - mean) / double(std::max<size_t>(1, x.size() - 1));
-    return std::pair<double, double>{mean, std::sqrt(var)};
-  };
   auto [e_mean, e_sd] = mean_sd(e);
   auto [h_mean, h_sd] = mean_sd(h);
   auto [rise_mean, rise_sd] = mean_sd(rise);
-  o.lines.push_back(printf_text("  over %d replicates: e mean %.4f, sd %.4f; h mean %.5g m, sd %.3g; centre rise mean %.5g m, sd %.3g",
-                                run.replicates, e_mean, e_sd, h_mean, h_sd, rise_mean, rise_sd));
+  o.lines.push_back(printf_text("  e over %zu of %d replicates: mean %.4f, sd %.4f; h mean %.5g m, sd %.3g; centre rise "
+                                "mean %.5g m, sd %.3g",
+                                e.size(), run.replicates, e_mean, e_sd, h_mean, h_sd, rise_mean, rise_sd));
   o.json["replicates"] = {{"runs", list},
+                          {"counted", e.size()},
                           {"restitution_mean", e_mean},
                           {"restitution_sd", e_sd},
                           {"rebound_height_mean", h_mean},
@@ -344,11 +384,18 @@ DiagnosticOutcome DropExperiment::simulate_for_diagnosis(CaseSpec spec, const st
   return out;
 }
 
-// Lengths a thousand times the rig's size are millimetres written as metres.
+// Lengths a thousand times the rig's size are millimetres written as metres; a rebound above the
+// release or a restitution outside (0, 1] cannot be measured.
 std::string DropExperiment::implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const {
-  if (m.unit != "m" || !(value > 10 * spec.experiment.drop_height)) return "";
-  return std::to_string(value) + " m is more than ten times the drop height " +
-         std::to_string(spec.experiment.drop_height) + " m: millimetres? Values are in SI units (m)";
+  if (m.name == "restitution" && !(value > 0 && value <= 1)) return "a restitution coefficient lies in (0, 1]";
+  if (m.unit != "m") return "";
+  if (value > 10 * spec.experiment.drop_height)
+    return std::to_string(value) + " m is more than ten times the drop height " +
+           std::to_string(spec.experiment.drop_height) + " m: millimetres? Values are in SI units (m)";
+  if (m.name == "rebound_height" && value > spec.experiment.drop_height)
+    return std::to_string(value) + " m is higher than the drop height " + std::to_string(spec.experiment.drop_height) +
+           " m: a body does not rebound above its release (e > 1)";
+  return "";
 }
 
 const Experiment& drop_experiment() {

@@ -8,6 +8,7 @@
 
 #include "case/case_spec.h"
 #include "engine/step_program.h"
+#include "experiments/wall_force_series.h"
 #include "experiments/experiment.h"
 
 namespace repose {
@@ -35,7 +36,21 @@ struct DropResult {
   int peak_touching = 0;            // most spheres of the body in the plate at one frame (first impact)
   std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
   std::vector<double> centre_trajectory;              // height of the centre of mass, same frames
+  WallForceSeries wall_forces;                         // the plate's force at every camera frame
 };
+
+// Where a drop is measured from: `up` (unit, against gravity) and the level along it from which
+// the release height and the camera's heights count (the plate; a bed's top).
+struct DropSurface {
+  Vec3d up{0, 0, 1};
+  double level = 0;
+};
+
+// Releases the case's body (its one sphere, else its one clump) at rest with its lowest point
+// drop_height above the surface and films its fall and rebound as run_drop does; particles that
+// do not move (fixed: the rig's) are not filmed. Throws std::runtime_error naming the case
+// without gravity towards the surface or (require_rebound) when the body never rebounds.
+DropResult drop_onto(const CaseSpec& spec, const DropSurface& surface, const DropOptions& options = {});
 
 // The case's one sphere or one clump is the body (a clump at a random orientation from
 // simulation.seed unless options say otherwise), its first plane wall the plate; [experiment]

@@ -16,6 +16,10 @@ DiagnosticOutcome Experiment::simulate_for_diagnosis(CaseSpec spec, const std::v
   throw std::runtime_error(spec.path + ": diagnose does not simulate the " + id() + " experiment");
 }
 
+OutputFile text_file(std::string name, std::function<void(std::ostream&)> write) {
+  return {std::move(name), [write = std::move(write)](const std::string& path) { write_file_atomically(path, write); }};
+}
+
 const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome) {
   if (outcome.status != OutcomeStatus::Measured) throw std::runtime_error(outcome.problem);
   return outcome;

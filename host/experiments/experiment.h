@@ -42,6 +42,9 @@ struct OutputFile {
   std::function<void(const std::string& path)> write;  // writes the whole file at `path`
 };
 
+// A text file (a CSV) written through a stream, atomically.
+OutputFile text_file(std::string name, std::function<void(std::ostream&)> write);
+
 // One run of an experiment, as data.
 struct ExperimentOutcome {
   OutcomeStatus status = OutcomeStatus::Measured;

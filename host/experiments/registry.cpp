@@ -5,6 +5,7 @@
 
 #include "case/experiment_keys.h"
 #include "experiments/drop.h"
+#include "experiments/drop_on_bed.h"
 #include "experiments/repose.h"
 #include "experiments/roll.h"
 #include "experiments/tilt.h"
@@ -14,6 +15,7 @@ namespace repose {
 const std::vector<const Experiment*>& experiments() {
   // Adding an experiment: its own file, and one line here.
   static const std::vector<const Experiment*> list = {
+      &drop_on_bed_experiment(),  // before drop: it takes the drop cases that hold a fixed bed
       &drop_experiment(),
       &slide_experiment(),
       &roll_experiment(),

@@ -2,6 +2,7 @@
 #include "experiments/repose.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -70,11 +71,21 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   uint64_t sample_steps = steps_in(0.05, model.dt);
   uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
   Simulation sim = experiment_simulation(model, options, sample_steps, 200);
+  sim.set_profiling(options.profile);
   Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
 
+  // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
+  auto names = model.wall_group_names();
+  size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
+  bool clear_before = false;
+
   ReposeResult r;
+  r.phases = {{"fill", {}}, {"lift", {}}, {"run-out", {}}};
+  r.dt = model.dt;
   bool bed_measured = false;
   while (true) {
+    auto sample_start = std::chrono::steady_clock::now();
+    size_t phase = sim.time() < lift.motion.start_time - 1e-9 ? 0 : sim.time() < lift_end - 1e-9 ? 1 : 2;
     sim.advance(sample_steps);
     if (!bed_measured && sim.time() >= lift.motion.start_time - 1e-9) {
       r.bed_height = bed_height(sim.state(), ex.heap_floor_z);
@@ -84,7 +95,15 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     r.energy.push_back({sim.time(), e});
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "max E " + std::to_string(e).substr(0, 8) + " J");
-    if (sim.time() >= lift_end && e < ex.settle_energy) {
+    RunProfile sample = sim.take_profile();
+    sample.wall_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
+    r.phases[phase].second.add(sample);
+    const WallForce& f = r.wall_forces.rows.back().at(lift_group);
+    bool clear = sim.time() > lift.motion.start_time && f.fx == 0 && f.fy == 0 && f.fz == 0;
+    bool lift_over = sim.time() >= lift_end || (ex.end_when_clear && clear && clear_before);
+    clear_before = clear;
+    if (lift_over && e < ex.settle_energy) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
       break;
@@ -161,13 +180,14 @@ double measure_bed_height(const CaseSpec& spec) {
 }
 
 std::vector<std::string> repose_keys() {
-  return {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
+  return {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
 }
 
 void read_repose_keys(const Section& s, ExperimentSpec& ex) {
   ex.lift_wall = s.text("lift_wall").value_or("");
   if (ex.lift_wall.empty()) s.missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
   if (auto t = s.number("lift_end")) ex.lift_end = non_negative(s, "lift_end", *t);
+  ex.end_when_clear = s.boolean("end_when_clear").value_or(true);
   if (auto e = s.number("settle_energy")) ex.settle_energy = positive(s, "settle_energy", *e);
   ex.view = s.choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
   ex.heap_side = s.choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
@@ -249,42 +269,51 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   j["largest_kinetic_energy"] = r.kinetic_energy;
   if (r.views) j["views"] = views_json(*r.views);
   if (r.heap_3d) j["axisymmetric"] = axisymmetric_json(*r.heap_3d);
+  OrderedJson phases = OrderedJson::array();
+  for (const auto& [name, p] : r.phases)
+    phases.push_back({{"phase", name}, {"steps", p.steps}, {"simulated_s", double(p.steps) * r.dt},
+                      {"wall_s", p.wall_seconds}, {"rebuilds", p.rebuilds}});
+  j["phases"] = phases;
   return j;
 }
 
-void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r) {
-  o.files.push_back({"energy.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,largest_kinetic_energy\n";
-                         for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
-                       });
-                     }});
-  o.files.push_back({"heap.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "x,y,z,radius\n";
-                         for (const auto& s : r->spheres)
-                           out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
-                       });
-                     }});
+void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r, const CaseSpec& spec) {
+  o.files.push_back(text_file("energy.csv", [r](std::ostream& out) {
+    out << "t,largest_kinetic_energy\n";
+    for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
+  }));
+  o.files.push_back(text_file("heap.csv", [r](std::ostream& out) {
+    out << "x,y,z,radius\n";
+    for (const auto& s : r->spheres) out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
-  o.files.push_back({"heap.png", [r](const std::string& path) { write_heap_angle_png(path, r->heap); }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
+  std::string horizontal = spec.experiment.view == "x" ? "y" : "x";  // the picture's horizontal axis
+  o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
+}
+
+// With --profile: where each phase's time went, by kernel stage and by kernel.
+std::vector<std::string> profile_lines(const std::string& backend, const ReposeResult& r) {
+  std::vector<std::string> lines{"where the time went (" + backend + "):"};
+  std::string table = format_profiles(r.phases, r.dt);
+  for (size_t start = 0, end; start < table.size(); start = end + 1) {
+    end = table.find('\n', start);
+    lines.push_back(table.substr(start, end - start));
+  }
+  for (const auto& [name, p] : r.phases)
+    if (p.steps) lines.push_back("  " + name + " kernels per step: " + format_kernel_times(p));
+  return lines;
 }
 
 std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& r) {
   auto side = [](const SlopeFit& s) { return s.valid ? std::to_string(s.angle_deg).substr(0, 5) + " deg" : std::string("none"); };
   std::vector<std::string> lines;
-  lines.push_back(printf_text("repose %s: angle of repose %.2f deg (left %s, right %s), heap %.3g m high, %zu particles",
-                              spec.name.c_str(), r.angle_deg, side(r.heap.left).c_str(), side(r.heap.right).c_str(),
+  std::string angle = std::isfinite(r.angle_deg) ? printf_text("%.2f deg", r.angle_deg) : "not measured (no valid slope)";
+  lines.push_back(printf_text("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles",
+                              spec.name.c_str(), angle.c_str(), side(r.heap.left).c_str(), side(r.heap.right).c_str(),
                               r.heap.heap_height, r.particles_measured));
-  if (r.views)
-    lines.push_back(printf_text("  %zu views around the heap: mean %.2f deg, sd %.2f deg over %d slopes (the angle)",
-                                r.views->azimuth_deg.size(), r.views->mean_deg, r.views->sd_deg, r.views->valid_slopes));
-  if (r.heap_3d)
-    lines.push_back(printf_text("  3D sector fit: mean %.2f deg, spread %.2f deg over %d sectors", r.heap_3d->mean_deg,
-                                r.heap_3d->spread_deg, r.heap_3d->valid_sectors));
+  if (r.views) lines.push_back("  views around the heap (the angle): " + describe_views(*r.views));
+  if (r.heap_3d) lines.push_back("  3D sector fit: " + describe_sector_fit(*r.heap_3d));
   return lines;
 }
 
@@ -309,8 +338,10 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
   o.values["angle_front"] = r->heap.mean_deg;  // the single front view, also when the angle is several views' mean
   if (r->views) o.values["angle_views_sd"] = r->views->sd_deg;
   o.json = repose_json(spec, *r);
-  add_repose_files(o, r);
+  add_repose_files(o, r, spec);
   o.lines = repose_lines(spec, *r);
+  if (run.profile)
+    for (const std::string& line : profile_lines(run.backend, *r)) o.lines.push_back(line);
   o.written = [](const std::string& dir) { return "wrote " + dir + "/repose.json, heap.png, heap.csv, energy.csv, wall_forces.csv"; };
   return o;
 }

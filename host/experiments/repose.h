@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "engine/run_profile.h"
 #include "experiments/experiment.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
@@ -34,9 +35,14 @@ struct ReposeResult {
   std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
   std::vector<Sphere> spheres;    // the settled heap
   WallForceSeries wall_forces;
+  // Where the time went: "fill" (before the lift starts: pouring and settling), "lift", "run-out"
+  // (after the lift until settled); wall time includes the experiment's own sampling.
+  std::vector<std::pair<std::string, RunProfile>> phases;
+  double dt = 0;  // s, the time step
 };
 
-// Runs until the lift is over (lift_end, default the lift wall's motion stop) and the kinetic
+// Runs until the lift is over (lift_end, default the lift wall's motion stop, or with
+// end_when_clear once the lifted wall has touched nothing at two samples) and the kinetic
 // energy of every particle (or body) is below settle_energy, then measures. Throws std::runtime_error naming
 // the case when the heap has not settled by max_time (unless `measure_unsettled`: then it measures
 // the heap as it stands at max_time, settled = false; the diagnosis does, since a lone grain that

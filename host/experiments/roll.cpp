@@ -13,12 +13,9 @@
 #include "experiments/tilt.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/math.h"
 
 namespace repose {
-
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
   CaseSpec spec = input;
@@ -157,16 +154,12 @@ ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["mu_r"] = r->mu_r;
   j["speed_at_foot"] = r->speed_at_foot;
   j["stop_time"] = r->stop_time;
-  o.files.push_back({"trajectory.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,x,speed\n";
-                         for (const auto& s : r->trajectory) out << s.time << "," << s.x << "," << s.speed << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
+    out << "t,x,speed\n";
+    for (const auto& s : r->trajectory) out << s.time << "," << s.x << "," << s.speed << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   o.lines.push_back(printf_text(
       "roll %s: beta = %.3g deg, S = %.4g m, rolling distance L = %.4g m, mu_r = S sin(beta) / (S cos(beta) + L) = %.4f",
       spec.name.c_str(), r->incline_deg, r->slope_distance, r->rolling_distance, r->mu_r));
@@ -176,17 +169,10 @@ ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun&
 
 // Rolling friction spans decades between a ball bearing and a cabbage: searched in log.
 const DiagnosisRole* RollExperiment::diagnosis() const {
-  static const DiagnosisRole role = [] {
-    DiagnosisRole r;
-    r.measures = {{"roll_distance", false, "m"}};
-    r.synthetic = {"roll_distance"};
-    r.baseline = {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true};
-    r.baseline_field = &Interaction::rolling_friction;
-    r.baseline_model = "Hertz-Mindlin, constant rolling torque, no air";
-    r.condition = "experiment.slope_distance";
-    r.truth_option = "plate_friction";
-    return r;
-  }();
+  static const DiagnosisRole role =
+      body_plate_role({"roll_distance", false, "m"}, {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true},
+                      &Interaction::rolling_friction, "Hertz-Mindlin, constant rolling torque, no air",
+                      "experiment.slope_distance");
   return &role;
 }
 
@@ -231,15 +217,9 @@ class RollTiltExperiment : public TiltExperiment {
 
  private:
   static DiagnosisRole role() {
-    DiagnosisRole r;
-    r.measures = {{"roll_angle", false, "deg"}};
-    r.synthetic = {"roll_angle"};
-    r.baseline = {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true};
-    r.baseline_field = &Interaction::rolling_friction;
-    r.baseline_model = "Hertz-Mindlin, constant rolling torque, no cohesion";
-    r.condition = "material.0.density";
-    r.truth_option = "plate_friction";
-    return r;
+    return body_plate_role({"roll_angle", false, "deg"}, {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true},
+                           &Interaction::rolling_friction, "Hertz-Mindlin, constant rolling torque, no cohesion",
+                           "material.0.density");
   }
 
  public:

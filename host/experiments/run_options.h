@@ -9,6 +9,7 @@ struct ExperimentRunOptions {
   int device = -1;
   unsigned threads = 1;
   bool progress = false;  // progress with ETA on stderr (host/util/progress.h)
+  bool profile = false;   // time every kernel (results carry per-phase profiles either way)
 };
 
 }  // namespace repose

@@ -12,28 +12,9 @@
 #include "experiments/body_frame.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
+#include "util/math.h"
 
 namespace repose {
-
-namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-Vec3d sub(Vec3d a, Vec3d b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(Vec3d a, Vec3d b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3d cross(Vec3d a, Vec3d b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-
-// Rodrigues rotation of v about the unit axis k by angle a.
-Vec3d rotate(Vec3d v, Vec3d k, double a) {
-  double c = std::cos(a), s = std::sin(a);
-  Vec3d kv = cross(k, v);
-  double kd = dot(k, v) * (1 - c);
-  return {v[0] * c + kv[0] * s + k[0] * kd, v[1] * c + kv[1] * s + k[1] * kd, v[2] * c + kv[2] * s + k[2] * kd};
-}
-
-}  // namespace
 
 TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
   CaseSpec spec = input;
@@ -65,7 +46,7 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, 
   // The body in the plate's frame: rotate back by the tilt so far (exact on the host, in double).
   auto in_plate_frame = [&](Vec3d x, double t) {
     double angle = rate * std::max(0.0, t - ex.settle_time);
-    return rotate(sub(x, pivot), ex.tilt_axis, -angle);
+    return rotate_about(sub(x, pivot), ex.tilt_axis, -angle);
   };
   Vec3d start = in_plate_frame(body_centre(sim.state()), sim.time());
   Vec3d turned{0, 0, 0};  // the first body's rotation since the tilt began (w dt summed: rocking cancels)
@@ -173,16 +154,12 @@ ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["onset_time"] = r->onset_time;
   j[quantity_] = r->tan_alpha;
   j["rolled_fraction"] = r->rolled_fraction;
-  o.files.push_back({"trajectory.csv", [r](const std::string& path) {
-                       write_file_atomically(path, [&](std::ostream& out) {
-                         out << "t,angle_deg,displacement\n";
-                         for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
-                       });
-                     }});
+  o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
+    out << "t,angle_deg,displacement\n";
+    for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
+  }));
   if (!r->wall_forces.rows.empty())
-    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
-                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
-                       }});
+    o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   o.lines.push_back(printf_text("%s %s: the body starts to %s at alpha = %.3f deg, %s = tan(alpha) = %.4f (rolled fraction %.2f)",
                                 type_.c_str(), spec.name.c_str(), motion_.c_str(), r->onset_angle_deg, quantity_.c_str(),
                                 r->tan_alpha, r->rolled_fraction));
@@ -206,6 +183,19 @@ std::string one_body_problem(const CaseSpec& spec) {
   return one_body ? "" : "diagnose tilts or rolls one body (one [[sphere]] or one [[clump]], no fills or lattices)";
 }
 
+DiagnosisRole body_plate_role(MeasureInfo measure, FreeParameter baseline, double Interaction::*field,
+                              std::string baseline_model, std::string condition) {
+  DiagnosisRole r;
+  r.synthetic = {measure.name};
+  r.measures = {std::move(measure)};
+  r.baseline = std::move(baseline);
+  r.baseline_field = field;
+  r.baseline_model = std::move(baseline_model);
+  r.condition = std::move(condition);
+  r.truth_option = "plate_friction";
+  return r;
+}
+
 Interaction& TiltExperiment::tested_contact(CaseSpec& spec) const { return body_plate_contact(spec); }
 
 std::string TiltExperiment::diagnosis_problem(const CaseSpec& spec) const { return one_body_problem(spec); }
@@ -219,17 +209,10 @@ DiagnosticOutcome TiltExperiment::simulate_for_diagnosis(CaseSpec spec, const st
 }
 
 const Experiment& slide_experiment() {
-  static const TiltExperiment slide("slide", "slide", "slide", "mu_s", [] {
-    DiagnosisRole r;
-    r.measures = {{"slide_angle", false, "deg"}};
-    r.synthetic = {"slide_angle"};
-    r.baseline = {"static_friction", "1", 0.05, 1.2, false};
-    r.baseline_field = &Interaction::static_friction;
-    r.baseline_model = "Hertz-Mindlin, Coulomb friction, no cohesion";
-    r.condition = "material.0.density";
-    r.truth_option = "plate_friction";
-    return r;
-  }());
+  static const TiltExperiment slide(
+      "slide", "slide", "slide", "mu_s",
+      body_plate_role({"slide_angle", false, "deg"}, {"static_friction", "1", 0.05, 1.2, false},
+                      &Interaction::static_friction, "Hertz-Mindlin, Coulomb friction, no cohesion", "material.0.density"));
   return slide;
 }
 

@@ -71,6 +71,10 @@ class TiltExperiment : public Experiment {
 Interaction& body_plate_contact(CaseSpec& spec);
 // Why a diagnosis cannot tilt or roll this case's body ("" when it can: one sphere or one clump).
 std::string one_body_problem(const CaseSpec& spec);
+// The diagnosis role of a one-body test on a plate: one scalar measure, the baseline a friction
+// of the body-plate contact (synth-data's --plate-friction sets the truth's).
+DiagnosisRole body_plate_role(MeasureInfo measure, FreeParameter baseline, double Interaction::*field,
+                              std::string baseline_model, std::string condition);
 
 const Experiment& slide_experiment();
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "util/math.h"
+
 namespace repose {
 
 namespace {
@@ -44,7 +46,7 @@ std::array<double, 3> projected_areas(const std::vector<std::array<double, 3>>& 
   if (centres.empty() || centres.size() != radii.size())
     throw std::invalid_argument("projected_areas: one radius per centre, at least one sphere");
   if (centres.size() == 1) {  // exact for a lone sphere
-    double a = M_PI * radii[0] * radii[0];
+    double a = kPi * radii[0] * radii[0];
     return {a, a, a};
   }
   std::array<double, 3> out{};

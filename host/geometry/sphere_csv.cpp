@@ -11,7 +11,8 @@
 #include <ostream>
 #include <stdexcept>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace repose {
 namespace {
@@ -140,6 +141,7 @@ std::vector<Sphere> parse_sphere_csv(std::istream& in, const std::string& source
 }
 
 std::vector<Sphere> read_sphere_csv(const std::string& path) {
+  if (auto why = why_not_input_file(path, 256u << 20); !why.empty()) throw InputError(path, 0, 0, why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, 0, "cannot open file");
   return parse_sphere_csv(in, path);

@@ -13,7 +13,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
+#include "util/input_file.h"
 
 namespace repose {
 namespace {
@@ -275,6 +276,7 @@ StlFile parse_stl(const std::string& bytes, const std::string& source_name) {
 }
 
 StlFile read_stl(const std::string& path) {
+  if (auto why = why_not_input_file(path); !why.empty()) throw InputError(path, 0, 0, why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, 0, 0, "cannot open file");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -5,10 +5,11 @@
 #include <glm/geometric.hpp>
 #include <stdexcept>
 
+#include "util/math.h"
+
 namespace repose {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 double radians(double degrees) { return degrees * kPi / 180.0; }
 
 ClumpTemplate translated_copies(const std::string& name, const ClumpTemplate& body,

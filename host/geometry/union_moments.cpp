@@ -200,6 +200,8 @@ std::vector<std::vector<int>> overlapping_pairs(const std::vector<LocalSphere>& 
 
 }  // namespace
 
+// One integration in one function (92 lines): the grid's axes, origin and spacing are shared by
+// the set-up, the sweep over cells and the moments; split, each part would take them all.
 UnionMoments union_moments(const std::vector<Sphere>& spheres, const UnionIntegration& options) {
   if (spheres.empty()) throw std::invalid_argument("union_moments: no spheres");
   if (!(options.cells_per_min_radius > 0) || options.max_cells_per_side < 1 || options.refine_depth < 0 ||

@@ -10,6 +10,7 @@ void write_run_summary(const std::string& path, const Simulation& sim, const Run
   const Model& m = sim.model();
   auto energy = sim.kinetic_energy();
   nlohmann::ordered_json j;
+  j["status"] = info.status;
   j["case"] = m.case_path;
   j["backend"] = info.backend;
   j["variant"] = info.variant;
@@ -31,8 +32,11 @@ void write_run_summary(const std::string& path, const Simulation& sim, const Run
   j["wall_forces"] = walls;
   j["frames"] = info.frames;
   j["wall_seconds"] = info.wall_seconds;
+  // Of this invocation: a restarted run counts the steps since its restart.
   j["particle_steps_per_second"] =
-      info.wall_seconds > 0 ? double(m.n_particles) * sim.step() / info.wall_seconds : 0.0;
+      info.wall_seconds > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / info.wall_seconds : 0.0;
+  if (!info.restart.file.empty()) j["restarted_from"] = {{"file", info.restart.file}, {"step", info.restart.step}};
+  j["provenance"] = info.provenance;
   write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
 }
 

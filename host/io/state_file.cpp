@@ -4,6 +4,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "engine/buffer_table.h"
 #include "util/atomic_file.h"
 
 namespace repose {
@@ -18,9 +19,40 @@ void put_array(std::ostream& out, const std::vector<T>& v) {
   out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(v.size() * sizeof(T)));
 }
 
+// The File rows of the buffer table, in binding order, each with its count from the header:
+// particles N (N + 1 for row starts), contacts C, bodies B, and R for contact state that only
+// some cases keep (the rolling springs). A new row of another shape needs a new format version.
+template <class State, class F>
+void for_each_file_array(State& s, F&& f) {
+  for_each_kept(s, [&](const BufferSpec& b, auto& v) {
+    if (b.keep == BufferKeep::File) f(b, v);
+  });
+}
+
+size_t file_count(const BufferSpec& b, uint32_t n, uint32_t c, uint32_t bodies, uint32_t r) {
+  switch (b.count) {
+    case BufferCount::Particles: return n;
+    case BufferCount::ParticlesPlusOne: return size_t(n) + 1;
+    case BufferCount::Bodies: return bodies;
+    default: return b.need == BufferNeed::Always ? c : r;
+  }
+}
+
+
+int version_of(const char magic[8]) {
+  if (std::memcmp(magic, kStateMagic, 8) == 0) return 4;
+  if (std::memcmp(magic, kStateMagicV3, 8) == 0) return 3;
+  if (std::memcmp(magic, kStateMagicV2, 8) == 0) return 2;
+  return 0;
+}
+
 }  // namespace
 
 void write_state_file(const std::string& path, const HostState& s, uint64_t step, double time) {
+  if (s.control.size() < kRestartControlWords || s.pos_at_build.size() != s.pos.size() ||
+      s.owner.size() != s.partner.size() || s.trans_start.size() != s.pos.size() + 1 ||
+      s.trans_list.size() != s.trans_start.back())
+    throw std::logic_error("write_state_file: the host state lacks the neighbour-list bookkeeping");
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(kStateMagic, 8);
     put(out, uint32_t(s.pos.size()));
@@ -29,58 +61,70 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
     put(out, uint32_t(s.rolling_spring.size()));
     put(out, step);
     put(out, time);
-    put_array(out, s.pos);
-    put_array(out, s.vel);
-    put_array(out, s.omega);
-    put_array(out, s.force);
-    put_array(out, s.torque);
-    put_array(out, s.row_start);
-    put_array(out, s.partner);
-    put_array(out, s.history);
-    put_array(out, s.bodies);
-    put_array(out, s.rolling_spring);
+    for_each_file_array(s, [&](const BufferSpec&, const auto& v) { put_array(out, v); });
+    // Version 4: the neighbour list's bookkeeping, so a restart continues with the same bytes.
+    out.write(reinterpret_cast<const char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
+    put_array(out, s.pos_at_build);
+    put_array(out, s.owner);
+    put_array(out, s.trans_start);
+    put_array(out, s.trans_list);
   }, true);
 }
 
-HostState read_state_file(const std::string& path, uint64_t* step, double* time) {
+HostState read_state_file(const std::string& path, StateFileInfo& info) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read state file '" + path + "'");
   char magic[8];
   in.read(magic, 8);
-  bool v2 = in && std::memcmp(magic, kStateMagicV2, 8) == 0;
-  if (!in || (!v2 && std::memcmp(magic, kStateMagic, 8) != 0))
-    throw std::runtime_error("'" + path + "' is not a Repose state file (bad magic)");
+  int version = in ? version_of(magic) : 0;
+  if (!version) throw std::runtime_error("'" + path + "' is not a Repose state file (bad magic)");
   uint32_t n = 0, c = 0, b = 0, r = 0;
-  uint64_t st = 0;
-  double t = 0;
   in.read(reinterpret_cast<char*>(&n), 4);
   in.read(reinterpret_cast<char*>(&c), 4);
   in.read(reinterpret_cast<char*>(&b), 4);
-  if (!v2) in.read(reinterpret_cast<char*>(&r), 4);
-  in.read(reinterpret_cast<char*>(&st), 8);
-  in.read(reinterpret_cast<char*>(&t), 8);
+  if (version >= 3) in.read(reinterpret_cast<char*>(&r), 4);
+  in.read(reinterpret_cast<char*>(&info.step), 8);
+  in.read(reinterpret_cast<char*>(&info.time), 8);
+  info.version = version;
+  // Counts come from the file: refuse absurd ones before allocating (a damaged header).
+  if (!in || n > (1u << 30) || c > (1u << 30) || b > n || (r != 0 && r != c))
+    throw std::runtime_error("state file '" + path + "' has a damaged header");
   HostState s;
   auto get = [&](auto& v, size_t k) {
     v.resize(k);
     in.read(reinterpret_cast<char*>(v.data()), std::streamsize(k * sizeof(v[0])));
   };
-  get(s.pos, n); get(s.vel, n); get(s.omega, n); get(s.force, n); get(s.torque, n);
-  get(s.row_start, n + 1); get(s.partner, c); get(s.history, c);
-  if (v2) {
-    // Version 2 bodies are 144 B: the same fields without the trailing drag areas.
-    constexpr size_t kV2Body = 144;
-    static_assert(sizeof(gpu::Body) > kV2Body);
-    std::vector<char> raw(b * kV2Body);
-    in.read(raw.data(), std::streamsize(raw.size()));
-    s.bodies.assign(b, gpu::Body{});
-    for (size_t k = 0; k < b; ++k) std::memcpy(&s.bodies[k], raw.data() + k * kV2Body, kV2Body);
-  } else {
-    get(s.bodies, b);
+  for_each_file_array(s, [&](const BufferSpec& spec, auto& v) {
+    if (version == 2 && spec.binding == gpu::kBindBodies) {
+      // Version 2 bodies are 144 B: the same fields without the trailing drag areas.
+      constexpr size_t kV2Body = 144;
+      static_assert(sizeof(gpu::Body) > kV2Body);
+      std::vector<char> raw(b * kV2Body);
+      in.read(raw.data(), std::streamsize(raw.size()));
+      s.bodies.assign(b, gpu::Body{});
+      for (size_t k = 0; k < b; ++k) std::memcpy(&s.bodies[k], raw.data() + k * kV2Body, kV2Body);
+      return;
+    }
+    get(v, file_count(spec, n, c, b, r));
+  });
+  if (version >= 4) {
+    s.control.assign(gpu::kControlWords, 0u);
+    in.read(reinterpret_cast<char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
+    get(s.pos_at_build, n);
+    get(s.owner, c);
+    get(s.trans_start, n + 1);
+    if (in && s.trans_start[n] > c) throw std::runtime_error("state file '" + path + "' is damaged");
+    get(s.trans_list, in ? s.trans_start[n] : 0);
   }
-  get(s.rolling_spring, r);
   if (!in) throw std::runtime_error("state file '" + path + "' is truncated");
-  if (step) *step = st;
-  if (time) *time = t;
+  return s;
+}
+
+HostState read_state_file(const std::string& path, uint64_t* step, double* time) {
+  StateFileInfo info;
+  HostState s = read_state_file(path, info);
+  if (step) *step = info.step;
+  if (time) *time = info.time;
   return s;
 }
 

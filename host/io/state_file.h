@@ -1,5 +1,6 @@
-// The full state after a run, as bytes in a stable, documented order (docs/state-format.md),
-// so that two runs, two thread counts or two backends can be compared with `cmp`.
+// The full state of a run, as bytes in a stable, documented order (docs/state-format.md), so that
+// two runs, two thread counts or two backends can be compared with `cmp`, and a run can continue
+// from it (`repose run --restart`) to the same bytes as a run that never stopped.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -8,13 +9,26 @@
 
 namespace repose {
 
-// Version 3 adds the rolling springs (a count, then one vec4 per contact); version 2 files
-// (no rolling springs) still read.
-constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '3'};
+// Version 4 adds what a restart needs beyond the physics (the neighbour-list bookkeeping:
+// control counters, positions at the last rebuild, the contacts' owners and transposed index).
+// Version 3 added the rolling springs. Versions 2 and 3 still read, but cannot be restarted.
+constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '4'};
+constexpr char kStateMagicV3[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '3'};
 constexpr char kStateMagicV2[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
+// Control words 0 .. kRestartControlWords-1 (need-rebuild flag to old-contact count) are stored;
+// the dispatch sizes after them depend on the kernel variant and are recomputed on restart.
+constexpr uint32_t kRestartControlWords = 8;
+
+struct StateFileInfo {
+  uint64_t step = 0;
+  double time = 0;
+  int version = 0;
+  bool restartable() const { return version >= 4; }
+};
 
 void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time);
 // Reads a file written by write_state_file; throws naming the file when it is not one.
 HostState read_state_file(const std::string& path, uint64_t* step = nullptr, double* time = nullptr);
+HostState read_state_file(const std::string& path, StateFileInfo& info);
 
 }  // namespace repose

@@ -1,9 +1,10 @@
 #include "io/vtk_writer.h"
 
-#include <bit>
 #include <cmath>
-#include <cstdint>
-#include <vector>
+#include <cstdio>
+#include <cstring>
+#include <glm/glm.hpp>
+#include <sstream>
 
 #include "util/atomic_file.h"
 
@@ -11,46 +12,213 @@ namespace repose {
 
 namespace {
 
-// Legacy VTK binary is big-endian.
-template <class T>
-void put_be(std::ostream& out, T value) {
-  static_assert(sizeof(T) == 4);
-  uint32_t u = std::bit_cast<uint32_t>(value);
-  if constexpr (std::endian::native == std::endian::little) u = __builtin_bswap32(u);
-  out.write(reinterpret_cast<const char*>(&u), 4);
+// Raw appended data: each array is a UInt64 byte count followed by its bytes (little-endian,
+// as the header declares), at the offset its DataArray element names.
+class Appended {
+ public:
+  template <class T>
+  size_t add(const std::vector<T>& values) {
+    size_t offset = bytes_.size();
+    uint64_t n = values.size() * sizeof(T);
+    bytes_.append(reinterpret_cast<const char*>(&n), 8);
+    bytes_.append(reinterpret_cast<const char*>(values.data()), n);
+    return offset;
+  }
+  const std::string& bytes() const { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+std::string array_element(const char* type, const char* name, int components, size_t offset) {
+  std::ostringstream e;
+  e << "        <DataArray type=\"" << type << "\"";
+  if (name[0]) e << " Name=\"" << name << "\"";
+  if (components > 1) e << " NumberOfComponents=\"" << components << "\"";
+  e << " format=\"appended\" offset=\"" << offset << "\"/>\n";
+  return e.str();
 }
 
-void vectors(std::ostream& out, const char* name, const std::vector<gpu::vec4>& v) {
-  out << "VECTORS " << name << " float\n";
-  for (const auto& a : v) { put_be(out, a.x); put_be(out, a.y); put_be(out, a.z); }
-  out << "\n";
+std::vector<float> xyz(const std::vector<gpu::vec4>& v) {
+  std::vector<float> out;
+  out.reserve(3 * v.size());
+  for (const auto& a : v) out.insert(out.end(), {a.x, a.y, a.z});
+  return out;
+}
+
+std::string time_field(double time) {
+  char t[64];
+  std::snprintf(t, sizeof t, "%.17g", time);
+  return std::string("    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" "
+                     "format=\"ascii\">") + t + "</DataArray>\n    </FieldData>\n";
+}
+
+const char* kHeader = "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" "
+                      "byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <PolyData>\n";
+
+// A polygon soup: points and the polygons over them, one wall index per polygon.
+struct Surface {
+  std::vector<float> points;
+  std::vector<int32_t> connectivity, offsets, wall_index;
+  void polygon(const std::vector<glm::dvec3>& corners, int32_t wall) {
+    for (const auto& c : corners) {
+      connectivity.push_back(int32_t(points.size() / 3));
+      points.insert(points.end(), {float(c.x), float(c.y), float(c.z)});
+    }
+    offsets.push_back(int32_t(connectivity.size()));
+    wall_index.push_back(wall);
+  }
+};
+
+glm::dvec3 d3(const gpu::vec4& v) { return {v.x, v.y, v.z}; }
+
+// Two unit vectors spanning the plane with normal n.
+void tangents(const glm::dvec3& n, glm::dvec3& u, glm::dvec3& v) {
+  glm::dvec3 a = std::fabs(n.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  u = glm::normalize(glm::cross(n, a));
+  v = glm::cross(n, u);
+}
+
+// A plane as the patch that spans the drawing bounds: exact for axis-aligned planes (a box's
+// faces come out as the box), a square as wide as the bounds' diagonal otherwise.
+void plane_patch(Surface& s, const gpu::WallState& w, const Bounds& b, int32_t wall) {
+  glm::dvec3 p = d3(w.p0), n = glm::normalize(d3(w.p1));
+  glm::dvec3 lo(b.lo[0], b.lo[1], b.lo[2]), hi(b.hi[0], b.hi[1], b.hi[2]);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::fabs(std::fabs(n[axis]) - 1.0) > 1e-9) continue;
+    int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    auto corner = [&](double a, double c) {
+      glm::dvec3 q = p;
+      q[i] = a;
+      q[j] = c;
+      return q;
+    };
+    s.polygon({corner(lo[i], lo[j]), corner(hi[i], lo[j]), corner(hi[i], hi[j]), corner(lo[i], hi[j])}, wall);
+    return;
+  }
+  glm::dvec3 centre = 0.5 * (lo + hi);
+  centre -= n * glm::dot(centre - p, n);
+  double half = 0.5 * glm::length(hi - lo);
+  glm::dvec3 u, v;
+  tangents(n, u, v);
+  s.polygon({centre - half * u - half * v, centre + half * u - half * v, centre + half * u + half * v,
+             centre - half * u + half * v}, wall);
+}
+
+void wall_polygons(Surface& s, const gpu::WallState& w, const Bounds& b, int32_t wall) {
+  switch (w.info.x) {
+    case gpu::kWallPlane: plane_patch(s, w, b, wall); break;
+    case gpu::kWallRectangle: {
+      glm::dvec3 c = d3(w.p0), u = d3(w.p2) * double(w.p2.w), v = d3(w.p3) * double(w.p3.w);
+      s.polygon({c - u - v, c + u - v, c + u + v, c - u + v}, wall);
+      break;
+    }
+    case gpu::kWallTriangle: s.polygon({d3(w.p0), d3(w.p1), d3(w.p2)}, wall); break;
+    case gpu::kWallCylinder: {
+      glm::dvec3 base = d3(w.p0), axis = glm::normalize(d3(w.p1)), u, v;
+      double r = w.p1.w, h = w.vel.w;
+      tangents(axis, u, v);
+      constexpr int kSides = 48;
+      for (int k = 0; k < kSides; ++k) {
+        double a0 = 2 * M_PI * k / kSides, a1 = 2 * M_PI * (k + 1) / kSides;
+        glm::dvec3 e0 = r * (std::cos(a0) * u + std::sin(a0) * v), e1 = r * (std::cos(a1) * u + std::sin(a1) * v);
+        s.polygon({base + e0, base + e1, base + e1 + h * axis, base + e0 + h * axis}, wall);
+      }
+      break;
+    }
+  }
 }
 
 }  // namespace
 
-void write_vtk_frame(const std::string& path, const HostState& s, double time) {
+void Bounds::add(const Vec3d& p) {
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::min(lo[k], p[k]);
+    hi[k] = std::max(hi[k], p[k]);
+  }
+}
+
+Bounds drawing_bounds(const Model& m) {
+  Bounds b;
+  for (const auto& p : m.pos) {
+    b.add({p.x - p.w, p.y - p.w, p.z - p.w});
+    b.add({p.x + p.w, p.y + p.w, p.z + p.w});
+  }
+  for (size_t w = 0; w < m.walls.size(); ++w) {
+    const ModelWall& mw = m.walls[w];
+    if (mw.kind == gpu::kWallPlane) {
+      b.add(mw.p0);  // a box face's corner (box_min or box_max); a plane's point
+      continue;
+    }
+    Surface s;
+    wall_polygons(s, m.wall_state(w, 0.0), b, 0);
+    for (size_t k = 0; k + 2 < s.points.size(); k += 3) b.add({s.points[k], s.points[k + 1], s.points[k + 2]});
+  }
+  return b;
+}
+
+void write_vtk_frame(const std::string& path, const HostState& s, double time, const std::vector<uint32_t>& body_ids) {
+  size_t n = s.pos.size();
+  std::vector<float> radius(n), speed(n);
+  std::vector<int32_t> id(n), body(n), offsets(n);
+  for (size_t i = 0; i < n; ++i) {
+    radius[i] = s.pos[i].w;
+    const auto& v = s.vel[i];
+    speed[i] = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+    id[i] = int32_t(i);
+    body[i] = body_ids.empty() ? int32_t(i) : int32_t(body_ids[i]);
+    offsets[i] = int32_t(i + 1);
+  }
+  Appended data;
+  std::string point_data = "      <PointData Scalars=\"radius\">\n";
+  point_data += array_element("Float32", "radius", 1, data.add(radius));
+  point_data += array_element("Float32", "speed", 1, data.add(speed));
+  point_data += array_element("Int32", "id", 1, data.add(id));
+  point_data += array_element("Int32", "body_id", 1, data.add(body));
+  point_data += array_element("Float32", "velocity", 3, data.add(xyz(s.vel)));
+  point_data += array_element("Float32", "angular_velocity", 3, data.add(xyz(s.omega)));
+  point_data += array_element("Float32", "force", 3, data.add(xyz(s.force)));
+  point_data += "      </PointData>\n";
+  std::string points = "      <Points>\n" + array_element("Float32", "", 3, data.add(xyz(s.pos))) + "      </Points>\n";
+  std::string verts = "      <Verts>\n" + array_element("Int32", "connectivity", 1, data.add(id)) +
+                      array_element("Int32", "offsets", 1, data.add(offsets)) + "      </Verts>\n";
   write_file_atomically(path, [&](std::ostream& out) {
-    size_t n = s.pos.size();
-    out << "# vtk DataFile Version 3.0\nRepose particles t=" << time << "\nBINARY\n"
-        << "DATASET POLYDATA\nFIELD FieldData 1\nTIME 1 1 double\n";
-    uint64_t tb = std::bit_cast<uint64_t>(time);
-    if constexpr (std::endian::native == std::endian::little) tb = __builtin_bswap64(tb);
-    out.write(reinterpret_cast<const char*>(&tb), 8);
-    out << "\nPOINTS " << n << " float\n";
-    for (const auto& p : s.pos) { put_be(out, p.x); put_be(out, p.y); put_be(out, p.z); }
-    out << "\nVERTICES " << n << " " << 2 * n << "\n";
-    for (size_t i = 0; i < n; ++i) { put_be(out, int32_t(1)); put_be(out, int32_t(i)); }
-    out << "\nPOINT_DATA " << n << "\nSCALARS radius float 1\nLOOKUP_TABLE default\n";
-    for (const auto& p : s.pos) put_be(out, p.w);
-    out << "\nSCALARS speed float 1\nLOOKUP_TABLE default\n";
-    for (const auto& v : s.vel) put_be(out, std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z));
-    out << "\nSCALARS id int 1\nLOOKUP_TABLE default\n";
-    for (size_t i = 0; i < n; ++i) put_be(out, int32_t(i));
-    out << "\n";
-    vectors(out, "velocity", s.vel);
-    vectors(out, "angular_velocity", s.omega);
-    vectors(out, "force", s.force);
+    out << kHeader << time_field(time) << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n
+        << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+        << point_data << points << verts << "    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _"
+        << data.bytes() << "\n  </AppendedData>\n</VTKFile>\n";
   }, true);
+}
+
+void write_wall_frame(const std::string& path, const Model& m, double time, const Bounds& bounds) {
+  Surface s;
+  auto group = m.wall_groups();
+  for (size_t w = 0; w < m.walls.size(); ++w) wall_polygons(s, m.wall_state(w, time), bounds, int32_t(group[w]));
+  Appended data;
+  std::string points = "      <Points>\n" + array_element("Float32", "", 3, data.add(s.points)) + "      </Points>\n";
+  std::string cells = "      <CellData Scalars=\"wall_index\">\n" +
+                      array_element("Int32", "wall_index", 1, data.add(s.wall_index)) + "      </CellData>\n";
+  std::string polys = "      <Polys>\n" + array_element("Int32", "connectivity", 1, data.add(s.connectivity)) +
+                      array_element("Int32", "offsets", 1, data.add(s.offsets)) + "      </Polys>\n";
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << kHeader << time_field(time) << "    <Piece NumberOfPoints=\"" << s.points.size() / 3
+        << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << s.offsets.size()
+        << "\">\n" << cells << points << polys << "    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _"
+        << data.bytes() << "\n  </AppendedData>\n</VTKFile>\n";
+  }, true);
+}
+
+void write_pvd(const std::string& path, const std::vector<SeriesEntry>& entries) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+           "  <Collection>\n";
+    char t[64];
+    for (const auto& e : entries) {
+      std::snprintf(t, sizeof t, "%.17g", e.time);
+      out << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << e.file << "\"/>\n";
+    }
+    out << "  </Collection>\n</VTKFile>\n";
+  });
 }
 
 }  // namespace repose

@@ -2,15 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
+
+#include "util/math.h"
 
 namespace repose {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr size_t kMinimumPoints = 3;
+// A side whose points span less than this fraction of the band's height horizontally is a
+// vertical face (the heap leaning on a wall, or a body standing alone), not a slope: steeper
+// than atan(1 / 0.1) = 84 degrees across the whole band.
+constexpr double kSmallestSpan = 0.1;
 
 void check_band(double low, double high) {
   if (!(low >= 0 && low < high && high <= 1))
@@ -24,10 +30,18 @@ double lowest_bottom(const std::vector<Sphere>& spheres) {
 }
 
 // Fits z against x; `falling` is true where the slope should fall with x (right side, radius).
-SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, bool falling) {
+// band_height: the height range the points were taken from (m).
+SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, bool falling, double band_height) {
   SlopeFit out;
   if (x.size() < kMinimumPoints) {
     out.problem = "only " + std::to_string(x.size()) + " boundary points in the height band";
+    return out;
+  }
+  const double span = *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
+  if (span < kSmallestSpan * band_height) {
+    out.problem = "its " + std::to_string(x.size()) + " boundary points span " + std::to_string(1e3 * span).substr(0, 5) +
+                  " mm across a " + std::to_string(1e3 * band_height).substr(0, 5) +
+                  " mm band: a vertical face (a wall the heap leans on), not a slope";
     return out;
   }
   try {
@@ -101,8 +115,8 @@ HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngle
   std::vector<double> u_left, z_left, u_right, z_right;
   collect(crest_first - 1, -1, 1, u_left, z_left);
   collect(crest_last + 1, +1, 2, u_right, z_right);
-  out.left = fit_slope(u_left, z_left, false);
-  out.right = fit_slope(u_right, z_right, true);
+  out.left = fit_slope(u_left, z_left, false, z_high - z_low);
+  out.right = fit_slope(u_right, z_right, true, z_high - z_low);
 
   int valid = 0;
   double sum = 0;
@@ -206,7 +220,7 @@ AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>&
         height.push_back(cell.top);
       }
     }
-    result.fit = fit_slope(radius, height, true);
+    result.fit = fit_slope(radius, height, true, z_high - z_low);
     if (result.fit.valid) fitted_angles.push_back(result.fit.angle_deg);
     out.sectors.push_back(result);
   }
@@ -225,6 +239,19 @@ AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>&
   out.min_deg = *std::min_element(fitted_angles.begin(), fitted_angles.end());
   out.max_deg = *std::max_element(fitted_angles.begin(), fitted_angles.end());
   return out;
+}
+
+std::string describe_sector_fit(const AxisymmetricHeapAngle& fit) {
+  char text[256];
+  if (fit.valid_sectors > 0) {
+    std::snprintf(text, sizeof text, "mean %.2f deg, spread %.2f deg over %d of %zu sectors", fit.mean_deg,
+                  fit.spread_deg, fit.valid_sectors, fit.sectors.size());
+    return text;
+  }
+  std::string why = fit.sectors.empty() ? "no sectors" : fit.sectors[0].fit.problem;
+  std::snprintf(text, sizeof text, "no sector gave a slope (sector %.0f-%.0f deg: ", fit.sectors.empty() ? 0.0 : fit.sectors[0].from_deg,
+                fit.sectors.empty() ? 0.0 : fit.sectors[0].to_deg);
+  return text + why + ")";
 }
 
 }  // namespace repose

@@ -82,4 +82,8 @@ struct AxisymmetricHeapAngle {
 AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>& spheres,
                                                       const AxisymmetricOptions& options = {});
 
+// "mean 25.31 deg, spread 1.20 deg over 7 of 8 sectors", or why no sector counted ("no sector
+// gave a slope (sector 0-45 deg: only 2 boundary points in the height band)"): never a NaN.
+std::string describe_sector_fit(const AxisymmetricHeapAngle& fit);
+
 }  // namespace repose

@@ -1,85 +1,73 @@
 #include "measure/heap_png.h"
 
-#include <stb/stb_image_write.h>
-
-#include <array>
 #include <cmath>
-#include <stdexcept>
-#include <vector>
+#include <cstdio>
+
+#include "plot/chart.h"
 
 namespace repose {
+
 namespace {
 
-using Rgb = std::array<uint8_t, 3>;
-
-class Canvas {
- public:
-  Canvas(int width, int height) : width_(width), height_(height), pixels_(static_cast<size_t>(width) * height * 3, 255) {}
-
-  // Row 0 is the image's bottom row (z up); PNG rows go top-down, so rows are flipped here.
-  void set(int column, int row, Rgb colour) {
-    if (column < 0 || row < 0 || column >= width_ || row >= height_) return;
-    size_t k = (static_cast<size_t>(height_ - 1 - row) * width_ + column) * 3;
-    pixels_[k] = colour[0];
-    pixels_[k + 1] = colour[1];
-    pixels_[k + 2] = colour[2];
-  }
-
-  // A thick segment between two points in pixel coordinates, sampled at quarter-pixel steps.
-  void segment(double c0, double r0, double c1, double r1, Rgb colour, int half_thickness) {
-    const double steps = std::ceil(4.0 * std::max(std::abs(c1 - c0), std::abs(r1 - r0))) + 1;
-    for (int i = 0; i <= static_cast<int>(steps); ++i) {
-      const double t = i / steps;
-      const int c = static_cast<int>(std::floor(c0 + t * (c1 - c0)));
-      const int r = static_cast<int>(std::floor(r0 + t * (r1 - r0)));
-      for (int dc = -half_thickness; dc <= half_thickness; ++dc)
-        for (int dr = -half_thickness; dr <= half_thickness; ++dr) set(c + dc, r + dr, colour);
-    }
-  }
-
-  void save(const std::string& path) const {
-    if (!stbi_write_png(path.c_str(), width_, height_, 3, pixels_.data(), width_ * 3))
-      throw std::runtime_error(path + ": cannot write PNG");
-  }
-
- private:
-  int width_, height_;
-  std::vector<uint8_t> pixels_;
-};
+std::string slope_words(const char* side, const SlopeFit& fit) {
+  char text[64];
+  if (fit.valid) std::snprintf(text, sizeof text, "%s %.2f deg", side, fit.angle_deg);
+  else std::snprintf(text, sizeof text, "%s: no slope", side);
+  return text;
+}
 
 }  // namespace
 
-void write_heap_angle_png(const std::string& path, const HeapAngle& m) {
+void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std::string& horizontal) {
   const BinaryImage& image = m.image;
-  Canvas canvas(image.width, image.height);
-  const std::vector<uint8_t> boundary = outer_boundary(image);
-  for (int r = 0; r < image.height; ++r)
-    for (int c = 0; c < image.width; ++c) {
-      const size_t k = static_cast<size_t>(r) * image.width + c;
-      if (boundary[k]) canvas.set(c, r, {0, 0, 0});
-      else if (image.data[k]) canvas.set(c, r, {200, 200, 200});
+  const double u0 = image.origin_u, u1 = u0 + image.width * image.pixel;
+  const double z0 = image.origin_z, z1 = z0 + image.height * image.pixel;
+  // Room above the heap for the legend, a little beside it.
+  const double margin = 0.03 * (u1 - u0);
+  Chart chart = Chart::equal_scale(1400, 1000, u0 - margin, u1 + margin, z0, z1 + 0.3 * (z1 - z0));
+  // The silhouette, then its top outline, the floor, the fitted lines and the points they used.
+  chart.raster(image.width, image.height, u0, z0, image.pixel, [&](int c, int r) -> std::optional<Colour> {
+    if (image.at(c, r)) return Colour{205, 205, 205};
+    return std::nullopt;
+  });
+  std::vector<double> outline_u, outline_z;
+  for (int c = 0; c < image.width; ++c)
+    if (m.profile[size_t(c)] >= 0) {
+      outline_u.push_back(image.column_centre(c));
+      outline_z.push_back(image.row_top(m.profile[size_t(c)]));
     }
-  const int thickness = image.width / 1600;  // half-thickness in pixels: 0 up to 1600 px wide
-  auto to_column = [&](double u) { return (u - image.origin_u) / image.pixel; };
-  auto to_row = [&](double z) { return (z - image.origin_z) / image.pixel; };
-  const double floor_row = to_row(m.floor_z);
-  canvas.segment(0, floor_row, image.width - 1, floor_row, {0, 160, 0}, 0);
-
-  // Each fitted line is drawn from the floor to the crest height, like the seeds' figures; the
-  // boundary points that entered the fit are drawn on top, so crest and toe show as excluded.
-  auto draw_fit = [&](const SlopeFit& fit, Rgb colour) {
+  chart.polyline(outline_u, outline_z, colours::black, 1);
+  chart.horizontal(m.floor_z, colours::green, 2);
+  // Each fitted line from the floor to the crest height, like the studies' figures (clipped to
+  // the picture).
+  auto draw_fit = [&](const SlopeFit& fit, Colour colour) {
     if (!fit.valid || fit.line.slope == 0) return;
     const double top_z = m.floor_z + m.heap_height;
     const double u_floor = (m.floor_z - fit.line.intercept) / fit.line.slope;
     const double u_top = (top_z - fit.line.intercept) / fit.line.slope;
-    canvas.segment(to_column(u_floor), floor_row, to_column(u_top), to_row(top_z), colour, thickness);
+    chart.polyline({u_floor, u_top}, {m.floor_z, top_z}, colour, 3);
   };
-  draw_fit(m.left, {220, 0, 0});
-  draw_fit(m.right, {0, 60, 220});
+  draw_fit(m.left, colours::red);
+  draw_fit(m.right, colours::blue);
   for (int c = 0; c < image.width; ++c)
-    if (m.fitted_columns[static_cast<size_t>(c)] && m.profile[static_cast<size_t>(c)] >= 0)
-      canvas.set(c, m.profile[static_cast<size_t>(c)], {255, 140, 0});
-  canvas.save(path);
+    if (m.fitted_columns[size_t(c)] && m.profile[size_t(c)] >= 0)
+      chart.square(image.column_centre(c), image.row_top(m.profile[size_t(c)]), colours::orange, 1);
+
+  char title[160];
+  if (std::isfinite(m.mean_deg))
+    std::snprintf(title, sizeof title, "Angle of repose %.2f deg (%s, %s)", m.mean_deg,
+                  slope_words("left", m.left).c_str(), slope_words("right", m.right).c_str());
+  else
+    std::snprintf(title, sizeof title, "Angle of repose: no slope measured");
+  chart.title(title);
+  char subtitle[160];
+  std::snprintf(subtitle, sizeof subtitle, "heap %.3g m high; orange: the outline points fitted (the band of the height)%s",
+                m.heap_height, std::isfinite(m.mean_deg) ? "" : "; neither side gave a slope");
+  chart.subtitle(subtitle);
+  chart.labels(horizontal + " (m)", "z (m)");
+  chart.legend({{"outline", colours::black}, {"left fit", colours::red}, {"right fit", colours::blue},
+                {"fitted points", colours::orange}, {"floor", colours::green}});
+  chart.save(path);
 }
 
 }  // namespace repose

@@ -1,5 +1,5 @@
-// The picture of a heap-angle measurement, like the seeds' figures: silhouette, outer boundary,
-// the boundary points used, and the fitted slope lines, saved as a PNG.
+// The picture of a heap-angle measurement, like the studies' figures: silhouette, outline, the
+// points used and the fitted slope lines, with axes, scale and the measured angle, as a PNG.
 #pragma once
 #include <string>
 
@@ -7,9 +7,10 @@
 
 namespace repose {
 
-// Colours: background white, silhouette light grey, outer boundary black, left fit red, right
-// fit blue, the boundary points used by the fits orange (on top), floor green. Throws
-// std::runtime_error if the file cannot be written.
-void write_heap_angle_png(const std::string& path, const HeapAngle& measurement);
+// A chart at equal scale with axes in metres (`horizontal` names the image's horizontal axis),
+// the measured angle in its title: silhouette light grey, its top outline black, left fit red,
+// right fit blue (drawn from the floor to the crest height, clipped to the picture), the outline
+// points the fits used orange, floor green. Throws std::runtime_error if it cannot be written.
+void write_heap_angle_png(const std::string& path, const HeapAngle& measurement, const std::string& horizontal = "x");
 
 }  // namespace repose

@@ -1,8 +1,12 @@
 #include "measure/heap_views.h"
 
+#include <cstdio>
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+
+#include "util/math.h"
 
 namespace repose {
 
@@ -10,7 +14,6 @@ HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int 
                                         std::optional<glm::dvec2> centre) {
   if (views < 1) throw std::invalid_argument("heap angle: views must be at least 1");
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
-  constexpr double kPi = 3.14159265358979323846;
   HeapViewsAngle out;
   out.centre = centre ? *centre : heap_centre(spheres);
   HeapAngleOptions front = options;  // the turn keeps every z: each view finds the same floor
@@ -40,6 +43,17 @@ HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int 
   for (double v : slopes) squares += (v - out.mean_deg) * (v - out.mean_deg);
   out.sd_deg = slopes.size() > 1 ? std::sqrt(squares / double(slopes.size() - 1)) : 0.0;
   return out;
+}
+
+std::string describe_views(const HeapViewsAngle& v) {
+  char text[160];
+  if (v.valid_slopes == 0) {
+    std::snprintf(text, sizeof text, "no slope in any of %zu views", v.azimuth_deg.size());
+    return text;
+  }
+  std::snprintf(text, sizeof text, "mean %.2f deg, sd %.2f deg over %d slopes of %zu views", v.mean_deg, v.sd_deg,
+                v.valid_slopes, v.azimuth_deg.size());
+  return text;
 }
 
 }  // namespace repose

@@ -26,6 +26,9 @@ struct HeapViewsAngle {
 // see the same silhouettes mirrored. View 0 is the plain front view along +y. Each view is
 // measured as measure_heap_angle does (the options' view axis is ignored).
 // Throws std::invalid_argument for views < 1 or an empty heap.
+// "mean 25.31 deg, sd 2.10 deg over 30 slopes of 16 views", or "no view gave a slope".
+std::string describe_views(const HeapViewsAngle& views);
+
 HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int views, const HeapAngleOptions& options = {},
                                         std::optional<glm::dvec2> centre = {});
 

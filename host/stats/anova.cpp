@@ -82,6 +82,94 @@ Polynomial ResponseSurface::polynomial() const {
   return p;
 }
 
+namespace {
+
+// The ANOVA table's rows: the model, each term (partial or sequential sums of squares), the
+// residual split into lack of fit and pure error when replicates allow, the total.
+void anova_rows(ResponseSurface& rs, const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const Eigen::MatrixXd& X,
+                const std::vector<std::string>& names, double sst, double sse, double mse, SumOfSquaresType ss_type) {
+  const int n = static_cast<int>(y.size());
+  const int p = static_cast<int>(names.size());
+  const int df_res = n - p;
+  rs.model = tested_row("Model", sst - sse, p - 1, mse, df_res);
+  // Per-term sums of squares: extra sum of squares of the term given the others (partial) or
+  // given the terms before it (sequential).
+  double prev_sse = sst;
+  for (int t = 1; t < p; ++t) {
+    double ss;
+    if (ss_type == SumOfSquaresType::partial) {
+      ss = residual_sum_of_squares(drop_column(X, t), y) - sse;
+    } else {
+      double s = residual_sum_of_squares(X.leftCols(t + 1), y);
+      ss = prev_sse - s;
+      prev_sse = s;
+    }
+    rs.term_rows.push_back(tested_row(names[t], std::max(ss, 0.0), 1, mse, df_res));
+  }
+  rs.residual = plain_row("Residual", sse, df_res);
+  double ss_pe = 0;
+  int df_pe = 0;
+  pure_error(x, y, ss_pe, df_pe);
+  int df_lof = df_res - df_pe;
+  if (df_pe > 0 && df_lof > 0) {
+    double ms_pe = ss_pe / df_pe;
+    rs.lack_of_fit = tested_row("Lack of Fit", std::max(sse - ss_pe, 0.0), df_lof, ms_pe, df_pe);
+    rs.pure_error = plain_row("Pure Error", ss_pe, df_pe);
+  }
+  rs.total = plain_row("Cor Total", sst, n - 1);
+  rs.total.ms = kNaN;  // Design-Expert prints no mean square for the total
+}
+
+// Coefficient standard errors and variance inflation factors (VIF_j = 1 / (1 - R_j^2),
+// R_j^2 from regressing column j on the other non-intercept columns).
+std::vector<Coefficient> coefficients(const LeastSquaresFit& fit, const Eigen::MatrixXd& X,
+                                      const std::vector<std::string>& names, double mse, int df_res) {
+  std::vector<Coefficient> out;
+  for (int t = 0; t < static_cast<int>(names.size()); ++t) {
+    Coefficient c;
+    c.term = names[t];
+    c.estimate = fit.coef[t];
+    c.std_error = df_res > 0 ? std::sqrt(mse * fit.xtx_inverse(t, t)) : kNaN;
+    if (t > 0) {
+      Eigen::VectorXd col = X.col(t);
+      double centred = (col.array() - col.mean()).square().sum();
+      double rss = residual_sum_of_squares(drop_column(X, t), col);
+      c.vif = rss > 0 ? centred / rss : kNaN;
+    }
+    out.push_back(c);
+  }
+  return out;
+}
+
+// R^2, adjusted and predicted R^2 (PRESS), CV and Design-Expert's adequate precision.
+FitStatistics fit_statistics(const LeastSquaresFit& fit, double mean, double sst, double sse, double mse, int n,
+                             int p) {
+  const int df_res = n - p;
+  FitStatistics st;
+  st.mean = mean;
+  st.std_dev = std::sqrt(mse);
+  st.cv_percent = 100.0 * st.std_dev / mean;
+  st.r2 = sst > 0 ? 1.0 - sse / sst : kNaN;
+  st.adj_r2 = (sst > 0 && df_res > 0) ? 1.0 - (sse / df_res) / (sst / (n - 1)) : kNaN;
+  st.press = 0;
+  for (int i = 0; i < n; ++i) {
+    double one_minus_h = 1.0 - fit.leverage[i];
+    if (one_minus_h < 1e-10) {
+      st.press = kNaN;  // a run the model interpolates exactly: PRESS is undefined
+      break;
+    }
+    double e = fit.residuals[i] / one_minus_h;
+    st.press += e * e;
+  }
+  st.pred_r2 = sst > 0 ? 1.0 - st.press / sst : kNaN;
+  // Design-Expert's Adeq Precision: the range of predicted values at the design points over
+  // the average standard error of prediction, sqrt(mean V(y_hat)) = sqrt(p MSE / n).
+  st.adeq_precision = (fit.fitted.maxCoeff() - fit.fitted.minCoeff()) / std::sqrt(p * mse / n);
+  return st;
+}
+
+}  // namespace
+
 ResponseSurface analyse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
                         const std::vector<Term>& terms, SumOfSquaresType ss_type) {
   if (terms.empty() || !terms[0].is_intercept())
@@ -110,71 +198,9 @@ ResponseSurface analyse(const Eigen::MatrixXd& x, const Eigen::VectorXd& y,
   const double sse = fit.sse;
   const int df_res = n - p;
   const double mse = df_res > 0 ? sse / df_res : kNaN;
-
-  rs.model = tested_row("Model", sst - sse, p - 1, mse, df_res);
-  // Per-term sums of squares: extra sum of squares of the term given the others (partial) or
-  // given the terms before it (sequential).
-  double prev_sse = sst;
-  for (int t = 1; t < p; ++t) {
-    double ss;
-    if (ss_type == SumOfSquaresType::partial) {
-      ss = residual_sum_of_squares(drop_column(X, t), y) - sse;
-    } else {
-      double s = residual_sum_of_squares(X.leftCols(t + 1), y);
-      ss = prev_sse - s;
-      prev_sse = s;
-    }
-    rs.term_rows.push_back(tested_row(names[t], std::max(ss, 0.0), 1, mse, df_res));
-  }
-  rs.residual = plain_row("Residual", sse, df_res);
-  double ss_pe = 0;
-  int df_pe = 0;
-  pure_error(x, y, ss_pe, df_pe);
-  int df_lof = df_res - df_pe;
-  if (df_pe > 0 && df_lof > 0) {
-    double ms_pe = ss_pe / df_pe;
-    rs.lack_of_fit = tested_row("Lack of Fit", std::max(sse - ss_pe, 0.0), df_lof, ms_pe, df_pe);
-    rs.pure_error = plain_row("Pure Error", ss_pe, df_pe);
-  }
-  rs.total = plain_row("Cor Total", sst, n - 1);
-  rs.total.ms = kNaN;  // Design-Expert prints no mean square for the total
-
-  // Coefficient standard errors and variance inflation factors (VIF_j = 1 / (1 - R_j^2),
-  // R_j^2 from regressing column j on the other non-intercept columns).
-  for (int t = 0; t < p; ++t) {
-    Coefficient c;
-    c.term = names[t];
-    c.estimate = fit.coef[t];
-    c.std_error = df_res > 0 ? std::sqrt(mse * fit.xtx_inverse(t, t)) : kNaN;
-    if (t > 0) {
-      Eigen::VectorXd col = X.col(t);
-      double centred = (col.array() - col.mean()).square().sum();
-      double rss = residual_sum_of_squares(drop_column(X, t), col);
-      c.vif = rss > 0 ? centred / rss : kNaN;
-    }
-    rs.coefficients.push_back(c);
-  }
-
-  FitStatistics& st = rs.stats;
-  st.mean = mean;
-  st.std_dev = std::sqrt(mse);
-  st.cv_percent = 100.0 * st.std_dev / mean;
-  st.r2 = sst > 0 ? 1.0 - sse / sst : kNaN;
-  st.adj_r2 = (sst > 0 && df_res > 0) ? 1.0 - (sse / df_res) / (sst / (n - 1)) : kNaN;
-  st.press = 0;
-  for (int i = 0; i < n; ++i) {
-    double one_minus_h = 1.0 - fit.leverage[i];
-    if (one_minus_h < 1e-10) {
-      st.press = kNaN;  // a run the model interpolates exactly: PRESS is undefined
-      break;
-    }
-    double e = fit.residuals[i] / one_minus_h;
-    st.press += e * e;
-  }
-  st.pred_r2 = sst > 0 ? 1.0 - st.press / sst : kNaN;
-  // Design-Expert's Adeq Precision: the range of predicted values at the design points over
-  // the average standard error of prediction, sqrt(mean V(y_hat)) = sqrt(p MSE / n).
-  st.adeq_precision = (fit.fitted.maxCoeff() - fit.fitted.minCoeff()) / std::sqrt(p * mse / n);
+  anova_rows(rs, x, y, X, names, sst, sse, mse, ss_type);
+  rs.coefficients = coefficients(fit, X, names, mse, df_res);
+  rs.stats = fit_statistics(fit, mean, sst, sse, mse, n, p);
   return rs;
 }
 

@@ -6,16 +6,13 @@
 #include <string>
 
 #include "stats/errors.h"
+#include "util/number_text.h"
 
 namespace repose::stats {
 
 namespace {
 
-std::string num(double v) {
-  char buf[48];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string num(double v) { return format_g(v, 6); }
 
 }  // namespace
 

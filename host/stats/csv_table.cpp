@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "stats/errors.h"
+#include "util/input_file.h"
 
 namespace repose::stats {
 
@@ -145,6 +146,7 @@ Table parse_csv(const std::string& text, const std::string& source) {
 }
 
 Table read_csv(const std::string& path) {
+  if (auto why = why_not_input_file(path, 256u << 20); !why.empty()) throw TableError(path, 0, 0, why);
   std::ifstream f(path, std::ios::binary);
   if (!f) throw TableError(path, 0, 0, "cannot open file");
   std::ostringstream ss;

@@ -24,4 +24,11 @@ struct DataSet {
 DataSet dataset_from_table(const Table& table, const std::vector<std::string>& factors,
                            const std::string& response, const std::vector<Factor>& ranges = {});
 
+// A fit of actual values as if they were coded is silently wrong (effects, p values and the
+// "coded" equation all change), so columns must look coded unless ranges are given: symmetric
+// about 0 (lowest = -highest) with a level at +-1 (every design's factorial or edge points).
+// Throws StatsError naming the columns that do not, the NAME_coded columns to use instead when
+// the table has them (as `repose design` writes), and the --coded ranges that would code them.
+void require_coded_columns(const Table& table, const std::vector<std::string>& factors);
+
 }  // namespace repose::stats

@@ -8,6 +8,7 @@
 
 #include "stats/errors.h"
 #include "stats/model_terms.h"
+#include "util/number_text.h"
 
 namespace repose::stats {
 
@@ -61,10 +62,7 @@ const char* pb_first_row(int runs) {
 }
 
 std::string format_number(double v, int digits) {
-  if (v == 0) return "0";  // avoids "-0"
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-  return buf;
+  return v == 0 ? "0" : format_g(v, digits);  // "0", not "-0"
 }
 
 }  // namespace

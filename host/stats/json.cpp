@@ -22,28 +22,6 @@ const char* kind_name(Json::Kind k) {
   return "?";
 }
 
-void escape(std::string& out, const std::string& s) {
-  out += '"';
-  for (unsigned char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (c < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += static_cast<char>(c);
-        }
-    }
-  }
-  out += '"';
-}
-
 }  // namespace
 
 class JsonParser {
@@ -281,62 +259,29 @@ Json& Json::set(const std::string& key, Json v) {
   return members_.back().second;
 }
 
-void Json::dump_to(std::string& out, int indent, int depth) const {
-  auto newline = [&](int d) {
-    if (indent <= 0) return;
-    out += '\n';
-    out.append(static_cast<size_t>(indent * d), ' ');
-  };
+// Written by the program's one JSON writer (nlohmann): keys in insertion order, numbers as the
+// shortest text that reads back exactly, NaN and infinity as null.
+nlohmann::ordered_json Json::to_writer() const {
   switch (kind_) {
-    case Kind::null: out += "null"; break;
-    case Kind::boolean: out += bool_ ? "true" : "false"; break;
-    case Kind::number: {
-      if (!std::isfinite(number_)) {
-        out += "null";  // JSON cannot hold NaN or infinity
-        break;
-      }
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.17g", number_);
-      out += buf;
-      break;
-    }
-    case Kind::string: escape(out, string_); break;
+    case Kind::null: return nullptr;
+    case Kind::boolean: return bool_;
+    case Kind::number: return number_;
+    case Kind::string: return string_;
     case Kind::array: {
-      out += '[';
-      // Arrays of numbers stay on one line: they are coordinates and coefficient lists.
-      bool flat = true;
-      for (const auto& v : items_) flat = flat && v.kind_ != Kind::array && v.kind_ != Kind::object;
-      for (size_t i = 0; i < items_.size(); ++i) {
-        if (i) out += flat ? ", " : ",";
-        if (!flat) newline(depth + 1);
-        items_[i].dump_to(out, indent, depth + 1);
-      }
-      if (!flat && !items_.empty()) newline(depth);
-      out += ']';
-      break;
+      nlohmann::ordered_json a = nlohmann::ordered_json::array();
+      for (const auto& v : items_) a.push_back(v.to_writer());
+      return a;
     }
     case Kind::object: {
-      out += '{';
-      for (size_t i = 0; i < members_.size(); ++i) {
-        if (i) out += ',';
-        newline(depth + 1);
-        escape(out, members_[i].first);
-        out += indent > 0 ? ": " : ":";
-        members_[i].second.dump_to(out, indent, depth + 1);
-      }
-      if (!members_.empty()) newline(depth);
-      out += '}';
-      break;
+      nlohmann::ordered_json o = nlohmann::ordered_json::object();
+      for (const auto& [k, v] : members_) o[k] = v.to_writer();
+      return o;
     }
   }
+  return nullptr;
 }
 
-std::string Json::dump(int indent) const {
-  std::string out;
-  dump_to(out, indent, 0);
-  out += '\n';
-  return out;
-}
+std::string Json::dump(int indent) const { return to_writer().dump(indent > 0 ? indent : -1) + "\n"; }
 
 Json Json::parse(const std::string& text, const std::string& source) {
   return JsonParser(text, source).parse_document();

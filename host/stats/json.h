@@ -1,8 +1,9 @@
 // A small JSON value with a parser that remembers where each value was (line, column), so a
-// malformed or incomplete fit file is reported at the place to fix, and a writer with stable
-// key order and round-trip number formatting (%.17g).
+// malformed or incomplete fit file is reported at the place to fix. It is written by the
+// program's one JSON writer, nlohmann (dump): insertion order, numbers that read back exactly.
 #pragma once
 #include <map>
+#include <nlohmann/json.hpp>
 #include <memory>
 #include <string>
 #include <utility>
@@ -49,7 +50,7 @@ class Json {
  private:
   friend class JsonParser;
   [[noreturn]] void fail(const std::string& what) const;
-  void dump_to(std::string& out, int indent, int depth) const;
+  nlohmann::ordered_json to_writer() const;
 
   Kind kind_ = Kind::null;
   bool bool_ = false;

@@ -97,8 +97,9 @@ std::vector<DeviceInfo> Context::list_devices() {
 }
 
 int Context::default_device_index(const std::vector<DeviceInfo>& devices) {
-  for (const auto& d : devices)
-    if (d.type == "discrete-gpu") return static_cast<int>(d.index);
+  for (const char* type : {"discrete-gpu", "integrated-gpu", "virtual-gpu"})
+    for (const auto& d : devices)
+      if (d.type == type) return static_cast<int>(d.index);
   return devices.empty() ? -1 : 0;
 }
 

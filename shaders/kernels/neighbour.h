@@ -104,12 +104,23 @@ FN bool near_pair(vec4 pi, vec4 pj, float skin) {
   return dot3(d, d) < reach * reach;
 }
 
-// Writes list entry `slot` (i, partner), carrying the pair's history over from i's old row
-// (zero for a new pair); slots beyond the capacity are counted but not written (overflow).
-KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint old_end) {
+// Adds partner number k to i's row (which starts at `base`), keeping the row sorted by partner
+// id: the gathers then sum touching contacts in the same order whatever else the list holds, so
+// results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
+// pair's history over from i's old row (zero for a new pair). Entries beyond the capacity are
+// counted but not written (overflow: the batch is redone with a larger list).
+KFN(void, write_candidate) uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
+  uint slot = base + k;
   if (slot >= PC.capacity) return;
-  B_partner[slot] = partner;
+  bool springs = (PC.flags & kFlagRollingSpring) != 0u;
   B_owner[slot] = i;
+  while (slot > base && B_partner[slot - 1u] > partner) {
+    B_partner[slot] = B_partner[slot - 1u];
+    B_history[slot] = B_history[slot - 1u];
+    if (springs) B_rolling_spring[slot] = B_rolling_spring[slot - 1u];
+    slot = slot - 1u;
+  }
+  B_partner[slot] = partner;
   vec4 carried = vec4(0.0f);
   uint from = 0xffffffffu;
   for (uint o = old_begin; o < old_end; ++o)
@@ -118,8 +129,14 @@ KFN(void, write_candidate) uint slot, uint i, uint partner, uint old_begin, uint
       from = o;
     }
   B_history[slot] = carried;
-  if ((PC.flags & kFlagRollingSpring) != 0u)
-    B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
+  if (springs) B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
+}
+
+// Candidate k of i found by a walk: written to i's row in a fill walk; in the count walk kept in
+// i's candidate slots (the first kCandidateSlots), so contact_fill need not walk again.
+KFN(void, emit_candidate) bool fill, uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
+  if (fill) write_candidate(KB base, k, i, partner, old_begin, old_end);
+  else if (k < kCandidateSlots) B_candidates[i * kCandidateSlots + k] = partner;
 }
 
 // A fixed particle (a fixed sphere, or a sub-sphere of a fixed body) has 1/mass = 0: it takes
@@ -131,6 +148,27 @@ KFN(bool, is_fixed) uint i) { return B_vel[i].w == 0.0f; }
 KFN(bool, no_contact) uint i, uint j) {
   if ((PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x) return true;
   return is_fixed(KB i) && is_fixed(KB j);
+}
+
+// The lowest particle id a small particle i pairs with on the grid: the pair belongs to the lower
+// id, and a clump's sub-spheres (contiguous ids) never pair with each other.
+KFN(uint, first_partner_id) uint i) {
+  if ((PC.flags & kFlagBodies) == 0u) return i + 1u;
+  uvec4 range = B_bodies[B_subs[i].info.x].spheres;
+  return range.x + range.y;
+}
+
+// The first slot of bucket [begin, end) (sorted by id) holding an id >= lowest: a binary search,
+// so a walk skips the ids it would reject (half of them; in a clump, its own sub-spheres).
+KFN(uint, first_slot_from) uint begin, uint end, uint lowest) {
+  uint lo = begin;
+  uint hi = end;
+  while (lo < hi) {
+    uint mid = lo + (hi - lo) / 2u;
+    if (B_sorted[mid] < lowest) lo = mid + 1u;
+    else hi = mid;
+  }
+  return lo;
 }
 
 // Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
@@ -147,20 +185,22 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     old_begin = B_old_row_start[i];
     old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
   }
+  uint lowest = large ? 0u : first_partner_id(KB i);
+  bool i_fixed = is_fixed(KB i);
   for (int dz = large ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         ivec3 cc = ivec3(ci.x + dx, ci.y + dy, ci.z + dz);
         uint h = cell_hash(cc.x, cc.y, cc.z, PC.table_size);
         uint end = B_cell_start[h + 1u];
-        for (uint s = B_cell_start[h]; s < end; ++s) {
+        for (uint s = first_slot_from(KB B_cell_start[h], end, lowest); s < end; ++s) {
           uint j = B_sorted[s];
-          if (j <= i || no_contact(KB i, j)) continue;
+          if (i_fixed && is_fixed(KB j)) continue;  // lower ids and i's own clump are skipped above
           vec4 pj = B_pos[j];
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
           if (!near_pair(pi, pj, PC.skin)) continue;
-          if (fill) write_candidate(KB base + k, i, j, old_begin, old_end);
+          emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
           k = k + 1u;
         }
       }
@@ -169,18 +209,18 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
   uint large_end = B_cell_start[PC.table_size + 1u];
   for (uint s = B_cell_start[PC.table_size]; s < large_end; ++s) {
     uint j = B_sorted[s];
-    if (j == i || (large && j < i) || no_contact(KB i, j)) continue;
-    if (!near_pair(pi, B_pos[j], PC.skin)) continue;
-    if (fill) write_candidate(KB base + k, i, j, old_begin, old_end);
+    if (j == i || (large && j < i)) continue;
+    if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(KB i, j)) continue;
+    emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
     k = k + 1u;
   }
-  uint n_walls = is_fixed(KB i) ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
+  uint n_walls = i_fixed ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
   for (uint w = 0u; w < n_walls; ++w) {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + w];
     vec3 n;
     float overlap;
     if (!wall_contact(ws, xyz(pi), pi.w, PC.skin, n, overlap)) continue;
-    if (fill) write_candidate(KB base + k, i, PC.n_particles + w, old_begin, old_end);
+    emit_candidate(KB fill, base, k, i, PC.n_particles + w, old_begin, old_end);
     k = k + 1u;
   }
   return k;
@@ -195,9 +235,19 @@ KERNEL(k_contact_count) uint i) {
   if (i < PC.n_particles) B_trans_fill[i] = 0u;
 }
 
+// Writes i's row from the candidates contact_count kept, or walks again when it found more.
 KERNEL(k_contact_fill) uint i) {
   if (i >= PC.n_particles) return;
-  walk_neighbours(KB i, true, B_row_start[i]);
+  uint base = B_row_start[i];
+  uint count = B_row_start[i + 1u] - base;
+  if (count > kCandidateSlots) {
+    walk_neighbours(KB i, true, base);
+    return;
+  }
+  uint old_begin = B_old_row_start[i];
+  uint old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
+  for (uint k = 0u; k < count; ++k)
+    write_candidate(KB base, k, i, B_candidates[i * kCandidateSlots + k], old_begin, old_end);
 }
 
 KERNEL(k_transpose_count) uint c) {

@@ -82,3 +82,26 @@ TEST_CASE("diagnose --params takes the calibrated values as given instead of ref
   // Restitution 0.40 given where the data say 0.45: the baseline misses them.
   CHECK(j["lack_of_fit"][0]["p"].get<double>() < 0.01);
 }
+
+TEST_CASE("lack of fit that no tested candidate removes is 'unexplained', with what was and was not tried",
+          "[diagnosis][cli]") {
+  // The cabbage data hides a velocity-dependent restitution; shape alone cannot be tested
+  // without a sigma column, so nothing is tested while the baseline misses (p = 0.00015).
+  fs::path dir = fs::temp_directory_path() / "repose_diagnose_unexplained";
+  fs::remove_all(dir);
+  CliRun run = run_repose("diagnose " + std::string(REPOSE_SOURCE_DIR) +
+                          "/cases/diagnosis/cabbage_data.csv --quiet --candidates shape --out " + (dir / "out").string());
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  CHECK(run.output.find("verdict: unexplained") != std::string::npos);
+  CHECK(run.output.find("adequate") == std::string::npos);
+  CHECK(run.output.find("tried none; not tested shape (") != std::string::npos);
+  CHECK(run.output.find("air_drag") != std::string::npos);  // named among those not asked for
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(dir / "out/diagnosis.json"));
+  CHECK(j["verdict"] == "unexplained");
+  CHECK(j["tried"].empty());
+  REQUIRE(j["untested"].size() == 1);
+  CHECK(j["untested"][0]["id"] == "shape");
+  CHECK(!j["provenance"]["version"].get<std::string>().empty());
+  CHECK(j["provenance"]["inputs"][0]["fnv1a"].get<std::string>().size() == 16);
+}

@@ -14,8 +14,6 @@
 
 namespace repose::test {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // A case without gravity, walls or particles; tests add what they need.
 struct CaseBuilder {
   CaseSpec spec;
@@ -127,6 +125,21 @@ inline CaseSpec seeded_cloud(uint32_t n, uint64_t seed, double spacing, double j
   }
   b.plane({0, 0, 0}, {0, 0, 1}, steel);
   b.plane({-r, 0, 0}, {1, 0, 0}, steel);
+  return b.spec;
+}
+
+// Six two-sphere clumps resting on a floor with EPSD rolling springs (rolling springs and bodies
+// in one state: the state file and restart tests).
+inline CaseSpec epsd_clump_pairs() {
+  CaseBuilder b;
+  int m = b.material(1000, 5e6, 0.3);
+  b.interaction(m, m, 0.5, 0.5, 0.05);
+  b.spec.gravity = {0, 0, -9.81};
+  b.spec.time.rayleigh_fraction = 0.2;
+  b.spec.contact.rolling = RollingModel::ElasticPlastic;
+  int t = b.clump_template("pair", {{{-0.004, 0, 0}, 0.005}, {{0.004, 0, 0}, 0.005}});
+  for (int k = 0; k < 6; ++k) b.clump(t, {0.011 * k, 0, 0.0052}, m);
+  b.plane({0, 0, 0}, {0, 0, 1}, m);
   return b.spec;
 }
 

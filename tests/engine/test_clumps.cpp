@@ -223,3 +223,28 @@ TEST_CASE("clumps with air drag and EPSD rolling springs: lavapipe equals the CP
   INFO("first difference in " << which);
   CHECK(same);
 }
+
+// As for spheres (test_bit_exact.cpp): clumps with rolling springs (state carried per contact)
+// give the same bodies to the byte whatever the skin or rebuild interval.
+TEST_CASE("clumps: the neighbour skin and the rebuild interval leave the bodies unchanged") {
+  CaseSpec spec = clump_pile();
+  spec.contact.rolling = RollingModel::ElasticPlastic;
+  double skin = build_model(spec).skin;
+  auto run = [&](double s, int interval) {
+    CaseSpec c = spec;
+    c.neighbour.skin = s;
+    c.neighbour.rebuild_interval = interval;
+    auto sim = simulate(c, "cpu", 2);
+    sim->advance(1000);
+    return sim;
+  };
+  auto reference = run(skin, 0);
+  REQUIRE(reference->contacts() > 50);
+  for (auto [s, interval] : {std::pair{0.2 * skin, 0}, std::pair{4.0 * skin, 0}, std::pair{skin, 1}}) {
+    auto other = run(s, interval);
+    INFO("skin " << s << " m, rebuild interval " << interval);
+    CHECK(other->rebuilds() != reference->rebuilds());
+    CHECK(same_bytes(reference->state().bodies, other->state().bodies));
+    CHECK(same_bytes(reference->state().pos, other->state().pos));
+  }
+}

@@ -29,21 +29,22 @@ std::string slurp(const fs::path& p) {
 
 TEST_CASE("repose run writes summary, frames and a state file that repeats byte for byte", "[engine][cli]") {
   fs::path out = fresh_dir("run_ok");
+  fs::create_directories(out);
   std::string base = std::string("run ") + REPOSE_SOURCE_DIR + "/cases/settle_box.toml --backend cpu --steps 300 --quiet";
-  auto a = run_cli(base + " --out " + out.string() + " --state-out " + (out / "a.state").string());
+  auto a = run_cli(base + " --out " + (out / "a").string() + " --state-out " + (out / "a.state").string());
   REQUIRE(a.status == 0);
-  CHECK(fs::exists(out / "summary.json"));
-  CHECK(fs::exists(out / "frames"));
-  auto b = run_cli(base + " --threads 1 --out " + out.string() + " --state-out " + (out / "b.state").string());
+  CHECK(fs::exists(out / "a" / "summary.json"));
+  CHECK(fs::exists(out / "a" / "frames"));
+  auto b = run_cli(base + " --threads 1 --out " + (out / "b").string() + " --state-out " + (out / "b.state").string());
   REQUIRE(b.status == 0);
   auto c = run_cli(std::string("run ") + REPOSE_SOURCE_DIR + "/cases/settle_box.toml --backend vulkan --steps 300 --quiet --out " +
-                   out.string() + " --state-out " + (out / "c.state").string());
+                   (out / "c").string() + " --state-out " + (out / "c.state").string());
   REQUIRE(c.status == 0);
   std::string sa = slurp(out / "a.state");
   CHECK(sa.size() > 100000);
   CHECK(sa == slurp(out / "b.state"));
   CHECK(sa == slurp(out / "c.state"));
-  std::string summary = slurp(out / "summary.json");
+  std::string summary = slurp(out / "a" / "summary.json");
   CHECK(summary.find("\"rayleigh_time\"") != std::string::npos);
   CHECK(summary.find("\"kinetic_energy\"") != std::string::npos);
   CHECK(summary.find("\"wall_forces\"") != std::string::npos);

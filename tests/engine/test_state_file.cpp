@@ -21,16 +21,7 @@ std::string temp_path(const std::string& name) {
 }  // namespace
 
 TEST_CASE("state file round trip keeps every byte, with bodies and rolling springs", "[engine][io]") {
-  CaseBuilder b;
-  int m = b.material(1000, 5e6, 0.3);
-  b.interaction(m, m, 0.5, 0.5, 0.05);
-  b.spec.gravity = {0, 0, -9.81};
-  b.spec.time.rayleigh_fraction = 0.2;
-  b.spec.contact.rolling = RollingModel::ElasticPlastic;
-  int t = b.clump_template("pair", {{{-0.004, 0, 0}, 0.005}, {{0.004, 0, 0}, 0.005}});
-  for (int k = 0; k < 6; ++k) b.clump(t, {0.011 * k, 0, 0.0052}, m);
-  b.plane({0, 0, 0}, {0, 0, 1}, m);
-  auto sim = simulate(b.spec, "cpu", 1, {}, 50);
+  auto sim = simulate(epsd_clump_pairs(), "cpu", 1, {}, 50);
   sim->advance(300);
   REQUIRE(!sim->state().rolling_spring.empty());
   std::string path = temp_path("roundtrip.state");

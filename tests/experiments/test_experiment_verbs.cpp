@@ -38,3 +38,35 @@ TEST_CASE("repose experiment with the wrong type or a bad [experiment] key fails
   CHECK(bad.output.find("experiment.plate") != std::string::npos);
   CHECK(bad.output.find("plate") != std::string::npos);
 }
+
+TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance; a replicate that does not rebound "
+          "is reported and the others go on", "[experiments][cli]") {
+  fs::path out = fs::temp_directory_path() / "repose_test_experiment_drop";
+  fs::remove_all(out);
+  // The cabbage clump: at seed 2 it rocks on its veins without leaving the plate.
+  auto run = repose::test::run_repose("experiment drop " + std::string(REPOSE_SOURCE_DIR) +
+                                      "/cases/drop_cabbage.toml --quiet --replicates 3 --out " + out.string());
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  CHECK(run.output.find("replicate 2 (seed 2): no rebound within max_time") != std::string::npos);
+  CHECK(run.output.find("replicate 3 (seed 3): h = ") != std::string::npos);
+  CHECK(run.output.find("e over 2 of 3 replicates") != std::string::npos);
+  auto j = nlohmann::json::parse(std::ifstream(out / "drop.json"));
+  CHECK(j["replicates"]["counted"] == 2);
+  CHECK(j["replicates"]["runs"][1].contains("problem"));
+  CHECK(j["provenance"]["backend"] == "cpu");
+  CHECK(j["provenance"]["seed"] == 1);
+  CHECK(j["provenance"]["case_hash"].get<std::string>().size() == 16);
+  std::ifstream forces(out / "wall_forces.csv");
+  std::string header, line;
+  std::getline(forces, header);
+  CHECK(header == "time,plate.fx,plate.fy,plate.fz");
+  int rows = 0;
+  double largest = 0;
+  while (std::getline(forces, line)) {
+    ++rows;
+    largest = std::max(largest, std::stod(line.substr(line.rfind(',') + 1)));
+  }
+  CHECK(rows > 100);           // one row per camera frame
+  CHECK(largest > 0.958 * 9.81);  // the impact pushes the plate harder than the cabbage's weight
+}

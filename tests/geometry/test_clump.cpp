@@ -10,12 +10,12 @@
 
 #include "geometry/clump.h"
 #include "geometry/templates.h"
+#include "util/math.h"
 
 using namespace repose;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kTolerance = 3e-5;  // measured worst at the defaults: 1.7e-5 (see union_moments.h)
 
 struct AxialMoments {

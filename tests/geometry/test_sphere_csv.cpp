@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
 #include "geometry/sphere_csv.h"
 
 using namespace repose;

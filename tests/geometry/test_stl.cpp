@@ -9,7 +9,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/input_error.h"
+#include "util/input_error.h"
 #include "geometry/stl.h"
 
 using namespace repose;

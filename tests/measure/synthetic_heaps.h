@@ -5,10 +5,9 @@
 #include <vector>
 
 #include "geometry/sphere.h"
+#include "util/math.h"
 
 namespace repose::test {
-
-constexpr double kPi = 3.14159265358979323846;
 
 inline double radians(double degrees) { return degrees * kPi / 180.0; }
 

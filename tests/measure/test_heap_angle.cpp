@@ -51,6 +51,24 @@ TEST_CASE("front view of an asymmetric wedge: each side its own slope", "[heap]"
   CHECK(std::abs(m.crest) < 0.005);
 }
 
+TEST_CASE("a heap leaning on a wall: the wall face is no slope and does not enter the mean", "[heap]") {
+  // Half a wedge against a wall: its crest stands at the wall and, beside it, a stack of
+  // spheres along the wall face drops straight to the floor (a few columns, as in the bucket
+  // rig, where this face measured 76 degrees); only the 30 degree slope counts.
+  std::vector<Sphere> heap;
+  for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
+    if (s.centre.x >= 0) heap.push_back(s);
+  for (double z = 0.004; z < 0.09; z += 0.008)
+    for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
+  const HeapAngle m = measure_heap_angle(heap, {});
+  INFO("left " << m.left.angle_deg << " (" << m.left.problem << "), right " << m.right.angle_deg);
+  CHECK_FALSE(m.left.valid);
+  CHECK(m.left.problem.find("a vertical face (a wall the heap leans on), not a slope") != std::string::npos);
+  REQUIRE(m.right.valid);
+  CHECK(std::abs(m.right.angle_deg - 30.0) < kTolerance);
+  CHECK(m.mean_deg == m.right.angle_deg);
+}
+
 TEST_CASE("a rough, filled cone of random spheres is measured within 0.5 degree", "[heap]") {
   const std::vector<Sphere> heap = rough_cone(0.15, 30.0, 0.006, 7);
   REQUIRE(heap.size() > 3000);

@@ -96,7 +96,8 @@ TEST_CASE("cli: design, fit and optimize round trip", "[stats][cli]") {
   for (const char* expected : {"Sum of Squares", "Lack of Fit", "Pure Error", "Adeq Precision",
                                "Final equation in terms of actual factors", "wrote fit.json"})
     CHECK(fit.out.find(expected) != std::string::npos);
-  SavedFit saved = read_fit_file(s.path("fit.json"));
+  SavedFit saved = read_fit_file(s.path("fit.json"));  // reads past the provenance it records
+  CHECK(s.read("fit.json").find("\"provenance\"") != std::string::npos);
   CHECK(saved.coded.coefficient(Term{{0, 2, 0}}) == Approx(0.8).margin(0.02));
   CHECK(saved.coded.coefficient(Term{{1, 0, 0}}) == Approx(0.5).margin(0.02));
 
@@ -114,9 +115,23 @@ TEST_CASE("cli: design, fit and optimize round trip", "[stats][cli]") {
   CHECK_FALSE(s.has_temporaries());
 
   // Backward reduction keeps hierarchy and reports what it dropped.
-  Result red = run_repose(s, "fit runs.csv --response Y --factors e,mu_s,mu_r --model quadratic --reduce 0.05");
+  Result red = run_repose(s, "fit runs.csv --response Y --factors e_coded,mu_s_coded,mu_r_coded --model quadratic --reduce 0.05");
   REQUIRE(red.code == 0);
   CHECK(red.out.find("Removed (p > 0.05):") != std::string::npos);
+
+  // Actual columns taken as coded would be a wrong fit (e's effect came out at p = 0.32): refused,
+  // with the coded columns and the --coded ranges that would do.
+  Result trap = run_repose(s, "fit runs.csv --response Y --factors e,mu_s,mu_r --model quadratic --json never.json");
+  CHECK(trap.code != 0);
+  CHECK(trap.err.find("are not coded") != std::string::npos);
+  CHECK(trap.err.find("--factors e_coded,mu_s_coded,mu_r_coded") != std::string::npos);
+  CHECK(trap.err.find("--coded 0.4:0.44,0.2:0.4,0.02:0.04") != std::string::npos);
+  CHECK_FALSE(s.exists("never.json"));
+  // The coded columns and the actual ones with --coded give the same fit: e is significant.
+  Result coded = run_repose(s, "fit runs.csv --response Y --factors e_coded,mu_s_coded,mu_r_coded --model quadratic");
+  REQUIRE(coded.code == 0);
+  CHECK(coded.out.find("A-e_coded") != std::string::npos);
+  CHECK(coded.out.find("< 0.0001") != std::string::npos);
 }
 
 TEST_CASE("cli: bad tables and requests fail clearly and write nothing", "[stats][cli]") {

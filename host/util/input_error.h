@@ -1,5 +1,7 @@
-// The error every geometry reader throws: it names the file, and the line and column when known,
-// in the compiler style "file:line:column: message" that editors can jump to.
+// The one error type for a problem located in an input file (an STL, a sphere CSV, a data table,
+// a fit file): it names the file, and the line and column when known, in the compiler style
+// "file:line:column: message" that editors can jump to. (Case files and measured data have their
+// own, CaseError and DataError, which also name the key or column.)
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -8,7 +10,8 @@ namespace repose {
 
 class InputError : public std::runtime_error {
  public:
-  // line and column are 1-based; 0 means "not applicable" and is left out of the message.
+  // line and column are 1-based; 0 means "not applicable" and is left out of the message; a file
+  // without a name (text parsed from memory) shows as "<input>".
   InputError(std::string file, int line, int column, const std::string& message)
       : std::runtime_error(format(file, line, column, message)),
         file_(std::move(file)),
@@ -21,7 +24,8 @@ class InputError : public std::runtime_error {
 
  private:
   static std::string format(const std::string& file, int line, int column, const std::string& message) {
-    std::string where = file;
+    // append() rather than operator+ chains: GCC 12 gives false -Wrestrict warnings on those.
+    std::string where = file.empty() ? std::string("<input>") : file;
     if (line > 0) where.append(":").append(std::to_string(line));
     if (line > 0 && column > 0) where.append(":").append(std::to_string(column));
     where.append(": ").append(message);

@@ -1,0 +1,152 @@
+#include "case/physical_ranges.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "case/case_error.h"
+#include "case/time_step.h"
+
+namespace repose {
+
+namespace {
+
+std::string number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+void warn(std::vector<std::string>& warnings, const SourceRef& where, const std::string& what) {
+  warnings.push_back(CaseError::format(where, "warning: " + what));
+}
+
+double length(const Vec3d& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// The axis-aligned box a fill region occupies.
+void fill_extent(const FillSpec& f, Vec3d& lo, Vec3d& hi) {
+  if (f.shape == FillSpec::Shape::Box) {
+    lo = f.box_min;
+    hi = f.box_max;
+    return;
+  }
+  Vec3d top{f.cyl_base[0] + f.cyl_height * f.cyl_axis[0], f.cyl_base[1] + f.cyl_height * f.cyl_axis[1],
+            f.cyl_base[2] + f.cyl_height * f.cyl_axis[2]};
+  for (int k = 0; k < 3; ++k) {
+    double spread = f.cyl_radius * std::sqrt(std::max(0.0, 1 - f.cyl_axis[k] * f.cyl_axis[k]));
+    lo[k] = std::min(f.cyl_base[k], top[k]) - spread;
+    hi[k] = std::max(f.cyl_base[k], top[k]) + spread;
+  }
+}
+
+// A fill must lie on the particles' side of every plane and inside every box that overlaps it:
+// particles placed behind a wall are pushed through it or fall away at the first step.
+void check_fill_inside_walls(const CaseSpec& spec, const FillSpec& f, size_t index) {
+  Vec3d lo, hi;
+  fill_extent(f, lo, hi);
+  SourceRef where = f.where;
+  where.key = "fill[" + std::to_string(index) + "]." + (f.shape == FillSpec::Shape::Box ? "box" : "cylinder");
+  const double margin = 1e-9;
+  for (const WallSpec& w : spec.walls) {
+    std::string name = w.name.empty() ? "a " + std::string(w.type == WallSpec::Type::Box ? "box" : "plane") : "'" + w.name + "'";
+    if (w.type == WallSpec::Type::Plane) {
+      // The region's corner farthest behind the plane.
+      double lowest = 0;
+      for (int k = 0; k < 3; ++k) lowest += (w.normal[k] >= 0 ? lo[k] : hi[k]) * w.normal[k];
+      double offset = 0;
+      for (int k = 0; k < 3; ++k) offset += w.point[k] * w.normal[k];
+      double behind = (offset - lowest) / length(w.normal);
+      if (behind > margin)
+        throw CaseError(where, "reaches " + number(behind) + " m behind the plane " + name + " (line " +
+                                   std::to_string(w.where.line) + "): the fill must lie on the side its normal points to");
+    } else if (w.type == WallSpec::Type::Box) {
+      bool overlaps = true;
+      for (int k = 0; k < 3; ++k) overlaps &= lo[k] < w.box_max[k] && hi[k] > w.box_min[k];
+      if (!overlaps) continue;  // a fill elsewhere (another box holds it)
+      for (int k = 0; k < 3; ++k) {
+        const char* axis = "xyz" + k;
+        std::string face_lo = std::string(1, *axis) + "min", face_hi = std::string(1, *axis) + "max";
+        auto open = [&](const std::string& face) {
+          return std::find(w.open_faces.begin(), w.open_faces.end(), face) != w.open_faces.end();
+        };
+        if ((lo[k] < w.box_min[k] - margin && !open(face_lo)) || (hi[k] > w.box_max[k] + margin && !open(face_hi)))
+          throw CaseError(where, "reaches outside the box " + name + " (line " + std::to_string(w.where.line) + ") along " +
+                                     *axis + ": " + number(lo[k]) + " .. " + number(hi[k]) + " m against the box's " +
+                                     number(w.box_min[k]) + " .. " + number(w.box_max[k]) + " m");
+      }
+    }
+  }
+}
+
+// A particle bigger than the box that holds it is a length in the wrong unit.
+void check_sizes_against_boxes(const CaseSpec& spec) {
+  for (const WallSpec& w : spec.walls) {
+    if (w.type != WallSpec::Type::Box) continue;
+    double smallest = std::min({w.box_max[0] - w.box_min[0], w.box_max[1] - w.box_min[1], w.box_max[2] - w.box_min[2]});
+    for (const SphereSpec& s : spec.spheres)
+      if (2 * s.radius > smallest)
+        throw CaseError(s.where, "a sphere of radius " + number(s.radius) + " m does not fit in the box '" + w.name +
+                                     "' (line " + std::to_string(w.where.line) + ", " + number(smallest) +
+                                     " m across): millimetres written as metres?");
+  }
+}
+
+// dt against end_time, and each particle's initial travel per step against its radius.
+void check_time_scales(CaseSpec& spec) {
+  double dt = resolve_dt(spec);
+  if (dt >= spec.time.end_time)
+    throw CaseError(spec.time.where, "the time step " + number(dt) + " s is not shorter than end_time " +
+                                         number(spec.time.end_time) + " s (a modulus in MPa written as Pa? the step "
+                                         "follows the Rayleigh time, which grows as the modulus falls)");
+  if (spec.time.end_time / dt > 1e12)
+    throw CaseError(spec.time.end_where, "end_time " + number(spec.time.end_time) + " s is " +
+                                         number(spec.time.end_time / dt) + " steps of " + number(dt) +
+                                         " s: more than 1e12 steps cannot be meant");
+  if (spec.time.end_time / dt < 20)
+    warn(spec.warnings, spec.time.where, "only " + number(spec.time.end_time / dt) + " steps of " + number(dt) +
+                                             " s before end_time " + number(spec.time.end_time) + " s");
+  auto check_speed = [&](const Vec3d& v, double radius, const SourceRef& where) {
+    double travel = length(v) * dt;
+    if (travel > radius)
+      throw CaseError(where, "a speed of " + number(length(v)) + " m/s moves " + number(travel) + " m per step of " +
+                                 number(dt) + " s, more than the particle's radius " + number(radius) +
+                                 " m: it would pass through walls and particles unseen");
+    if (travel > 0.2 * radius)
+      warn(spec.warnings, where, "a speed of " + number(length(v)) + " m/s moves " + number(travel / radius) +
+                                     " radii per step: contacts at that speed are resolved coarsely");
+  };
+  for (const SphereSpec& s : spec.spheres) check_speed(s.velocity, s.radius, s.where);
+  for (const BodySpec& b : spec.bodies) {
+    double smallest = 1e300;
+    for (const auto& sphere : spec.templates[size_t(b.template_index)].clump.spheres)
+      smallest = std::min(smallest, sphere.radius * b.scale);
+    check_speed(b.velocity, smallest, b.where);
+  }
+}
+
+}  // namespace
+
+void check_density(double density, const SourceRef& where, std::vector<std::string>& warnings) {
+  if (density < 1)
+    throw CaseError(where, number(density) + " kg/m^3 is lighter than air: g/cm^3 written as kg/m^3? (" +
+                               number(density) + " g/cm^3 = " + number(density * 1000) + " kg/m^3)");
+  if (density > 25000)
+    throw CaseError(where, number(density) + " kg/m^3 is denser than any solid (osmium: 22,590)");
+  if (density < 10) warn(warnings, where, number(density) + " kg/m^3 is lighter than any foam granule");
+}
+
+void check_shear_modulus(double g, const SourceRef& where, std::vector<std::string>& warnings) {
+  if (g < 100)
+    throw CaseError(where, number(g) + " Pa is softer than any solid: MPa written as Pa? (" + number(g) + " MPa = " +
+                               number(g * 1e6) + " Pa)");
+  if (g > 1e12) throw CaseError(where, number(g) + " Pa is stiffer than diamond (about 5e11 Pa)");
+  if (g < 1e4) warn(warnings, where, number(g) + " Pa is softer than the softest foam granules (about 1e4 Pa)");
+}
+
+void check_case_ranges(CaseSpec& spec) {
+  check_sizes_against_boxes(spec);
+  for (size_t f = 0; f < spec.fills.size(); ++f) check_fill_inside_walls(spec, spec.fills[f], f);
+  check_time_scales(spec);
+}
+
+}  // namespace repose

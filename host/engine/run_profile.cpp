@@ -1,0 +1,82 @@
+#include "engine/run_profile.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace repose {
+
+void RunProfile::add(const RunProfile& o) {
+  for (const auto& [k, t] : o.kernels) kernels[k] += t;
+  wall_seconds += o.wall_seconds;
+  steps += o.steps;
+  rebuilds += o.rebuilds;
+  contact_steps += o.contact_steps;
+}
+
+double RunProfile::kernel_seconds() const {
+  double total = 0;
+  for (const auto& [k, t] : kernels) total += t;
+  return total;
+}
+
+const char* kernel_stage(const std::string& k) {
+  if (k == "contact_forces" || k == "contact_rows") return "contacts";
+  if (k == "gather_kick" || k == "gather_lean" || k == "kick_drift") return "particles";
+  if (k.rfind("body_", 0) == 0) return "bodies";
+  if (k == "wall_reduce") return "other";
+  return "neighbours";  // rebuild_args, save_old_*, buckets, scans, contact_count/fill, transpose_*
+}
+
+std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>>& rows, double dt) {
+  std::string out;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-12s %9s %8s %9s %8s %9s %9s   ms per step:", "phase", "steps", "sim s",
+                "wall s", "steps/s", "rebuilds", "contacts");
+  out += line;
+  for (const char* s : kKernelStages) {
+    out += ' ';
+    out += s;
+  }
+  out += " host\n";
+  for (const auto& [label, p] : rows) {
+    double steps = std::max<double>(1, double(p.steps));
+    std::snprintf(line, sizeof line, "%-12s %9llu %8.3g %9.3g %8.4g %9.3g %9.0f                ", label.c_str(),
+                  (unsigned long long)p.steps, p.steps * dt, p.wall_seconds,
+                  p.wall_seconds > 0 ? p.steps / p.wall_seconds : 0.0, 1000.0 * p.rebuilds / steps,
+                  p.contact_steps / steps);
+    out += line;
+    if (p.kernels.empty()) {
+      out += p.steps ? " (kernels not timed)\n" : "\n";
+      continue;
+    }
+    for (const char* s : kKernelStages) {
+      double t = 0;
+      for (const auto& [k, v] : p.kernels)
+        if (std::strcmp(kernel_stage(k), s) == 0) t += v;
+      std::snprintf(line, sizeof line, " %*.3f", int(std::strlen(s)), 1e3 * t / steps);
+      out += line;
+    }
+    std::snprintf(line, sizeof line, " %4.3f\n", 1e3 * std::max(0.0, p.wall_seconds - p.kernel_seconds()) / steps);
+    out += line;
+  }
+  return out;
+}
+
+std::string format_kernel_times(const RunProfile& p) {
+  std::vector<std::pair<double, std::string>> sorted;
+  for (const auto& [k, t] : p.kernels) sorted.push_back({t, k});
+  std::sort(sorted.rbegin(), sorted.rend());
+  double total = std::max(1e-30, p.kernel_seconds()), steps = std::max<double>(1, double(p.steps));
+  std::string out;
+  char item[96];
+  for (const auto& [t, k] : sorted) {
+    if (t / total < 0.005) continue;
+    std::snprintf(item, sizeof item, "%s%s %.3f ms (%.0f%%)", out.empty() ? "" : ", ", k.c_str(), 1e3 * t / steps,
+                  100 * t / total);
+    out += item;
+  }
+  return out;
+}
+
+}  // namespace repose

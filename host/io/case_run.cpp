@@ -1,0 +1,243 @@
+#include "io/case_run.h"
+
+#include <chrono>
+#include <csignal>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "case/case_loader.h"
+#include "engine/backend_factory.h"
+#include "engine/escape_check.h"
+#include "engine/model.h"
+#include "engine/simulation.h"
+#include "io/output_dir.h"
+#include "io/provenance.h"
+#include "io/run_output.h"
+#include "io/run_summary.h"
+#include "io/state_file.h"
+#include "util/progress.h"
+#include "util/stop_signal.h"
+
+namespace repose {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// More steps than this cannot be meant (years of computing); the limit also keeps step counts
+// exact in a double.
+constexpr double kMostSteps = 1e12;
+
+struct StartPoint {
+  HostState state;
+  StateFileInfo info;  // step 0 for a new run
+  bool restarting = false;
+};
+
+StartPoint read_restart(const std::string& path, const Model& model) {
+  StartPoint start;
+  if (path.empty()) return start;
+  start.state = read_state_file(path, start.info);
+  start.restarting = true;
+  if (!start.info.restartable())
+    throw std::runtime_error(path + ": a version " + std::to_string(start.info.version) +
+                             " state file holds no restart data (written before restarts existed)");
+  if (start.info.time != double(start.info.step) * model.dt)
+    throw std::runtime_error(path + ": written with another time step than this case's (t = " +
+                             std::to_string(start.info.time) + " s at step " + std::to_string(start.info.step) +
+                             "): restart with the case and --set values it was run with");
+  return start;
+}
+
+uint64_t steps_of(double seconds, double dt, const char* what) {
+  double steps = std::round(seconds / dt);
+  if (!(steps <= kMostSteps))
+    throw std::runtime_error(std::string(what) + " of " + std::to_string(seconds) + " s is " + std::to_string(steps) +
+                             " steps of " + std::to_string(dt) + " s: more than 1e12 steps cannot be meant");
+  return uint64_t(steps);
+}
+
+// The step to stop at: --steps or --time more, or the case's end time.
+uint64_t target_step(const CaseRunOptions& o, const Model& m, uint64_t start) {
+  if (o.steps) {
+    if (double(*o.steps) > kMostSteps) throw std::runtime_error("--steps above 1e12 cannot be meant");
+    return start + *o.steps;
+  }
+  if (o.time) return start + steps_of(*o.time, m.dt, "--time");
+  uint64_t end = steps_of(m.end_time, m.dt, "end_time");
+  if (start >= end)
+    throw std::runtime_error("the restart state is at step " + std::to_string(start) + ", the case ends at step " +
+                             std::to_string(end) + " (end_time): give --steps or --time to run further");
+  return end;
+}
+
+// The case hash recorded in DIR/summary.json, or "" when there is none.
+std::string folder_case_hash(const std::string& dir) {
+  std::ifstream in(dir + "/summary.json");
+  if (!in) return "";
+  try {
+    auto j = nlohmann::json::parse(in);
+    return j.at("provenance").at("case_hash").get<std::string>();
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
+// Readies the folder; true when a restart continues the run already in it.
+bool open_folder(const std::string& dir, const CaseRunOptions& o, const CaseSpec& spec) {
+  std::error_code ec;
+  bool occupied = fs::is_directory(dir, ec) && !fs::is_empty(dir, ec);
+  if (!o.restart.empty() && occupied && !o.overwrite) {
+    std::string there = folder_case_hash(dir);
+    if (there == case_hash(spec)) return true;
+    throw OutputError("--out " + dir + " holds " + (there.empty() ? "other files" : "a run of another case (or other --set values)") +
+                      ": continue a run in its own folder with the case and --set values it ran with, or choose another --out");
+  }
+  prepare_output_dir(dir, o.overwrite, {spec.path, o.restart});
+  return false;
+}
+
+struct Schedule {
+  uint64_t frame_every = 0, checkpoint_every = 0, target = 0;
+  uint32_t batch = 200;
+  // The next step at which something is written (or the run ends).
+  uint64_t next_stop(uint64_t step) const {
+    uint64_t next = std::min<uint64_t>(target, step + batch);
+    for (uint64_t every : {frame_every, checkpoint_every})
+      if (every) next = std::min(next, (step / every + 1) * every);
+    return next;
+  }
+};
+
+Schedule make_schedule(const Model& m, uint64_t target) {
+  Schedule s;
+  s.target = target;
+  if (m.output_interval > 0) s.frame_every = std::max<uint64_t>(1, steps_of(m.output_interval, m.dt, "[output] interval"));
+  double every = m.checkpoint_interval;
+  if (every > 0) s.checkpoint_every = std::max<uint64_t>(1, steps_of(every, m.dt, "[output] checkpoint_interval"));
+  // Batches end exactly on frame steps.
+  if (s.frame_every) {
+    s.batch = uint32_t(std::min<uint64_t>(s.frame_every, 200));
+    while (s.frame_every % s.batch) --s.batch;
+  }
+  return s;
+}
+
+void print_result(const Simulation& sim, const RunOutput& output, const RunInfo& info, const std::string& state_out) {
+  const Model& m = sim.model();
+  auto e = sim.kinetic_energy();
+  double wall = info.wall_seconds;
+  std::printf("%s: %llu steps, t = %.4g s, %u contacts, kinetic energy %.6g J, %.3g particle-steps/s (%s)\n",
+              output.name().c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
+              wall > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / wall : 0.0,
+              format_duration(wall).c_str());
+  for (const auto& w : info.wall_forces)
+    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
+      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
+  std::printf("wrote %s/summary.json", output.dir().c_str());
+  if (output.frames_written()) std::printf(", %u frames in %s/frames", output.frames_written(), output.dir().c_str());
+  if (!state_out.empty()) std::printf(", state %s", state_out.c_str());
+  std::printf("\n");
+}
+
+// The end of a run, finished or stopped by a signal: series, summary, checkpoint or final state.
+int finish_run(const Simulation& sim, RunOutput& output, RunInfo& info, const CaseRunOptions& o, int signal) {
+  info.frames = output.frames_written();
+  if (signal) {
+    output.checkpoint(sim);
+    info.status = signal == SIGINT ? "interrupted by SIGINT" : "interrupted by SIGTERM";
+    write_run_summary(output.dir() + "/summary.json", sim, info);
+    std::fprintf(stderr, "%s at step %llu (t = %.6g s): wrote the summary and %s; continue with --restart %s\n",
+                 info.status.c_str(), (unsigned long long)sim.step(), sim.time(), output.checkpoint_path().c_str(),
+                 output.checkpoint_path().c_str());
+    return 128 + signal;
+  }
+  if (sim.model().checkpoint_interval > 0) output.checkpoint(sim);
+  output.write_series();
+  info.status = "finished";
+  write_run_summary(output.dir() + "/summary.json", sim, info);
+  if (!o.state_out.empty()) write_state_file(o.state_out, sim.state(), sim.step(), sim.time());
+  print_result(sim, output, info, o.state_out);
+  return 0;
+}
+
+}  // namespace
+
+int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
+  // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
+  // EPSD rolling springs and spinning friction need the full entry (torques stored per contact).
+  std::string variant_text = o.variant;
+  if (variant_text.empty())
+    variant_text = o.backend == "vulkan" && !needs_full_contact_entries(spec) ? "contact,lean" : "contact";
+  KernelVariant variant = KernelVariant::parse(variant_text);
+  Model model = build_model(spec);
+  StartPoint start = read_restart(o.restart, model);
+  Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
+
+  // Every path is usable before the first step.
+  std::string dir = o.out_dir.empty() ? "out/" + spec.name : o.out_dir;
+  bool state_in_folder = !o.state_out.empty() && path_is_within(o.state_out, dir);
+  if (!o.state_out.empty() && !state_in_folder) check_file_writable(o.state_out, "--state-out");
+  bool continuing = open_folder(dir, o, spec);
+  if (state_in_folder) check_file_writable(o.state_out, "--state-out");
+
+  auto engine = make_backend(o.backend, o.device, o.threads, variant.workgroup);
+  RunInfo info;
+  info.backend = engine->describe();
+  info.variant = variant.name();
+  Provenance prov = provenance_of(spec, o.overrides);
+  prov.backend = o.backend;
+  prov.device = info.backend;
+  info.provenance = provenance_json(prov);
+  if (start.restarting) info.restart = {o.restart, start.info.step};
+
+  Simulation sim(std::move(model), std::move(engine), variant, schedule.batch);
+  if (start.restarting) sim.restore(start.state, start.info.step);
+  const Model& m = sim.model();
+  RunOutput output(dir, spec.name, m, schedule.frame_every, m.vtk);
+  output.begin(sim.step(), continuing);
+  auto summary = [&](const char* status) {
+    info.status = status;
+    info.frames = output.frames_written();
+    write_run_summary(dir + "/summary.json", sim, info);
+  };
+  summary("running");
+  if (!o.quiet)
+    std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), steps %llu to %llu on %s\n",
+                 spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
+                 (unsigned long long)sim.step(), (unsigned long long)schedule.target, info.backend.c_str());
+
+  EscapeCheck escapes(m);
+  bool escape_told = false;
+  install_stop_handlers();
+  if (!start.restarting && output.frame_due(0)) output.frame(sim);
+  Progress progress(spec.name, schedule.target, m.dt, !o.quiet, sim.step());
+  auto t0 = std::chrono::steady_clock::now();
+  int signal = 0;
+  while (sim.step() < schedule.target && !(signal = stop_requested())) {
+    sim.advance(schedule.next_stop(sim.step()) - sim.step(), [&](const Simulation& s) {
+      progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
+    });
+    if (!escape_told)
+      if (auto e = escapes.find(sim.state(), sim.time())) {
+        escape_told = true;
+        std::fprintf(stderr, "warning: at t = %.6g s particle %u is %s: it passed through (too fast for the time step, "
+                             "or pushed through by a moving wall?); the run goes on\n", sim.time(), e->particle, e->where.c_str());
+      }
+    if (output.frame_due(sim.step())) output.frame(sim);
+    if (schedule.checkpoint_every && sim.step() % schedule.checkpoint_every == 0) {
+      output.checkpoint(sim);
+      summary("running");
+    }
+  }
+  if (!signal) signal = stop_requested();
+  progress.finish();
+  info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  info.wall_forces = sim.wall_forces();
+  return finish_run(sim, output, info, o, signal);
+}
+
+}  // namespace repose

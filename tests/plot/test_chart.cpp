@@ -1,0 +1,60 @@
+// The shared chart: lines stay inside the plot area, the response map has a colour bar that runs
+// from its lowest to its highest value, and a picture keeps one unit of x as long as one of y.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+
+#include "plot/chart.h"
+
+using namespace repose;
+
+TEST_CASE("chart lines are clipped to the plot area", "[plot]") {
+  Chart chart(600, 400, 0, 1, 0, 1);
+  // A line from far left-below to far right-above, and one entirely outside.
+  chart.polyline({-5, 6}, {-3, 4}, colours::red, 3);
+  chart.polyline({2, 3}, {2, 3}, colours::blue, 3);
+  chart.vertical(0.5, colours::green, 1);
+  auto [left, top, right, bottom] = chart.plot_area();
+  int inside = 0;
+  for (int r = 0; r < 400; ++r)
+    for (int c = 0; c < 600; ++c) {
+      Colour p = chart.pixel(c, r);
+      bool in = c >= left - 1 && c <= right + 1 && r >= top - 1 && r <= bottom + 1;
+      if (p == colours::red || p == colours::blue) {
+        INFO("pixel " << c << "," << r);
+        CHECK(in);
+        inside += in;
+      }
+    }
+  CHECK(inside > 100);  // the first line was drawn where it crosses the plot
+}
+
+TEST_CASE("a response map's colour bar spans its values, low at the bottom", "[plot]") {
+  Chart chart(700, 500, 0, 1, 0, 1, true);
+  chart.response_map([](double x, double y) { return 10 + 5 * x + y; }, {}, {});
+  auto [left, top, right, bottom] = chart.plot_area();
+  CHECK(700 - right >= 130);  // room kept for the bar
+  std::string path = (std::filesystem::temp_directory_path() / "repose_test_chart.png").string();
+  chart.save(path);
+  // The bar's column, just right of the plot: bluish at the bottom, reddish at the top.
+  Colour low = chart.pixel(right + 34, bottom - 2), high = chart.pixel(right + 34, top + 2);
+  CHECK(low[2] > low[0]);
+  CHECK(high[0] > high[2]);
+  // The map itself: its lowest value (x = 0, y = 0) blue, its highest (1, 1) red.
+  CHECK(chart.pixel(left + 1, bottom - 1)[2] > chart.pixel(left + 1, bottom - 1)[0]);
+  CHECK(chart.pixel(right - 1, top + 1)[0] > chart.pixel(right - 1, top + 1)[2]);
+  CHECK(std::filesystem::file_size(path) > 1000);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("a picture at equal scale keeps its aspect and fits the size asked", "[plot]") {
+  for (auto [w, h] : {std::pair{0.4, 0.13}, {0.1, 0.17}}) {
+    Chart chart = Chart::equal_scale(1400, 1000, 0, w, 0, h);
+    auto [left, top, right, bottom] = chart.plot_area();
+    INFO(w << " x " << h << " m: plot " << right - left << " x " << bottom - top << " px");
+    CHECK(double(bottom - top) / double(right - left) == Approx(h / w).epsilon(0.01));
+    CHECK(right - left <= 1400);
+    CHECK(bottom - top <= 1000);
+  }
+}
