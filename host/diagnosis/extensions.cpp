@@ -14,6 +14,7 @@ Interaction& tested_contact(CaseSpec& spec) {
   return e->tested_contact(spec);
 }
 
+// A table, one row per extension: long by design (each row a few lines), nothing in it to split.
 const std::vector<ModelExtension>& model_extensions() {
   static const std::vector<ModelExtension> table = {
       {.id = "restitution_velocity",
