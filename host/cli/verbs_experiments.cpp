@@ -9,6 +9,7 @@
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "util/number_text.h"
 #include "engine/backend_factory.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
@@ -21,18 +22,6 @@ namespace {
 std::string listed(const std::vector<std::string>& words) {
   std::string text;
   for (const auto& w : words) text += (text.empty() ? "" : ", ") + w;
-  return text;
-}
-
-// The shortest text that reads back as exactly `value`.
-std::string exact_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  for (int digits = 1; digits <= 17; ++digits) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", digits, value);
-    if (std::strtod(shorter, nullptr) == value) return shorter;
-  }
   return text;
 }
 
@@ -81,7 +70,7 @@ int run_experiment(int argc, char** argv) {
 
   std::vector<CaseOverride> extra;
   if (height_opt->count()) {
-    extra.push_back({"experiment.drop_height", exact_text(height)});
+    extra.push_back({"experiment.drop_height", exact_number(height)});
     sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
   }
   auto loaded = load_case_or_report(case_path, sets, extra);
