@@ -2,6 +2,7 @@
 // The experiment the case names (experiments/registry.h) runs it, prints what it measured and
 // writes TYPE.json with the files it declares (time series as CSV, wall forces, a heap's picture).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -23,6 +24,18 @@ std::string listed(const std::vector<std::string>& words) {
   std::string text;
   for (const auto& w : words) text += (text.empty() ? "" : ", ") + w;
   return text;
+}
+
+// The experiment types whose cases take `key` in their [experiment] table.
+std::vector<std::string> types_with_key(const std::string& key) {
+  std::vector<std::string> types;
+  for (const Experiment* e : experiments()) {
+    const std::vector<std::string> keys = e->keys();
+    if (std::find(keys.begin(), keys.end(), key) != keys.end() &&
+        std::find(types.begin(), types.end(), e->type()) == types.end())
+      types.push_back(e->type());
+  }
+  return types;
 }
 
 // What produced an experiment's result (io/provenance.h); creating the backend names its device.
@@ -66,7 +79,9 @@ int run_experiment(int argc, char** argv) {
       ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
   if (replicates > 1 && type != "drop") return usage_error("--replicates applies to the drop experiment");
-  if (height_opt->count() && type != "drop") return usage_error("--height applies to the drop experiment");
+  const std::vector<std::string> with_height = types_with_key("drop_height");
+  if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
+    return usage_error("--height applies to the " + listed(with_height) + " experiment");
 
   std::vector<CaseOverride> extra;
   if (height_opt->count()) {
