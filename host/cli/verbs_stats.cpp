@@ -146,6 +146,63 @@ int run_design(int argc, char** argv) {
 }
 
 // ---------------------------------------------------------------------------------------
+// The table's rows as coded factors and the response: --coded codes actual columns with its
+// ranges, --ranges gives coded columns their actual ranges, --snap-alpha puts axial levels
+// printed rounded at the exact alpha.
+DataSet fit_data(const Table& table, const std::vector<std::string>& factors, const std::string& response,
+                 const std::vector<std::string>& coded, const std::vector<std::string>& ranges, const std::string& snap) {
+  auto parse_ranges = [&](const std::vector<std::string>& specs, const char* option) {
+    if (specs.size() != factors.size())
+      throw StatsError(std::string(option) + " needs one LOW:HIGH per factor: " + std::to_string(factors.size()) +
+                       " factors, " + std::to_string(specs.size()) + " ranges");
+    std::vector<Factor> out;
+    for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
+    return out;
+  };
+  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
+  DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
+  if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
+  const int k = static_cast<int>(factors.size());
+  if (!snap.empty()) {
+    double alpha = snap == "rotatable" ? std::pow(std::ldexp(1.0, k), 0.25) : 0;
+    if (snap != "rotatable" && (!parse_number(snap, alpha) || !(alpha > 0)))
+      throw StatsError("--snap-alpha '" + snap + "' is not rotatable or a positive number");
+    int n = snap_to_alpha(data.coded, alpha);
+    std::printf("axial levels: %d coded values set to +-%.6f\n", n, alpha);
+  }
+  return data;
+}
+
+struct ChosenFit {
+  std::optional<Reduction> result;
+  std::string model;  // its kind's name
+};
+
+// --model, or for "auto" the largest of quadratic, interaction, linear that the design can
+// estimate; reduced backward when --reduce is given.
+ChosenFit fit_largest_model(const DataSet& data, const std::string& model, std::optional<double> reduce, bool hierarchy,
+                            SumOfSquaresType ss_type, const std::string& table_path) {
+  const int k = static_cast<int>(data.coded.cols());
+  std::vector<std::string> candidates = model == "auto" ? std::vector<std::string>{"quadratic", "interaction", "linear"}
+                                                        : std::vector<std::string>{model};
+  ChosenFit out;
+  for (size_t c = 0; c < candidates.size() && !out.result; ++c) {
+    auto terms = build_model(parse_model_kind(candidates[c]), k);
+    try {
+      if (reduce) {
+        out.result = reduce_backward(data.coded, data.y, terms, *reduce, hierarchy, ss_type);
+      } else {
+        out.result = Reduction{analyse(data.coded, data.y, terms, ss_type), {}};
+      }
+      out.model = model_kind_name(parse_model_kind(candidates[c]));
+    } catch (const ModelError& e) {
+      if (c + 1 == candidates.size()) throw ModelError(table_path + ": " + e.what());
+      std::printf("%s model not estimable (%s); trying a smaller one\n", candidates[c].c_str(), e.what());
+    }
+  }
+  return out;
+}
+
 int run_fit(int argc, char** argv) {
   CLI::App app{"Fit a polynomial model to a CSV table and print its ANOVA like Design-Expert."};
   std::string table_path, response, model = "auto", json_out, snap, ss = "partial";
@@ -174,46 +231,12 @@ int run_fit(int argc, char** argv) {
   if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
 
   Table table = read_csv(table_path);
-  auto parse_ranges = [&](const std::vector<std::string>& specs, const char* option) {
-    if (specs.size() != factors.size())
-      throw StatsError(std::string(option) + " needs one LOW:HIGH per factor: " + std::to_string(factors.size()) +
-                       " factors, " + std::to_string(specs.size()) + " ranges");
-    std::vector<Factor> out;
-    for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
-    return out;
-  };
-  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
-  DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
-  if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
-  const int k = static_cast<int>(factors.size());
-  if (!snap.empty()) {
-    double alpha = snap == "rotatable" ? std::pow(std::ldexp(1.0, k), 0.25) : 0;
-    if (snap != "rotatable" && (!parse_number(snap, alpha) || !(alpha > 0)))
-      throw StatsError("--snap-alpha '" + snap + "' is not rotatable or a positive number");
-    int n = snap_to_alpha(data.coded, alpha);
-    std::printf("axial levels: %d coded values set to +-%.6f\n", n, alpha);
-  }
+  DataSet data = fit_data(table, factors, response, coded, ranges, snap);
   SumOfSquaresType ss_type = ss == "partial" ? SumOfSquaresType::partial : SumOfSquaresType::sequential;
 
-  // "auto": the largest of quadratic, interaction, linear that the design can estimate.
-  std::vector<std::string> candidates = model == "auto" ? std::vector<std::string>{"quadratic", "interaction", "linear"}
-                                                        : std::vector<std::string>{model};
-  std::optional<Reduction> result;
-  std::string chosen;
-  for (size_t c = 0; c < candidates.size() && !result; ++c) {
-    auto terms = build_model(parse_model_kind(candidates[c]), k);
-    try {
-      if (reduce) {
-        result = reduce_backward(data.coded, data.y, terms, *reduce, !no_hierarchy, ss_type);
-      } else {
-        result = Reduction{analyse(data.coded, data.y, terms, ss_type), {}};
-      }
-      chosen = model_kind_name(parse_model_kind(candidates[c]));
-    } catch (const ModelError& e) {
-      if (c + 1 == candidates.size()) throw ModelError(table_path + ": " + e.what());
-      std::printf("%s model not estimable (%s); trying a smaller one\n", candidates[c].c_str(), e.what());
-    }
-  }
+  const ChosenFit chosen_fit = fit_largest_model(data, model, reduce, !no_hierarchy, ss_type, table_path);
+  const std::optional<Reduction>& result = chosen_fit.result;
+  const std::string& chosen = chosen_fit.model;
   const ResponseSurface& fit = result->model;
   std::printf("%s: %d runs, response %s\n\n", table_path.c_str(), table.rows(), response.c_str());
   std::fputs(format_anova(fit, factors, chosen).c_str(), stdout);
