@@ -37,10 +37,8 @@ std::vector<CaseOverride> read_params(const std::string& path) {
       if (node.is_table()) {
         walk(*node.as_table(), key);
       } else if (node.is_number()) {
-        std::ostringstream v;
-        v.precision(17);
-        v << (node.is_integer() ? double(node.as_integer()->get()) : node.as_floating_point()->get());
-        out.push_back({key, v.str()});
+        out.push_back({key, exact_number(node.is_integer() ? double(node.as_integer()->get())
+                                                           : node.as_floating_point()->get())});
       } else if (node.is_string()) {
         out.push_back({key, "\"" + node.as_string()->get() + "\""});
       } else {

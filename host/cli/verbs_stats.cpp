@@ -64,6 +64,58 @@ std::pair<std::string, double> parse_assignment(const std::string& s, const char
   return {s.substr(0, eq), v};
 }
 
+// --type path: steps along the steepest ascent (or descent) of a first-order fit's coded slopes.
+Design path_design(const std::string& fit_path, double step, int steps, bool descent) {
+  if (fit_path.empty()) throw StatsError("--type path needs --fit FIT.json (a first-order fit)");
+  SavedFit fit = read_fit_file(fit_path);
+  if (fit.ranges.empty())
+    throw StatsError(fit_path + ": the fit has no factor ranges (fit with --coded or --ranges)");
+  const int k = static_cast<int>(fit.factor_names.size());
+  Eigen::VectorXd slopes(k);
+  for (int i = 0; i < k; ++i) {
+    Term t{std::vector<int>(k, 0)};
+    t.powers[i] = 1;
+    slopes[i] = fit.coded.coefficient(t);
+  }
+  return steepest_path(fit.ranges, slopes, step, steps, !descent);
+}
+
+// The screening and response-surface designs of --factors NAME:LOW:HIGH,...
+Design factor_design(const std::string& type, const std::string& factor_list, int centre, const std::string& alpha,
+                     std::vector<std::string> generators, int fraction) {
+  if (factor_list.empty()) throw StatsError("--factors NAME:LOW:HIGH,... is required");
+  std::vector<Factor> factors = parse_factors(factor_list);
+  int centres = centre >= 0 ? centre : type == "ccd" ? 6 : type == "bbd" ? 5 : 0;
+  if (type == "pb12") return plackett_burman(12, factors, centres);
+  if (type == "pb20") return plackett_burman(20, factors, centres);
+  if (type == "factorial") return full_factorial(factors, centres);
+  if (type == "fractional") {
+    if (generators.empty() && fraction <= 0)
+      throw StatsError("--type fractional needs --generators D=ABC,... or --fraction P");
+    if (generators.empty()) generators = default_generators(static_cast<int>(factors.size()), fraction);
+    return fractional_factorial(factors, generators, centres);
+  }
+  if (type == "ccd") return central_composite(factors, parse_alpha(alpha), centres);
+  return box_behnken(factors, centres);
+}
+
+// The design's line in the CSV's comments: runs by point type, alpha, generators, run order.
+std::string design_summary(const Design& d, const std::optional<std::uint64_t>& seed) {
+  std::string summary = std::to_string(d.runs()) + " runs";
+  int counts[5] = {0, 0, 0, 0, 0};
+  for (auto p : d.points) ++counts[static_cast<int>(p)];
+  for (int t = 0; t < 5; ++t)
+    if (counts[t]) summary += ", " + std::to_string(counts[t]) + " " + point_type_name(static_cast<PointType>(t));
+  if (d.type == "ccd") summary += "; alpha = " + num(d.alpha, 10);
+  if (!d.generators.empty()) {
+    summary += "; generators";
+    for (const auto& g : d.generators) summary += " " + g;
+  }
+  if (!d.dummies.empty()) summary += "; " + std::to_string(d.dummies.size()) + " dummy columns";
+  summary += seed ? "; run order randomised with seed " + std::to_string(*seed) : "; standard order";
+  return summary;
+}
+
 // ---------------------------------------------------------------------------------------
 int run_design(int argc, char** argv) {
   CLI::App app{"Write an experimental design (coded and actual values) as CSV."};
@@ -90,50 +142,12 @@ int run_design(int argc, char** argv) {
   app.add_option("--out", out, "output CSV (default: standard output)");
   CLI11_PARSE(app, argc, argv);
 
-  Design d;
-  if (type == "path") {
-    if (fit_path.empty()) throw StatsError("--type path needs --fit FIT.json (a first-order fit)");
-    SavedFit fit = read_fit_file(fit_path);
-    if (fit.ranges.empty())
-      throw StatsError(fit_path + ": the fit has no factor ranges (fit with --coded or --ranges)");
-    const int k = static_cast<int>(fit.factor_names.size());
-    Eigen::VectorXd slopes(k);
-    for (int i = 0; i < k; ++i) {
-      Term t{std::vector<int>(k, 0)};
-      t.powers[i] = 1;
-      slopes[i] = fit.coded.coefficient(t);
-    }
-    d = steepest_path(fit.ranges, slopes, step, steps, !descent);
-  } else {
-    if (factor_list.empty()) throw StatsError("--factors NAME:LOW:HIGH,... is required");
-    std::vector<Factor> factors = parse_factors(factor_list);
-    int centres = centre >= 0 ? centre : type == "ccd" ? 6 : type == "bbd" ? 5 : 0;
-    if (type == "pb12") d = plackett_burman(12, factors, centres);
-    else if (type == "pb20") d = plackett_burman(20, factors, centres);
-    else if (type == "factorial") d = full_factorial(factors, centres);
-    else if (type == "fractional") {
-      if (generators.empty() && fraction <= 0)
-        throw StatsError("--type fractional needs --generators D=ABC,... or --fraction P");
-      if (generators.empty()) generators = default_generators(static_cast<int>(factors.size()), fraction);
-      d = fractional_factorial(factors, generators, centres);
-    } else if (type == "ccd") d = central_composite(factors, parse_alpha(alpha), centres);
-    else d = box_behnken(factors, centres);
-  }
+  Design d = type == "path" ? path_design(fit_path, step, steps, descent)
+                            : factor_design(type, factor_list, centre, alpha, generators, fraction);
   if (seed) randomise_run_order(d, *seed);
 
   std::vector<std::string> comments = {"repose design: " + join_args(argc - 1, argv + 1)};
-  std::string summary = std::to_string(d.runs()) + " runs";
-  int counts[5] = {0, 0, 0, 0, 0};
-  for (auto p : d.points) ++counts[static_cast<int>(p)];
-  for (int t = 0; t < 5; ++t)
-    if (counts[t]) summary += ", " + std::to_string(counts[t]) + " " + point_type_name(static_cast<PointType>(t));
-  if (d.type == "ccd") summary += "; alpha = " + num(d.alpha, 10);
-  if (!d.generators.empty()) {
-    summary += "; generators";
-    for (const auto& g : d.generators) summary += " " + g;
-  }
-  if (!d.dummies.empty()) summary += "; " + std::to_string(d.dummies.size()) + " dummy columns";
-  summary += seed ? "; run order randomised with seed " + std::to_string(*seed) : "; standard order";
+  const std::string summary = design_summary(d, seed);
   comments.push_back(summary);
   std::string csv = format_csv(design_table(d), comments);
   if (out.empty()) {
