@@ -88,6 +88,9 @@ struct FillSpec {
   int material = 0;
   uint64_t seed = 0;
   Vec3d velocity{};
+  // Not a case key: a caller that must place a tight fill (the diagnosis refilling a heap whose
+  // grains a candidate made larger) draws every radius first and places the largest first.
+  bool largest_first = false;
   SourceRef where;
 };
 

@@ -161,6 +161,17 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
   j["right"] = slope_json(r.heap.right);
   j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? Json(r.heap.mean_deg) : Json(nullptr);
   j["heap_height"] = r.heap.heap_height;
+  j["bed_height"] = r.bed_height;
+  auto profile = [](const SlopeProfile& p) {
+    Json e;
+    e["runout"] = p.runout;
+    e["toe"] = p.toe;
+    e["convexity"] = p.valid ? Json(p.convexity) : Json(nullptr);
+    if (!p.valid) e["problem"] = p.problem;
+    return e;
+  };
+  j["left_profile"] = profile(r.profile.left);
+  j["right_profile"] = profile(r.profile.right);
   j["floor_z"] = r.heap.floor_z;
   j["particles_measured"] = r.particles_measured;
   j["settle_time"] = r.settle_time;
@@ -213,6 +224,10 @@ int run_repose_verb(const CaseSpec& spec, const std::string& case_path, const Ex
               r.heap.left.valid ? (std::to_string(r.heap.left.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.right.valid ? (std::to_string(r.heap.right.angle_deg).substr(0, 5) + " deg").c_str() : "none",
               r.heap.heap_height, r.particles_measured);
+  for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
+    std::printf("  %s side: run-out %.3g m, convexity %s\n", side, p->runout,
+                p->valid ? std::to_string(p->convexity).substr(0, 6).c_str() : ("none (" + p->problem + ")").c_str());
+  std::printf("  bed before the lift: %.4g m high\n", r.bed_height);
   if (r.views)
     std::printf("  %zu views around the heap: mean %.2f deg, sd %.2f deg over %d slopes (the angle)\n",
                 r.views->azimuth_deg.size(), r.views->mean_deg, r.views->sd_deg, r.views->valid_slopes);

@@ -15,7 +15,9 @@
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
 #include "geometry/templates.h"
+#include "measure/bed_height.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
 
@@ -291,6 +293,22 @@ std::string slope_text(const SlopeFit& f, const char* coordinate) {
   return buf;
 }
 
+void profile_json(JsonOut& j, const char* key, const SlopeProfile& p) {
+  j.open(key).number("runout", p.runout).number("toe", p.toe).boolean("valid", p.valid);
+  if (p.valid) j.number("convexity", p.convexity).integer("points", static_cast<long long>(p.points));
+  else j.string("problem", p.problem);
+  j.close();
+}
+
+std::string profile_text(const SlopeProfile& p, const char* coordinate) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "run-out %.4g m (toe at %s = %.4g m), convexity ", p.runout, coordinate, p.toe);
+  if (!p.valid) return buf + ("not measured: " + p.problem);
+  char c[64];
+  std::snprintf(c, sizeof c, "%+.3f (%zu columns)", p.convexity, p.points);
+  return buf + std::string(c);
+}
+
 int run_heap_angle(int argc, char** argv) {
   CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
   std::string file, view = "y", png, json;
@@ -337,6 +355,12 @@ int run_heap_angle(int argc, char** argv) {
   std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
   std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
   std::printf("mean angle   %7.3f deg\n", m.mean_deg);
+  const HeapProfile profile = measure_heap_profile(m);
+  const double bed = uniform_bed_height(spheres, floor_z);
+  std::printf("left shape   %s\n", profile_text(profile.left, horizontal).c_str());
+  std::printf("right shape  %s\n", profile_text(profile.right, horizontal).c_str());
+  std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
+              "before the lift)\n", bed);
 
   std::optional<HeapViewsAngle> around;
   if (views > 1) {
@@ -368,6 +392,9 @@ int run_heap_angle(int argc, char** argv) {
     slope_json(j, "left", m.left);
     slope_json(j, "right", m.right);
     j.number("mean_deg", m.mean_deg);
+    profile_json(j, "left_profile", profile.left);
+    profile_json(j, "right_profile", profile.right);
+    j.number("bed_height", bed);
     if (around) {
       j.open("views").number("centre_x", around->centre.x).number("centre_y", around->centre.y);
       j.integer("valid_slopes", around->valid_slopes).number("mean_deg", around->mean_deg).number("sd_deg", around->sd_deg);

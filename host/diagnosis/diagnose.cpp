@@ -314,6 +314,15 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
                                                       " (baseline)"
                                                 : std::string()) +
                            (r.significant ? ": beats the baseline." : ": no better than the baseline."));
+    Predictor::FillRecord fill = predictor.fills(r.id);
+    if (fill.fallback > 0)
+      d.statements.push_back(r.id + ": " + std::to_string(fill.fallback) + " of its " + std::to_string(fill.heaps) +
+                             " heaps did not fit the case's fill box by random insertion and were filled largest "
+                             "grain first" +
+                             (fill.most_raised > 0 ? " in the box raised by up to " + num(100 * fill.most_raised, 3) +
+                                                         " % of its height"
+                                                   : std::string()) +
+                             ".");
     results.push_back(r);
   }
 

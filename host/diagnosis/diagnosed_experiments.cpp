@@ -11,7 +11,7 @@ const std::vector<DiagnosedExperiment>& diagnosed_experiments() {
        "Hertz-Mindlin, constant restitution",
        "experiment.drop_height"},
       {"repose",
-       {"repose_angle", "bed_height"},
+       {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        {"static_friction", "1", 0.05, 1.2, false},
        [](CaseSpec& s) -> double& { return heap_interaction(s).static_friction; },
        "Hertz-Mindlin, one grain size, constant rolling torque",

@@ -56,12 +56,20 @@ const std::vector<ModelExtension>& model_extensions() {
          s.air_drag.air_density = 1.2;
        }},
       {"cohesion",
-       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture), with friction and "
-       "rolling resistance on the contact's repulsion, which the attraction raises (wet contacts grip harder)",
+       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture); on one body, with "
+       "friction and rolling resistance on the contact's repulsion, which the attraction raises (wet contacts "
+       "grip harder); in a heap between the grains, with the case's own [contact] cohesion_friction",
        {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
-       {"rebound_height", "restitution", "height", "slide_angle", "roll_angle"},
+       {"rebound_height", "restitution", "height", "slide_angle", "roll_angle", "repose_angle", "bed_height",
+        "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
+         // A heap's attraction holds its grains together whatever friction sees, and the case states
+         // its engine's convention; a tilted body is revealed only through the grip.
+         if (s.experiment.type == "repose") {
+           heap_interaction(s).cohesion_energy_density = p.at(0);
+           return;
+         }
          body_plate_interaction(s).cohesion_energy_density = p.at(0);
          s.contact.cohesion_friction = CohesionFriction::Contact;
        }},
@@ -71,7 +79,7 @@ const std::vector<ModelExtension>& model_extensions() {
        "critical), instead of the constant torque; with spinning friction equal to each pair's rolling "
        "friction (model C has no twisting resistance: without it a grain spins on the floor forever)",
        {{"rolling_damping", "1", 0.05, 1.0, false}},
-       {"repose_angle", "bed_height"},
+       {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          s.contact.rolling = RollingModel::ElasticPlastic;
@@ -86,7 +94,7 @@ const std::vector<ModelExtension>& model_extensions() {
        "a distribution of grain sizes instead of one size: every sphere [[fill]]'s radius uniform in "
        "[r (1 - s), r (1 + s)] about its mean r",
        {{"size_spread", "1", 0.0, 0.4, false}},
-       {"repose_angle", "bed_height"},
+       {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          for (FillSpec& f : s.fills) {

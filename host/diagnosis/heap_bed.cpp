@@ -1,11 +1,9 @@
 #include "diagnosis/heap_bed.h"
 
-#include <algorithm>
-#include <limits>
-
 #include "engine/model.h"
 #include "experiments/body_frame.h"
 #include "experiments/experiment_simulation.h"
+#include "experiments/repose.h"
 
 namespace repose {
 
@@ -18,16 +16,7 @@ double measure_bed_height(const CaseSpec& spec) {
   Simulation sim = experiment_simulation(model, {}, sample_steps, 200);
   do sim.advance(sample_steps);
   while (sim.time() < lift.motion.start_time - 1e-9);
-  const HostState& st = sim.state();
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const auto& p : st.pos) lowest = std::min(lowest, double(p.z) - p.w);
-  double floor_z = ex.heap_floor_z.value_or(lowest), volume = 0, moment = 0;
-  for (const auto& p : st.pos) {
-    double v = double(p.w) * p.w * p.w;
-    volume += v;
-    moment += v * (double(p.z) - floor_z);
-  }
-  return volume > 0 ? 2 * moment / volume : 0.0;
+  return bed_height(sim.state(), ex.heap_floor_z);
 }
 
 }  // namespace repose

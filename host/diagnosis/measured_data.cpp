@@ -75,7 +75,8 @@ const std::vector<MeasureInfo>& known_measures() {
   static const std::vector<MeasureInfo> m = {
       {"rebound_height", false, "m"}, {"restitution", false, "1"},  {"height", true, "m"},
       {"slide_angle", false, "deg"},  {"roll_distance", false, "m"}, {"repose_angle", false, "deg"},
-      {"bed_height", false, "m"},     {"roll_angle", false, "deg"},
+      {"bed_height", false, "m"},     {"roll_angle", false, "deg"},    {"heap_height", false, "m"},
+      {"runout", false, "m"},         {"profile_convexity", false, "1"},
   };
   return m;
 }

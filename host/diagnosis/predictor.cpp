@@ -10,6 +10,8 @@
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
 #include "diagnosis/heap_bed.h"
+#include "diagnosis/heap_fill.h"
+#include "diagnosis/heap_measures.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/repose.h"
 #include "experiments/roll.h"
@@ -97,7 +99,12 @@ CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension
   spec.seed += uint64_t(replicate);  // a clump's orientation (run_drop draws it from the seed)
   if (experiment() == "repose") {
     for (FillSpec& f : spec.fills) f.seed += uint64_t(replicate);
-    expand_particles(spec);
+    HeapFill how = fill_heap(spec);  // a fill too tight for the model's grains is placed again (heap_fill.h)
+    std::lock_guard<std::mutex> lock(fill_mutex_);
+    FillRecord& record = fills_[extension ? extension->id : "baseline"];
+    ++record.heaps;
+    if (how.fallback) ++record.fallback;
+    record.most_raised = std::max(record.most_raised, how.raised);
   }
   return spec;
 }
@@ -161,20 +168,18 @@ Outcome Predictor::run_drop_condition(CaseSpec spec) const {
 Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
   Outcome out;
   const auto& measures = observations().measures;
-  if (std::find(measures.begin(), measures.end(), "repose_angle") == measures.end()) {
+  if (std::all_of(measures.begin(), measures.end(), [](const std::string& m) { return m == "bed_height"; })) {
     out.values["bed_height"] = measure_bed_height(spec);  // the bed alone: no lift, no heap
     return out;
   }
   try {
     ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
-    out.values["repose_angle"] = r.angle_deg;
-    out.values["bed_height"] = r.bed_height;
+    out.values = heap_measures(r, spec.experiment.heap_side);
   } catch (const std::runtime_error& e) {
     // A model far from the data (met while searching) whose heap shows no slope: no heap, so the
     // search moves away from it. A heap still moving at max_time is the case's problem: say so.
     if (std::string(e.what()).find("slope") == std::string::npos) throw;
-    out.values["repose_angle"] = 0;
-    out.values["bed_height"] = 0;
+    for (const std::string& m : heap_measure_names()) out.values[m] = 0;
   }
   return out;
 }

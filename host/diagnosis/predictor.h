@@ -64,6 +64,17 @@ class Predictor {
   // The value of one group from an outcome.
   double value_of(const ObservationGroup& g, const Outcome& r) const;
 
+  // How a heap model's grains were placed (heap_fill.h), over every heap it simulated.
+  struct FillRecord {
+    int heaps = 0, fallback = 0;  // fallback: the case's own fill failed, placed largest first
+    double most_raised = 0;       // the largest fraction its fill box was raised by
+  };
+  FillRecord fills(const std::string& model_id) const {
+    std::lock_guard<std::mutex> lock(fill_mutex_);
+    auto it = fills_.find(model_id);
+    return it == fills_.end() ? FillRecord{} : it->second;
+  }
+
   const Observations& observations() const { return obs_; }
   size_t simulations() const { return simulations_; }
   int simulated_replicates() const { return replicates_; }
@@ -82,6 +93,8 @@ class Predictor {
   int replicates_;
   std::mutex mutex_;
   std::map<std::string, Outcome> cache_;
+  mutable std::mutex fill_mutex_;
+  mutable std::map<std::string, FillRecord> fills_;  // by model id
   size_t simulations_ = 0;
 };
 

@@ -1,6 +1,8 @@
 #include "diagnosis/synthetic_data.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <filesystem>
 #include <random>
 #include <sstream>
@@ -12,6 +14,8 @@
 #include "diagnosis/diagnosed_experiments.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/heap_bed.h"
+#include "diagnosis/heap_fill.h"
+#include "diagnosis/heap_measures.h"
 #include "diagnosis/impact_phase.h"
 #include "experiments/drop.h"
 #include "experiments/roll.h"
@@ -68,8 +72,22 @@ class ScalarRows {
   std::ostringstream csv_;
 };
 
+// The heap measures a truth asks for, checked; default repose_angle and bed_height.
+std::vector<std::string> heap_measures_of(const SyntheticTruth& truth) {
+  if (truth.bed_height_only) return {"bed_height"};
+  if (truth.heap_measures.empty()) return {"repose_angle", "bed_height"};
+  for (const std::string& m : truth.heap_measures)
+    if (std::find(heap_measure_names().begin(), heap_measure_names().end(), m) == heap_measure_names().end()) {
+      std::string names;
+      for (const auto& n : heap_measure_names()) names += (names.empty() ? "" : ", ") + n;
+      throw std::runtime_error("'" + m + "' is not a heap measure (" + names + ")");
+    }
+  return truth.heap_measures;
+}
+
 void write_heap_data(const SyntheticTruth& truth, const std::string& condition_key, const ModelExtension* ext,
                      const std::string& csv_path) {
+  std::vector<std::string> measures = heap_measures_of(truth);
   Gaussian noise(truth.seed);
   ScalarRows rows(truth, condition_key, csv_path);
   for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
@@ -80,16 +98,15 @@ void write_heap_data(const SyntheticTruth& truth, const std::string& condition_k
       if (ext) ext->apply(spec, truth.extension_params);
       spec.spheres.clear();
       for (FillSpec& f : spec.fills) f.seed = 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep);
-      expand_particles(spec);
-      double bed = 0;
-      if (truth.bed_height_only) {
-        bed = measure_bed_height(spec);
-      } else {
-        ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
-        bed = r.bed_height;
-        rows.add(value, "repose_angle", r.angle_deg + truth.angle_noise * noise(), rep, truth.angle_noise);
+      fill_heap(spec);  // as the diagnosis fills (heap_fill.h)
+      std::map<std::string, double> heap;
+      if (truth.bed_height_only) heap["bed_height"] = measure_bed_height(spec);
+      else heap = heap_measures(run_repose(spec, {}, true), spec.experiment.heap_side);  // a lone spinning grain
+                                                                                         // does not change the heap
+      for (const std::string& m : measures) {
+        double sd = m == "repose_angle" ? truth.angle_noise : m == "profile_convexity" ? truth.convexity_noise : truth.noise;
+        rows.add(value, m, heap.at(m) + sd * noise(), rep, sd);
       }
-      rows.add(value, "bed_height", bed + truth.noise * noise(), rep, truth.noise);
     }
   }
   write_file_atomically(csv_path, rows.str());

@@ -10,6 +10,7 @@
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "measure/bed_height.h"
 #include "util/progress.h"
 
 namespace repose {
@@ -33,21 +34,14 @@ double max_kinetic_energy(const HostState& st) {
   return most;
 }
 
-// Twice the volume-weighted mean height of the particles above the floor (default: the lowest
-// sphere bottom): a uniform bed of height h has its volume's centre at h / 2.
-double bed_height(const HostState& st, const std::optional<double>& floor) {
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const auto& p : st.pos) lowest = std::min(lowest, double(p.z) - p.w);
-  double floor_z = floor.value_or(lowest), volume = 0, moment = 0;
-  for (const auto& p : st.pos) {
-    double v = double(p.w) * p.w * p.w;
-    volume += v;
-    moment += v * (double(p.z) - floor_z);
-  }
-  return volume > 0 ? 2 * moment / volume : 0.0;
-}
-
 }  // namespace
+
+double bed_height(const HostState& st, const std::optional<double>& floor) {
+  std::vector<Sphere> grains;
+  grains.reserve(st.pos.size());
+  for (const auto& p : st.pos) grains.push_back({{p.x, p.y, p.z}, p.w});
+  return uniform_bed_height(grains, floor);
+}
 
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled) {
   const ExperimentSpec& ex = spec.experiment;
@@ -110,6 +104,7 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
   opts.floor_z = floor_z;
   r.heap = measure_heap_angle(r.spheres, opts);
+  r.profile = measure_heap_profile(r.heap);
   if (ex.heap_side == "left") {
     if (!r.heap.left.valid) throw std::runtime_error(spec.path + ": no left slope: " + r.heap.left.problem);
     r.angle_deg = r.heap.left.angle_deg;

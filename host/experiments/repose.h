@@ -7,9 +7,11 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "engine/backend.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 
 namespace repose {
@@ -17,6 +19,7 @@ namespace repose {
 struct ReposeResult {
   double angle_deg = 0;           // per [experiment] heap_side: left, right or their mean
   HeapAngle heap;                 // the 2D measurement (with its picture)
+  HeapProfile profile;            // the same picture's height, run-out and convexity per side
   std::optional<HeapViewsAngle> views;  // [experiment] views > 1: then angle_deg is their mean
   std::optional<AxisymmetricHeapAngle> heap_3d;
   double settle_time = 0;         // s when the heap was judged settled
@@ -39,6 +42,9 @@ struct ReposeResult {
 // the heap as it stands at max_time, settled = false; the diagnosis does, since a lone grain that
 // keeps spinning on the floor, as one can under rolling = "epsd", which has no twisting
 // resistance, leaves the heap's shape as it is) or the measurement finds no slope.
+// The bed height (measure/bed_height.h) of the grains in a simulation state.
+double bed_height(const HostState& state, const std::optional<double>& floor_z);
+
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options = {},
                         bool measure_unsettled = false);
 

@@ -5,9 +5,11 @@
 #include <filesystem>
 #include <fstream>
 
+#include "case/case_error.h"
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
 #include "diagnosis/heap_bed.h"
+#include "diagnosis/heap_fill.h"
 #include "diagnosis/predictor.h"
 #include "experiments/repose.h"
 
@@ -105,4 +107,71 @@ TEST_CASE("the bed alone (no lift) measures the bed height run_repose measures, 
   ReposeResult heap = run_repose(spec, {}, true);
   CHECK(bed == heap.bed_height);
   CHECK(bed > 0.03);  // 120 grains of 10 mm over 80 x 30 mm: ~5 cm at a packing fraction of 0.55
+}
+
+TEST_CASE("a size spread too tight for the fill box is placed largest first, never lost", "[diagnosis][heap]") {
+  // The issue's failure: 250 grains with a spread of 0.4 (radii 3-7 mm) in the slot's 80 x 30 x
+  // 300 mm box: random sequential addition leaves some without room.
+  // 300 mm box: random sequential addition leaves some without room for some fill seeds.
+  CaseSpec spec = load_case(slot_heap(), {{"fill.0.count", "250"}});
+  find_extension("size_spread")->apply(spec, {0.4});
+  spec.spheres.clear();
+  bool plain_fails = false;
+  for (uint64_t seed = 1; seed <= 60 && !plain_fails; ++seed) {
+    spec.fills[0].seed = seed;
+    CaseSpec plain = spec;
+    try {
+      expand_particles(plain);
+    } catch (const CaseError& e) {
+      CHECK_THAT(e.what(), Catch::Contains("of the 250 spheres (count) fit without overlap"));
+      plain_fails = true;
+    }
+  }
+  REQUIRE(plain_fails);
+  INFO("fill seed " << spec.fills[0].seed);
+  HeapFill how = fill_heap(spec);
+  CHECK(how.fallback);
+  CHECK(how.raised == 0);  // largest first, all 250 fit the case's own box (measured: the top at 0.2999 m)
+  REQUIRE(spec.spheres.size() == 250);
+  check_no_overlaps(spec.spheres);  // throws on any overlap
+  // Inside the slot's walls: x in [0, 0.08] (behind the gate), y in [0, 0.03], above the floor.
+  const FillSpec& f = spec.fills[0];
+  for (const auto& s : spec.spheres) {
+    CHECK(s.position[0] - s.radius >= 0.0);
+    CHECK(s.position[0] + s.radius <= 0.08);
+    CHECK(s.position[1] - s.radius >= 0.0);
+    CHECK(s.position[1] + s.radius <= 0.03);
+    CHECK(s.position[2] - s.radius >= 0.0);
+    CHECK(s.position[2] + s.radius <= f.box_max[2] * (1 + how.raised) + 1e-12);
+  }
+}
+
+TEST_CASE("a fill that fits keeps the case's own bytes; one that never fits is refused with why",
+          "[diagnosis][heap]") {
+  CaseSpec spec = load_case(slot_heap());
+  spec.spheres.clear();
+  CaseSpec plain = spec;
+  expand_particles(plain);
+  HeapFill how = fill_heap(spec);
+  CHECK_FALSE(how.fallback);
+  REQUIRE(spec.spheres.size() == plain.spheres.size());
+  for (size_t k = 0; k < spec.spheres.size(); ++k) {
+    CHECK(spec.spheres[k].position == plain.spheres[k].position);
+    CHECK(spec.spheres[k].radius == plain.spheres[k].radius);
+  }
+  CaseSpec crowded = load_case(slot_heap());
+  crowded.spheres.clear();
+  crowded.fills[0].count = 3000;  // more grain volume than twice the box holds
+  CHECK_THROWS_WITH(fill_heap(crowded), Catch::Contains("do not fit the fill box even placed largest first"));
+}
+
+TEST_CASE("cohesion in a heap attracts grain to grain and keeps the case's friction convention",
+          "[diagnosis][heap]") {
+  CaseSpec spec = load_case(slot_heap());
+  CohesionFriction convention = spec.contact.cohesion_friction;
+  find_extension("cohesion")->apply(spec, {5000.0});
+  REQUIRE(spec.interactions.size() == 2);
+  CHECK(spec.interactions[0].cohesion_energy_density == 5000.0);  // grain-grain
+  CHECK(spec.interactions[1].cohesion_energy_density == 0.0);     // grain-wall: dry walls
+  CHECK(spec.contact.cohesion_friction == convention);
 }
