@@ -318,7 +318,13 @@ int run_heap_angle(int argc, char** argv) {
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
   std::optional<double> floor_z;
-  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up")->required();
+  int threshold = 128;
+  bool light_heap = false;
+  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+      ->required();
+  app.add_option("--threshold", threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
+      ->check(CLI::Range(1, 255));
+  app.add_flag("--light-heap", light_heap, "PNG: the heap is the lighter part of the picture");
   app.add_option("--view", view, "camera looks along x or y (image horizontal = the other one)")
       ->check(CLI::IsMember({"x", "y"}));
   app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
@@ -326,17 +332,22 @@ int run_heap_angle(int argc, char** argv) {
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
   app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)");
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)");
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)");
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
+                                     "z from the picture's bottom edge)");
   app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)");
   app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)");
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
-  const std::vector<Sphere> spheres = read_sphere_csv(file);
+  const bool photo = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
+  if (photo && !(options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
+  if (photo && (views > 1 || axisymmetric))
+    throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  const std::vector<Sphere> spheres = photo ? std::vector<Sphere>{} : read_sphere_csv(file);
   options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
   options.floor_z = floor_z;
   axi.floor_z = floor_z;
@@ -346,21 +357,33 @@ int run_heap_angle(int argc, char** argv) {
   }
   if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
 
-  const HeapAngle m = measure_heap_angle(spheres, options);
-  const char* horizontal = options.view == ViewAxis::Y ? "x" : "y";
-  std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
-              spheres.size(), view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  HeapAngle m;
+  if (photo) {
+    BinaryImage image = read_silhouette_png(file, options.pixel, threshold, light_heap);
+    double floor = floor_z ? *floor_z : lowest_foreground(image);
+    m = measure_heap_image(std::move(image), floor, options);
+    std::printf("heap %s: photograph, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
+                m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  } else {
+    m = measure_heap_angle(spheres, options);
+    std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
+                spheres.size(), view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  }
+  const char* horizontal = photo ? "u" : options.view == ViewAxis::Y ? "x" : "y";
   std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
               m.heap_height, horizontal, m.crest, m.holes_filled, options.band_low, options.band_high);
   std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
   std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
   std::printf("mean angle   %7.3f deg\n", m.mean_deg);
   const HeapProfile profile = measure_heap_profile(m);
-  const double bed = uniform_bed_height(spheres, floor_z);
   std::printf("left shape   %s\n", profile_text(profile.left, horizontal).c_str());
   std::printf("right shape  %s\n", profile_text(profile.right, horizontal).c_str());
-  std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
-              "before the lift)\n", bed);
+  std::optional<double> bed;
+  if (!photo) {
+    bed = uniform_bed_height(spheres, floor_z);
+    std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
+                "before the lift)\n", *bed);
+  }
 
   std::optional<HeapViewsAngle> around;
   if (views > 1) {
@@ -385,7 +408,7 @@ int run_heap_angle(int argc, char** argv) {
   }
   if (!json.empty()) {
     JsonOut j;
-    j.open().string("file", file).integer("spheres", static_cast<long long>(spheres.size()));
+    j.open().string("file", file).integer("spheres", static_cast<long long>(spheres.size())).boolean("photograph", photo);
     j.string("view", view).number("pixel", m.image.pixel).number("floor_z", m.floor_z);
     j.number("heap_height", m.heap_height).number("crest", m.crest);
     j.number("band_low", options.band_low).number("band_high", options.band_high);
@@ -394,7 +417,7 @@ int run_heap_angle(int argc, char** argv) {
     j.number("mean_deg", m.mean_deg);
     profile_json(j, "left_profile", profile.left);
     profile_json(j, "right_profile", profile.right);
-    j.number("bed_height", bed);
+    if (bed) j.number("bed_height", *bed);
     if (around) {
       j.open("views").number("centre_x", around->centre.x).number("centre_y", around->centre.y);
       j.integer("valid_slopes", around->valid_slopes).number("mean_deg", around->mean_deg).number("sd_deg", around->sd_deg);
