@@ -178,12 +178,13 @@ TEST_CASE("cohesion: a cohesive slot heap stands steeper and runs out less, as i
   // eight fills with and without cohesion k = 8000 J/m^3 (EDEM's Hertz area; LIGGGHTS sjkr's
   // 4000, whose geometric area is twice it). The granular Bond number, the pull-off force of a
   // grain pair (4/27 (k pi R*)^3 / (4/3 E* sqrt R*)^2 for a linear attraction on a Hertz
-  // contact) over a grain's weight: 1.62e-3 N / 5.14e-3 N = 0.31, near where cohesion starts to shape
-  // bulk flow (Bond numbers of order one). LIGGGHTS 3.8 (docs/diagnosis/liggghts_heap, 12 fills each, sjkr tangential_reduce
-  // on): the angle 20.8 -> 27.7 deg (+6.9 +- 0.9), the run-out 168 -> 138 mm (-30 +- 6). Repose
-  // must agree within 3 standard errors of the difference (its eight fills' 1.6 deg and 8 mm, and
-  // LIGGGHTS's). Upper bound: Culmann's steepest slope of height H with the bulk cohesion of
-  // Rumpf's tensile strength (c = phi/(1-phi) F / d^2 tan(phi_0)) stands at +17.5 deg.
+  // contact) over a grain's weight, is 1.62e-3 N / 5.14e-3 N = 0.31: near where cohesion starts
+  // to shape bulk flow (Bond numbers of order one). LIGGGHTS 3.8 (docs/diagnosis/liggghts_heap,
+  // 12 fills each, sjkr with tangential_reduce on): the angle 20.8 -> 27.7 deg (+6.9 +- 0.9), the
+  // run-out 168 -> 138 mm (-30 +- 6). Repose must agree within 3 standard errors of the
+  // difference (its eight fills' ~1.6 deg and ~8 mm, and LIGGGHTS's). Upper bound: Culmann's
+  // steepest slope of the heap's height with the bulk cohesion of Rumpf's tensile strength
+  // (c = phi/(1-phi) F / d^2 tan(phi_0)) stands +17.5 deg steeper.
   double angle[2] = {0, 0}, runout[2] = {0, 0}, angle2[2] = {0, 0}, runout2[2] = {0, 0};
   const int fills = 8;
   for (int wet = 0; wet < 2; ++wet)
