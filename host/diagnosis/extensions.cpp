@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "diagnosis/bond_number.h"
 #include "diagnosis/elongated_body.h"
 #include "experiments/body_frame.h"
 
@@ -72,6 +73,15 @@ const std::vector<ModelExtension>& model_extensions() {
          }
          body_plate_interaction(s).cohesion_energy_density = p.at(0);
          s.contact.cohesion_friction = CohesionFriction::Contact;
+       },
+       // In a heap the grains' own stiffness and weight set what matters (bond_number.h): from
+       // Bond number 1e-3 (dry as far as a heap can tell) to 10 (clods), not decades of soft-sphere
+       // nonsense where the attraction alone would press grains a radius deep.
+       false,
+       [](const CaseSpec& s) -> std::vector<FreeParameter> {
+         if (s.experiment.type != "repose") return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
+         return {{"cohesion_energy_density", "J/m^3", heap_cohesion_for_bond_number(s, 1e-3),
+                  heap_cohesion_for_bond_number(s, 10.0), true}};
        }},
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "

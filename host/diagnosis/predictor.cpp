@@ -81,7 +81,11 @@ Predictor::Predictor(const Observations& obs, std::vector<CaseOverride> given, b
 std::vector<FreeParameter> Predictor::parameters(const ModelExtension* extension) const {
   std::vector<FreeParameter> p;
   if (fit_baseline_) p.push_back(experiment_->baseline);
-  if (extension) p.insert(p.end(), extension->parameters.begin(), extension->parameters.end());
+  if (extension) {
+    std::vector<FreeParameter> own =
+        extension->parameters_for ? extension->parameters_for(specs_.front()) : extension->parameters;
+    p.insert(p.end(), own.begin(), own.end());
+  }
   return p;
 }
 
@@ -175,10 +179,14 @@ Outcome Predictor::run_heap_condition(const CaseSpec& spec) const {
   try {
     ReposeResult r = run_repose(spec, {}, true);  // a lone spinning grain does not change the heap
     out.values = heap_measures(r, spec.experiment.heap_side);
-  } catch (const std::runtime_error& e) {
-    // A model far from the data (met while searching) whose heap shows no slope: no heap, so the
-    // search moves away from it. A heap still moving at max_time is the case's problem: say so.
-    if (std::string(e.what()).find("slope") == std::string::npos) throw;
+  } catch (const std::exception& e) {
+    // A model far from the data (met while searching) whose heap shows no slope or no heap at all
+    // (grains so sticky that the soft contacts blow apart): no heap, so the search moves away
+    // from it. A heap still moving at max_time is the case's problem: say so.
+    bool no_heap = dynamic_cast<const std::invalid_argument*>(&e) ||
+                   std::string(e.what()).find("slope") != std::string::npos ||
+                   std::string(e.what()).find("no particle is left") != std::string::npos;
+    if (!no_heap) throw;
     for (const std::string& m : heap_measure_names()) out.values[m] = 0;
   }
   return out;

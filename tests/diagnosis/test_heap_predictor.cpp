@@ -8,6 +8,7 @@
 #include "case/case_error.h"
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
+#include "diagnosis/bond_number.h"
 #include "diagnosis/heap_bed.h"
 #include "diagnosis/heap_fill.h"
 #include "diagnosis/predictor.h"
@@ -174,4 +175,20 @@ TEST_CASE("cohesion in a heap attracts grain to grain and keeps the case's frict
   CHECK(spec.interactions[0].cohesion_energy_density == 5000.0);  // grain-grain
   CHECK(spec.interactions[1].cohesion_energy_density == 0.0);     // grain-wall: dry walls
   CHECK(spec.contact.cohesion_friction == convention);
+}
+
+TEST_CASE("granular Bond number of the slot heap's grains: pull-off force over weight", "[diagnosis][heap]") {
+  // 10 mm grains, 1000 kg/m^3 (weight 5.14e-3 N), G 5e4 Pa, nu 0.3: E* = 7.14e4 Pa, R* = 2.5 mm.
+  // At k = 8000 J/m^3: k pi R* = 62.8 N/m, 4/3 E* sqrt(R*) = 4762 N/m^1.5, pull-off
+  // 4/27 62.8^3 / 4762^2 = 1.62e-3 N: Bo = 0.315.
+  CaseSpec spec = load_case(slot_heap());
+  CHECK(heap_bond_number(spec, 8000) == Approx(0.315).epsilon(0.01));
+  CHECK(heap_cohesion_for_bond_number(spec, heap_bond_number(spec, 8000)) == Approx(8000));
+  // The heap's search range: Bond numbers 1e-3 to 10.
+  Observations obs = heap_observations();
+  Predictor predictor(obs, {}, false, 1, 2);
+  auto params = predictor.parameters(find_extension("cohesion"));
+  REQUIRE(params.size() == 1);
+  CHECK(heap_bond_number(spec, params[0].lo) == Approx(1e-3));
+  CHECK(heap_bond_number(spec, params[0].hi) == Approx(10));
 }
