@@ -19,6 +19,7 @@
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
 #include "case/spelling.h"
+#include "case/toml_section.h"
 #include "case/time_step.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
@@ -27,26 +28,6 @@
 namespace repose {
 namespace {
 
-std::string quoted_list(const std::vector<std::string>& words) {
-  std::string text;
-  for (const auto& word : words) text += (text.empty() ? "'" : ", '") + word + "'";
-  return text;
-}
-
-const char* type_name(const toml::node& node) {
-  switch (node.type()) {
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a float";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::table: return "a table";
-    default: return "a date or time";
-  }
-}
-
-int line_of(const toml::node& node) { return int(node.source().begin.line); }
-
 // Names usable in override keys ("material.cabbage.density"): no dots, no slashes, and not all
 // digits (those are indices).
 bool usable_name(const std::string& name) {
@@ -54,151 +35,6 @@ bool usable_name(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [](unsigned char c) {
     return std::isalnum(c) || c == '_' || c == '-';
   });
-}
-
-// One TOML table being read: knows its key path for messages ("fill[2].box") and reports
-// problems at the line of the offending value, or of the table when the value is missing.
-class Section {
- public:
-  Section(const toml::table& table, std::string prefix, const std::string& file)
-      : table_(table), prefix_(std::move(prefix)), file_(file) {}
-
-  std::string key(std::string_view k) const {
-    return prefix_.empty() ? std::string(k) : prefix_ + "." + std::string(k);
-  }
-  SourceRef where() const { return {file_, prefix_, line_of(table_)}; }
-  SourceRef where(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    return {file_, key(k), line_of(node ? *node : table_)};
-  }
-  [[noreturn]] void fail(std::string_view k, const std::string& problem) const {
-    throw CaseError(where(k), problem);
-  }
-  [[noreturn]] void fail(const std::string& problem) const { throw CaseError(where(), problem); }
-
-  // Unknown keys are reported first, the earliest in the file, with the nearest allowed key.
-  void allow_only(const std::vector<std::string>& allowed, const std::string& context) const {
-    const toml::key* unknown = nullptr;
-    for (auto&& [k, node] : table_) {
-      if (std::find(allowed.begin(), allowed.end(), k.str()) != allowed.end()) continue;
-      if (!unknown || k.source().begin.line < unknown->source().begin.line) unknown = &k;
-    }
-    if (!unknown) return;
-    throw CaseError({file_, key(unknown->str()), int(unknown->source().begin.line)},
-                    "unknown key in " + context + did_you_mean(unknown->str(), allowed) +
-                        " (allowed: " + quoted_list(allowed) + ")");
-  }
-
-  bool has(std::string_view k) const { return table_.contains(k); }
-  const toml::table& table() const { return table_; }
-  const std::string& file() const { return file_; }
-
-  [[noreturn]] void missing(std::string_view k, const std::string& hint = "") const {
-    fail(k, "missing required value" + hint);
-  }
-  [[noreturn]] void wrong_type(std::string_view k, const std::string& expected) const {
-    fail(k, "expected " + expected + ", got " + type_name(*table_.get(k)));
-  }
-
-  std::optional<double> number(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_number()) wrong_type(k, "a number");
-    double value = node->is_integer() ? double(node->as_integer()->get()) : node->as_floating_point()->get();
-    if (!std::isfinite(value)) fail(k, "must be a finite number");
-    return value;
-  }
-  double required_number(std::string_view k, const std::string& hint = "") const {
-    if (auto value = number(k)) return *value;
-    missing(k, hint);
-  }
-  std::optional<int64_t> integer(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_integer()) wrong_type(k, "an integer");
-    return node->as_integer()->get();
-  }
-  std::optional<std::string> text(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_string()) wrong_type(k, "a string");
-    return node->as_string()->get();
-  }
-  std::string required_text(std::string_view k, const std::string& hint = "") const {
-    if (auto value = text(k)) return *value;
-    missing(k, hint);
-  }
-  std::optional<bool> boolean(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_boolean()) wrong_type(k, "true or false");
-    return node->as_boolean()->get();
-  }
-  std::optional<Vec3d> vector3(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    const toml::array* array = node->as_array();
-    if (!array || array->size() != 3 || !all_numbers(*array))
-      fail(k, std::string("expected an array of 3 numbers [x, y, z], got ") +
-                  (array ? std::to_string(array->size()) + "-element array" : type_name(*node)));
-    Vec3d value;
-    for (size_t i = 0; i < 3; ++i) {
-      const toml::node& element = *array->get(i);
-      value[i] = element.is_integer() ? double(element.as_integer()->get())
-                                      : element.as_floating_point()->get();
-      if (!std::isfinite(value[i])) fail(k, "must hold finite numbers");
-    }
-    return value;
-  }
-  Vec3d required_vector3(std::string_view k) const {
-    if (auto value = vector3(k)) return *value;
-    missing(k, " (an array of 3 numbers [x, y, z])");
-  }
-  std::optional<Section> sub(std::string_view k) const {
-    const toml::node* node = table_.get(k);
-    if (!node) return std::nullopt;
-    if (!node->is_table()) wrong_type(k, "a table such as { key = value, ... }");
-    return Section(*node->as_table(), key(k), file_);
-  }
-
-  // One of a fixed set of words, mapped to an enum.
-  template <class Enum>
-  Enum choice(std::string_view k, const std::vector<std::pair<std::string, Enum>>& options,
-              Enum fallback) const {
-    auto value = text(k);
-    if (!value) return fallback;
-    std::vector<std::string> words;
-    for (const auto& [word, option] : options) {
-      if (word == *value) return option;
-      words.push_back(word);
-    }
-    fail(k, "'" + *value + "' is not one of " + quoted_list(words) + did_you_mean(*value, words));
-  }
-
- private:
-  static bool all_numbers(const toml::array& array) {
-    return std::all_of(array.begin(), array.end(), [](const toml::node& n) { return n.is_number(); });
-  }
-
-  const toml::table& table_;
-  std::string prefix_;
-  const std::string& file_;
-};
-
-// A checked value, failing with a message that states the rule it broke.
-double positive(const Section& s, std::string_view k, double value) {
-  if (!(value > 0)) s.fail(k, format_number(value) + " must be greater than 0");
-  return value;
-}
-double non_negative(const Section& s, std::string_view k, double value) {
-  if (value < 0) s.fail(k, format_number(value) + " must not be negative");
-  return value;
-}
-
-Vec3d unit(const Section& s, std::string_view k, const Vec3d& v) {
-  double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  if (!(length > 0)) s.fail(k, "must not be the zero vector");
-  return {v[0] / length, v[1] / length, v[2] / length};
 }
 
 class CaseReader {
@@ -379,7 +215,7 @@ class CaseReader {
     if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
     ex.plate = s->text("plate").value_or("");
     if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
-    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit(*s, "tilt_axis", *a);
+    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit_vector(*s, "tilt_axis", *a);
     if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
     if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
     if (auto v = s->number("onset_speed")) ex.onset_speed = non_negative(*s, "onset_speed", *v);
@@ -722,7 +558,7 @@ class CaseReader {
       cylinder->allow_only({"base", "axis", "radius", "height"}, "a fill cylinder");
       fill.shape = FillSpec::Shape::Cylinder;
       fill.cyl_base = cylinder->required_vector3("base");
-      fill.cyl_axis = unit(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
+      fill.cyl_axis = unit_vector(*cylinder, "axis", cylinder->vector3("axis").value_or(Vec3d{0, 0, 1}));
       fill.cyl_radius = cylinder->required_number("radius", " (m)");
       fill.cyl_height = cylinder->required_number("height", " (m)");
       if (!(fill.cyl_radius >= reach))
@@ -857,7 +693,7 @@ class CaseReader {
     switch (wall.type) {
       case WallSpec::Type::Plane:
         wall.point = s.required_vector3("point");
-        wall.normal = unit(s, "normal", s.required_vector3("normal"));
+        wall.normal = unit_vector(s, "normal", s.required_vector3("normal"));
         break;
       case WallSpec::Type::Box:
         wall.box_min = s.required_vector3("min");
@@ -871,7 +707,7 @@ class CaseReader {
       case WallSpec::Type::Mesh: read_mesh(s, wall); break;
       case WallSpec::Type::Cylinder:
         wall.base = s.required_vector3("base");
-        wall.axis = unit(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
+        wall.axis = unit_vector(s, "axis", s.vector3("axis").value_or(Vec3d{0, 0, 1}));
         wall.radius = positive(s, "radius", s.required_number("radius", " (m)"));
         wall.height = positive(s, "height", s.required_number("height", " (m)"));
         break;
@@ -901,8 +737,8 @@ class CaseReader {
 
   void read_rectangle(const Section& s, WallSpec& wall) {
     wall.point = s.required_vector3("centre");
-    wall.normal = unit(s, "normal", s.required_vector3("normal"));
-    Vec3d u = unit(s, "edge_axis", s.required_vector3("edge_axis"));
+    wall.normal = unit_vector(s, "normal", s.required_vector3("normal"));
+    Vec3d u = unit_vector(s, "edge_axis", s.required_vector3("edge_axis"));
     double along = u[0] * wall.normal[0] + u[1] * wall.normal[1] + u[2] * wall.normal[2];
     if (std::abs(along) > 1e-6)
       s.fail("edge_axis", "must be perpendicular to the normal (their dot product is " + format_number(along) + ")");
@@ -949,7 +785,7 @@ class CaseReader {
     if (!(motion.stop_time > motion.start_time))
       s.fail("stop", format_number(motion.stop_time) + " must be later than start " + format_number(motion.start_time));
     motion.rotation_axis_point = s.vector3("axis_point").value_or(motion.rotation_axis_point);
-    motion.rotation_axis = unit(s, "axis", s.vector3("axis").value_or(motion.rotation_axis));
+    motion.rotation_axis = unit_vector(s, "axis", s.vector3("axis").value_or(motion.rotation_axis));
     motion.angular_rate = s.number("rate").value_or(0);
   }
 

@@ -153,7 +153,7 @@ struct WallSpec {
 };
 
 enum class Integrator { VelocityVerlet, SymplecticEuler };
-// Engines disagree on these (ENGINEERING.md section 1); the defaults are EDEM's.
+// Engines disagree on these (docs/engineering.md, contact law); the defaults are EDEM's.
 enum class CoulombCap { SpringAndDamper, SpringOnly };
 enum class NormalAttraction { Allow, Clip };
 // ElasticPlastic: EDEM type C, the elastic-plastic spring-dashpot (EPSD) of Ai et al. 2011.

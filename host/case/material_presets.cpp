@@ -2,8 +2,9 @@
 
 namespace repose {
 
-// Seeds: ../shared/seeds/cabbage-calibration.txt ("cabbage") and
-// ../shared/seeds/cotton-stalk-calibration.txt ("cotton"). Moduli converted from MPa to Pa.
+// Studies: Zheng et al., "Parameter Calibration of Cabbages (Brassica oleracea L.) Based on the
+// Discrete Element Method" ("cabbage") and "Discrete Element Method for Simulation and Calibration
+// of Cotton Stalk Contact Parameters" ("cotton"). Moduli converted from MPa to Pa.
 const std::vector<MaterialPreset>& material_presets() {
   static const std::vector<MaterialPreset> presets = {
       {"cabbage", 850.0, 1.09e6, 0.32, "cabbage Table 1 (measured intrinsic parameters)"},

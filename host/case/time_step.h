@@ -1,4 +1,4 @@
-// The Rayleigh time step and the step the engine uses (ENGINEERING.md section 1).
+// The Rayleigh time step and the step the engine uses (docs/engineering.md, contact law).
 #pragma once
 #include "case/case_spec.h"
 

@@ -1,8 +1,10 @@
 // `repose diagnose`: what a calibrated model still gets wrong, why, and what an extension gains
-// (README "Diagnosis", docs/diagnosis.md). Steps: fit the baseline; test its lack of fit against
-// the replicate scatter and the trends of its residuals; fit every candidate extension, compare
-// each with the baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error); name
-// the winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate".
+// (README "Diagnosis", docs/diagnosis.md). It runs as stages that each return data
+// (diagnosis/diagnose_stages.h): fit the baseline; test its lack of fit against the replicate
+// scatter and the trends of its residuals; fit every candidate extension and compare it with the
+// baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error); the verdict names the
+// winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate". The
+// findings in words are written from those results (diagnosis_report.h).
 #pragma once
 #include <string>
 #include <vector>
@@ -10,6 +12,13 @@
 #include "diagnosis/model_fit.h"
 
 namespace repose {
+
+// Tests of the diagnosis are made at 1 %: lack of fit, residual trends, a candidate against the
+// baseline.
+constexpr double kDiagnosisSignificance = 0.01;
+// chi^2 by which a rival refitted to the winner's predictions must miss them to be told apart
+// (3 sigma).
+constexpr double kSeparableChi2 = 9.0;
 
 struct LackOfFit {
   std::string measure;  // "all" for the overall test
@@ -43,21 +52,53 @@ struct ModelResult {
                                        // given sigma of (mean, SD) together (see diagnose.cpp)
   double heldout_z = 0;                // all groups, root mean square standardised error
   bool significant = false;
+  std::string simulation_error;        // not tested because its simulation failed: the error
+  int heaps = 0, refilled = 0;         // heaps simulated, and those whose grains did not fit the case's
+  double fill_raised = 0;              // fill box by random insertion (heap_fill.h), and the most its box
+                                       // was raised by (fraction of its height)
+};
+
+// Can a rival candidate mimic the winner? The rival refitted to the winner's predictions.
+struct MimicTest {
+  std::string rival, winner;
+  double chi2 = 0;             // how far the refitted rival stays from the winner's predictions
+  double aic_difference = 0;   // rival's AIC - winner's
+  bool close = false;          // too close to tell apart: the rival joins the cause
+};
+
+// What would tell two close candidates apart (an ambiguous verdict).
+struct Separation {
+  enum class Kind {
+    None,
+    DropTrajectory,    // drop data without a series: the camera's track, where the two differ most
+    MoreDropData,      // drop data with a series: more replicates or a wider range
+    WiderCondition,    // tilt and roll: more replicates or a wider range of the condition
+    BedHeight,         // heap angles alone: the bed height before the lift
+    SecondRig,         // heap angles and bed heights: another rig
+  } kind = Kind::None;
+  double largest_difference = 0;  // DropTrajectory: m, between the two fitted trajectories
+  double at_time = 0;             // s, where
+  std::string condition;          // the condition compared (its label), or the condition variable
 };
 
 struct Diagnosis {
   std::string verdict;             // adequate | effect | ambiguous
   std::vector<std::string> cause;  // one id (effect), two or more (ambiguous), none (adequate)
+  std::string baseline_model;      // the experiment's baseline, in words
   ModelResult baseline;
-  std::vector<ModelResult> candidates;
+  std::vector<ModelResult> candidates;  // untestable ones first, then those whose simulation
+                                        // failed, then the fitted ones, each in table order
+  std::vector<std::string> tried;  // candidates fitted (or whose simulation failed), in order
+  std::vector<MimicTest> mimics;   // effect or ambiguous: each rival that improves on the baseline
   std::vector<LackOfFit> lack_of_fit;
   std::vector<Trend> trends;
   std::string primary_measure, primary_unit;
   bool heldout_available = false;  // leave-one-condition-out needs >= 3 conditions
   bool scatter_scored = false;     // the file gives sigma: replicate scatter is compared too
   double heldout_error_baseline = 0, heldout_error_extended = 0, gain_percent = 0;
-  double separation_chi2 = -1;     // ambiguous: how well the runner-up mimics the winner
-  std::string separating_measurement;
+  double separation_chi2 = -1;     // how well the closest rival mimics the winner
+  Separation separation;           // ambiguous: what would tell the two apart
+  std::string separating_measurement;   // the same in words
   std::vector<std::string> statements;  // the findings in plain words, in report order
   size_t simulations = 0;
   double seconds = 0;

@@ -68,7 +68,7 @@ struct Model {
 // Throws CaseError-style messages naming the case file when the case cannot be simulated.
 Model build_model(const CaseSpec& spec);
 
-// EDEM's derived pair constants (ENGINEERING.md section 1), in double, then rounded once.
+// EDEM's derived pair constants (docs/engineering.md, contact law), in double, then rounded once.
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in);
 // Some interaction has spinning friction (kFlagSpinningFriction).
 bool needs_spinning_friction(const CaseSpec& spec);

@@ -1,5 +1,5 @@
 // EDEM's Hertz-Mindlin (no-slip) contact law, stateless (LAMMPS style): the same function runs
-// on the GPU and in the CPU twin. ENGINEERING.md section 1 has the formulas. Conventions:
+// on the GPU and in the CPU twin. docs/engineering.md has the formulas. Conventions:
 //   n        unit normal from j to i (the force on i along +n is repulsive)
 //   overlap  > 0 in contact
 //   v_rel    velocity of i's surface relative to j's at the contact point

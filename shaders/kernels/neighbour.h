@@ -1,4 +1,4 @@
-// Deterministic neighbour search and contact list (ENGINEERING.md section 3).
+// Deterministic neighbour search and contact list (docs/engineering.md, neighbour search).
 // A rebuild happens in a step when a particle moved more than half the skin since the last one
 // (or max_interval steps passed); rebuild_args decides on the device and writes the indirect
 // dispatch sizes of every rebuild kernel, zero when there is nothing to do, so the host records

@@ -1,4 +1,4 @@
-// The LIGGGHTS 3.8 reference measured on these machines (ENGINEERING.md section 1, shared/peers):
+// The LIGGGHTS 3.8 reference measured on these machines (docs/engineering.md, contact law):
 // a 160 mm cabbage-like sphere dropped on steel with e = 0.43.
 #include <catch2/catch.hpp>
 

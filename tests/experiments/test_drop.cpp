@@ -9,7 +9,7 @@ using namespace repose;
 
 TEST_CASE("drop experiment reproduces the LIGGGHTS rebound series (0.002)", "[experiments][drop]") {
   const std::string path = std::string(REPOSE_SOURCE_DIR) + "/cases/drop_sphere.toml";
-  // LIGGGHTS 3.8 on these machines: sqrt(h/H) of the lowest point, e = 0.43 (ENGINEERING.md).
+  // LIGGGHTS 3.8 on these machines: sqrt(h/H) of the lowest point, e = 0.43 (docs/engineering.md).
   const std::pair<double, double> series[] = {{0.30, 0.4145}, {0.40, 0.4170}, {0.50, 0.4186}};
   for (auto [H, liggghts] : series) {
     CaseSpec spec = load_case(path, {{"experiment.drop_height", std::to_string(H)}});
@@ -19,7 +19,7 @@ TEST_CASE("drop experiment reproduces the LIGGGHTS rebound series (0.002)", "[ex
     CHECK(std::abs(r.restitution - liggghts) < 0.002);
     // The camera (1000 fps, parabola through the top frames) agrees with the exact apex to 0.1 mm.
     CHECK(std::abs(r.rebound_height - r.rebound_height_exact) < 1e-4);
-    CHECK(r.contact_time == Approx(0.014).margin(0.0015));  // ENGINEERING.md: ~14 ms
+    CHECK(r.contact_time == Approx(0.014).margin(0.0015));  // docs/engineering.md: ~14 ms
     CHECK(r.trajectory.front().second == Approx(H).margin(1e-6));
   }
 }

@@ -42,7 +42,7 @@ TEST_CASE("a vertical dumbbell clump rebounds like its sphere", "[experiments][d
   DropResult bell = run_drop(drop_case(true), upright);
   INFO("sphere e = " << sphere.restitution << ", dumbbell e = " << bell.restitution);
   // Same pair restitution, contact through the centre of mass; gravity during the softer
-  // contact of the heavier body shifts sqrt(h/H) a little (ENGINEERING.md): 1 %.
+  // contact of the heavier body shifts sqrt(h/H) a little (docs/engineering.md, contact law): 1 %.
   CHECK(bell.restitution == Approx(sphere.restitution).epsilon(0.01));
   CHECK(bell.trajectory.front().second == Approx(0.3).margin(1e-6));
 }

@@ -1,5 +1,5 @@
 // The seeds' design tables, refitted by least squares, must give back the ANOVA tables and
-// regression equations the papers printed from Design-Expert (issue 4, ENGINEERING.md section 7).
+// regression equations the papers printed from Design-Expert (issue 4; README, Calibration statistics).
 //
 // How a printed number is compared. The rule is "within 0.5 %" for coefficients, sums of
 // squares and F, and "within 0.002" for p. A printed value with fewer than three significant

@@ -1,0 +1,355 @@
+#include "diagnosis/diagnose_stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "stats/fdist.h"
+
+namespace repose {
+
+namespace {
+
+constexpr double kAicClose = 2.0;       // Burnham & Anderson: models within 2 have equal support
+
+double two_sided_normal_p(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
+
+const char* unit_of(const std::string& measure) {
+  for (const auto& m : known_measures())
+    if (measure == m.name) return m.unit;
+  return "";
+}
+
+// Weighted least-squares slope of residuals on x (weights 1/var, variances known from the
+// replicate scatter): slope, its standard error, z and p.
+Trend slope_of(const std::vector<double>& x, const std::vector<double>& r, const std::vector<double>& w) {
+  Trend t;
+  double sw = 0, swx = 0;
+  for (size_t k = 0; k < x.size(); ++k) { sw += w[k]; swx += w[k] * x[k]; }
+  double xbar = swx / sw, sxx = 0, sxr = 0;
+  for (size_t k = 0; k < x.size(); ++k) {
+    sxx += w[k] * (x[k] - xbar) * (x[k] - xbar);
+    sxr += w[k] * (x[k] - xbar) * r[k];
+  }
+  if (!(sxx > 0)) return t;
+  t.slope = sxr / sxx;
+  t.se = 1.0 / std::sqrt(sxx);
+  t.z = t.slope / t.se;
+  t.p = two_sided_normal_p(t.z);
+  return t;
+}
+
+// Why an extension cannot be tested on these data; empty when it can.
+std::string untestable_reason(const ModelExtension& e, const Observations& obs, bool scatter_scored) {
+  bool revealed = false;
+  for (const auto& m : obs.measures)
+    revealed = revealed || std::find(e.revealed_by.begin(), e.revealed_by.end(), m) != e.revealed_by.end();
+  if (!e.apply) return e.pending_reason;
+  if (!revealed) {
+    std::string shows;
+    for (const auto& m : e.revealed_by) shows += (shows.empty() ? "" : ", ") + m;
+    return "none of the measured quantities responds to it (it shows in " + shows + ")";
+  }
+  if (e.needs_sigma && !scatter_scored)
+    return "its signature is the replicate scatter, which without a sigma column (the measurement error) is taken "
+           "as the noise: give sigma to test it";
+  return "";
+}
+
+// The held-out prediction of every group: each condition predicted by a fit to the others.
+Prediction hold_out_each_condition(DiagnosisContext& c, const ModelExtension* ext, const ModelResult& r,
+                                   const Prediction& full) {
+  const Observations& obs = c.obs;
+  size_t nc = obs.conditions.size();
+  Prediction held = full;
+  for (size_t k = 0; k < nc; ++k) {
+    if (c.progress) c.progress->next(r.id + ", without " + obs.conditions[k].label);
+    std::vector<char> use(nc, 1), only(nc, 0);
+    use[k] = 0;
+    only[k] = 1;
+    ModelFit loo = fit_model(c.predictor, ext, use, r.params, 0.05, 30);
+    Prediction pred = r.k ? c.predictor.predict(ext, loo.params, only) : full;
+    held.replicates = pred.replicates;
+    for (size_t g = 0; g < obs.groups.size(); ++g)
+      if (obs.groups[g].condition == k) {
+        held.mean[g] = pred.mean[g];
+        held.var[g] = pred.var[g];
+      }
+  }
+  return held;
+}
+
+// Held-out error of the primary measure: RMS error of the mean or, when the file gives sigma (the
+// scatter is data too), the 2-Wasserstein distance between the measured and predicted normal
+// distributions of one value, sqrt((mean error)^2 + (SD error)^2), in the same unit; and the root
+// mean square standardised error over every group.
+void score_held_out(const DiagnosisContext& c, const Prediction& held, ModelResult& r) {
+  const Observations& obs = c.obs;
+  double se = 0, sz = 0;
+  int ne = 0;
+  std::vector<double> held_terms = group_chi_squares(obs, held);
+  for (size_t g = 0; g < obs.groups.size(); ++g) {
+    const ObservationGroup& grp = obs.groups[g];
+    double e = grp.mean - held.mean[g];
+    sz += held_terms[g];
+    if (grp.measure != c.primary_measure) continue;
+    double e2 = e * e;
+    if (grp.sigma_given && grp.values.size() >= 2) {
+      double sd_error = std::sqrt(grp.s2) - std::sqrt(grp.sd * grp.sd + held.var[g]);
+      e2 += sd_error * sd_error;
+    }
+    se += e2;
+    ++ne;
+  }
+  r.heldout = held.mean;
+  r.heldout_rms = std::sqrt(se / std::max(1, ne));
+  r.heldout_z = std::sqrt(sz / score_terms(obs));
+}
+
+// Which measurement would tell the winner from its closest rival.
+Separation separation_of(DiagnosisContext& c, const ModelResult& best, const ModelResult& second) {
+  const Observations& obs = c.obs;
+  Separation s;
+  size_t far = obs.conditions.size() - 1;
+  bool has_series = std::any_of(obs.groups.begin(), obs.groups.end(), [](const auto& g) { return g.series; });
+  if (c.predictor.experiment() == "drop") {
+    // The fitted models' drops at the largest condition: where their trajectories differ most.
+    Outcome a = c.predictor.simulate(far, find_extension(best.id), best.params);
+    Outcome b = c.predictor.simulate(far, find_extension(second.id), second.params);
+    size_t n = std::min(a.trajectory.size(), b.trajectory.size());
+    for (size_t k = 0; k < n; ++k) {
+      double diff = std::abs(a.trajectory[k].second - b.trajectory[k].second);
+      if (diff > s.largest_difference) {
+        s.largest_difference = diff;
+        s.at_time = a.trajectory[k].first;
+      }
+    }
+    s.kind = has_series ? Separation::Kind::MoreDropData : Separation::Kind::DropTrajectory;
+    s.condition = obs.conditions[far].label;
+  } else if (c.predictor.experiment() != "repose") {
+    s.kind = Separation::Kind::WiderCondition;
+    s.condition = obs.variables.empty() ? "" : obs.variables.front();
+  } else {
+    bool has_bed = std::find(obs.measures.begin(), obs.measures.end(), "bed_height") != obs.measures.end();
+    s.kind = has_bed ? Separation::Kind::SecondRig : Separation::Kind::BedHeight;
+  }
+  return s;
+}
+
+}  // namespace
+
+FitProgress::FitProgress(int total, bool enabled)
+    : total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+void FitProgress::next(const std::string& what) {
+  ++done_;
+  if (!enabled_) return;
+  double s = seconds();
+  double eta = done_ > 1 ? s / (done_ - 1) * (total_ - done_ + 1) : 0;
+  std::fprintf(stderr, "diagnose: fit %d/%d %-44s %6.1f s elapsed, ETA %.0f s\n", done_, total_, what.c_str(), s, eta);
+}
+
+double FitProgress::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+DiagnosisContext describe_data(const Observations& obs, Predictor& predictor) {
+  DiagnosisContext c(obs, predictor);
+  c.heldout_available = obs.conditions.size() >= 3;
+  c.primary_measure = obs.measures.front();
+  for (const auto& g : obs.groups)
+    if (!g.series) {
+      c.primary_measure = g.measure;
+      break;
+    }
+  c.primary_unit = unit_of(c.primary_measure);
+  c.scatter_scored = std::any_of(obs.groups.begin(), obs.groups.end(),
+                                 [](const ObservationGroup& g) { return g.sigma_given && g.values.size() >= 2; });
+  c.noise_df = obs.noise_df();
+  return c;
+}
+
+CandidateSelection select_candidates(const Observations& obs, const std::vector<std::string>& requested,
+                                     bool scatter_scored) {
+  CandidateSelection s;
+  for (const auto& e : model_extensions()) {
+    if (!requested.empty() && std::find(requested.begin(), requested.end(), e.id) == requested.end()) continue;
+    std::string reason = untestable_reason(e, obs, scatter_scored);
+    if (reason.empty() && e.apply) {
+      s.testable.push_back(&e);
+      continue;
+    }
+    ModelResult r;
+    r.id = e.id;
+    r.tested = false;
+    r.untested_reason = reason;
+    s.untestable.push_back(r);
+  }
+  for (const auto& id : requested)
+    if (!find_extension(id)) throw std::runtime_error("unknown extension '" + id + "'");
+  return s;
+}
+
+ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, const ModelResult* baseline) {
+  const Observations& obs = c.obs;
+  ModelResult r;
+  r.id = ext ? ext->id : "baseline";
+  r.parameters = c.predictor.parameters(ext);
+  r.k = int(r.parameters.size());
+  if (c.progress) c.progress->next(r.id + ", all conditions");
+  std::vector<double> start;
+  if (ext && baseline) start = baseline->params;
+  ModelFit full = fit_model(c.predictor, ext, std::vector<char>(obs.conditions.size(), 1), start);
+  r.params = full.params;
+  r.prediction = full.predicted;
+  r.predicted = full.predicted.mean;
+  if (c.scatter_scored)
+    for (size_t g = 0; g < obs.groups.size(); ++g)
+      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + full.predicted.var[g]));
+  r.chi2 = full.chi2;
+  r.aic = r.chi2 + 2.0 * r.k;
+  if (c.heldout_available) score_held_out(c, hold_out_each_condition(c, ext, r, full.predicted), r);
+  return r;
+}
+
+std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& base, int noise_df) {
+  std::vector<LackOfFit> out;
+  LackOfFit overall;
+  overall.measure = "all";
+  overall.chi2 = base.chi2;
+  overall.groups = score_terms(obs);
+  overall.df = std::max(1, overall.groups - base.k);
+  overall.noise_df = noise_df;
+  overall.p = stats::f_upper_tail(overall.chi2 / overall.df, overall.df, noise_df);
+  out.push_back(overall);
+  std::vector<double> base_terms = group_chi_squares(obs, base.prediction);
+  for (const std::string& m : obs.measures) {
+    LackOfFit l;
+    l.measure = m;
+    for (size_t g = 0; g < obs.groups.size(); ++g) {
+      if (obs.groups[g].measure != m) continue;
+      l.chi2 += base_terms[g];
+      l.groups += 1 + (obs.groups[g].sigma_given && obs.groups[g].values.size() >= 2 ? 1 : 0);
+    }
+    l.df = l.groups;
+    l.noise_df = obs.noise.at(m).df;
+    l.p = stats::f_upper_tail(l.chi2 / l.df, l.df, l.noise_df);
+    out.push_back(l);
+  }
+  return out;
+}
+
+std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted) {
+  std::vector<Trend> trends;
+  for (const std::string& m : obs.measures) {
+    std::vector<std::string> variables = obs.variables;
+    bool series = false;
+    for (const auto& g : obs.groups) series = series || (g.measure == m && g.series);
+    if (series) variables.push_back("t");
+    for (const std::string& v : variables) {
+      std::vector<double> x, r, w;
+      for (size_t g = 0; g < obs.groups.size(); ++g) {
+        const auto& grp = obs.groups[g];
+        if (grp.measure != m) continue;
+        const auto& vars = obs.conditions[grp.condition].variables;
+        if (v == "t") x.push_back(grp.t);
+        else if (vars.count(v)) x.push_back(vars.at(v));
+        else continue;
+        r.push_back(grp.mean - predicted[g]);
+        // Correlated frames of a series carry (1 + rho) / (1 - rho) times less information.
+        w.push_back(grp.weight() / (grp.series ? obs.noise.at(m).inflation : 1.0));
+      }
+      if (x.size() < 3) continue;
+      Trend t = slope_of(x, r, w);
+      t.measure = m;
+      t.variable = v;
+      trends.push_back(t);
+    }
+  }
+  return trends;
+}
+
+void compare_with_baseline(ModelResult& r, const ModelResult& base, int noise_df, bool heldout_available) {
+  int dk = std::max(1, r.k - base.k);
+  r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
+  r.p = stats::f_upper_tail(r.f, dk, noise_df);
+  r.significant = r.p < kDiagnosisSignificance && (!heldout_available || r.heldout_z < base.heldout_z);
+}
+
+CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelExtension*>& testable,
+                             const ModelResult& baseline) {
+  CandidateFits out;
+  for (const ModelExtension* ext : testable) {
+    out.tried.push_back(ext->id);
+    try {
+      ModelResult r = fit_and_hold_out(c, ext, &baseline);
+      compare_with_baseline(r, baseline, c.noise_df, c.heldout_available);
+      Predictor::FillRecord fill = c.predictor.fills(r.id);
+      r.heaps = fill.heaps;
+      r.refilled = fill.fallback;
+      r.fill_raised = fill.most_raised;
+      out.fitted.push_back(r);
+    } catch (const std::runtime_error& e) {
+      ModelResult failed;
+      failed.id = ext->id;
+      failed.tested = false;
+      failed.simulation_error = e.what();
+      failed.untested_reason = std::string("its simulation failed: ") + e.what();
+      out.failed.push_back(failed);
+    }
+  }
+  return out;
+}
+
+Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results) {
+  Verdict v;
+  std::vector<size_t> winners;
+  for (size_t k = 0; k < results.size(); ++k)
+    if (results[k].significant) winners.push_back(k);
+  std::sort(winners.begin(), winners.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
+  if (winners.empty()) {
+    v.verdict = "adequate";
+    return v;
+  }
+  v.winner = int(winners[0]);
+  const ModelResult& best = results[winners[0]];
+  v.cause.push_back(best.id);
+  // Rivals: every other candidate that improves on the baseline at all (lower AIC), significant
+  // or not: one that fits nearly as well as the winner leaves the cause undecided.
+  std::vector<size_t> rivals;
+  for (size_t k = 0; k < results.size(); ++k)
+    if (k != winners[0] && results[k].aic < base.aic) rivals.push_back(k);
+  std::sort(rivals.begin(), rivals.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
+  std::vector<char> everything(c.obs.conditions.size(), 1);
+  for (size_t w : rivals) {
+    const ModelResult& other = results[w];
+    if (c.progress) c.progress->next("can " + other.id + " mimic " + best.id + "?");
+    ModelFit mimic = fit_model(c.predictor, find_extension(other.id), everything, other.params, 0.08, 50, &best.prediction);
+    MimicTest m{other.id, best.id, mimic.chi2, other.aic - best.aic, false};
+    m.close = mimic.chi2 < kSeparableChi2 || m.aic_difference < kAicClose;
+    if (v.separation_chi2 < 0 || mimic.chi2 < v.separation_chi2) v.separation_chi2 = mimic.chi2;
+    if (m.close) v.cause.push_back(other.id);
+    v.mimics.push_back(m);
+  }
+  if (v.cause.size() == 1) {
+    v.verdict = "effect";
+    return v;
+  }
+  v.verdict = "ambiguous";
+  const ModelResult& second =
+      *std::find_if(results.begin(), results.end(), [&](const ModelResult& r) { return r.id == v.cause[1]; });
+  v.separation = separation_of(c, best, second);
+  return v;
+}
+
+HeldOutGain heldout_gain(const DiagnosisContext& c, const ModelResult& base, const Verdict& v,
+                         const std::vector<ModelResult>& fitted) {
+  HeldOutGain g;
+  g.baseline = base.heldout_rms;
+  g.extended = v.winner >= 0 ? fitted[size_t(v.winner)].heldout_rms : base.heldout_rms;
+  if (c.heldout_available && base.heldout_rms > 0) g.percent = 100.0 * (1.0 - g.extended / base.heldout_rms);
+  return g;
+}
+
+}  // namespace repose

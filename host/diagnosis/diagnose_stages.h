@@ -1,0 +1,95 @@
+// The stages of `repose diagnose` (diagnose.h), each a function that returns data; diagnose()
+// runs them in order and the report (diagnosis_report.h) puts the results into words. A new
+// test of the baseline or a new rule for the verdict is one more stage or a change to one.
+#pragma once
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "diagnosis/diagnose.h"
+
+namespace repose {
+
+// Progress of the fits on stderr: "fit 3/19 <what>, elapsed, ETA".
+class FitProgress {
+ public:
+  FitProgress(int total, bool enabled);
+  void next(const std::string& what);
+  double seconds() const;
+
+ private:
+  int total_, done_ = 0;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// What every stage reads: the data, the simulations, and facts about the data.
+struct DiagnosisContext {
+  DiagnosisContext(const Observations& o, Predictor& p) : obs(o), predictor(p) {}
+  const Observations& obs;
+  Predictor& predictor;
+  FitProgress* progress = nullptr;
+  bool heldout_available = false;  // leave-one-condition-out needs >= 3 conditions
+  bool scatter_scored = false;     // the file gives sigma: replicate scatter is compared too
+  std::string primary_measure, primary_unit;
+  int noise_df = 0;                // the smallest df of the noise over the measures
+};
+
+// Facts about the data the stages share (the context without its predictor and progress).
+DiagnosisContext describe_data(const Observations& obs, Predictor& predictor);
+
+// Which candidate extensions the data can speak to (`requested` empty: all); the others come
+// back untested with the reason. Throws std::runtime_error for a requested id that is unknown.
+struct CandidateSelection {
+  std::vector<const ModelExtension*> testable;
+  std::vector<ModelResult> untestable;
+};
+CandidateSelection select_candidates(const Observations& obs, const std::vector<std::string>& requested,
+                                     bool scatter_scored);
+
+// Fits a model (nullptr: the baseline) to every condition, then, with >= 3 conditions, to all
+// but one in turn, predicting the one left out. Extensions start from the baseline's values.
+ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* extension, const ModelResult* baseline);
+
+// The baseline's lack of fit: overall (first) and per measure, F tests against the noise.
+std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& baseline, int noise_df);
+
+// Weighted regressions of the baseline's residuals on every condition variable (and t in a series).
+std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted);
+
+// Every testable candidate fitted and compared with the baseline, in order. A candidate whose
+// experiment cannot be simulated to the end (e.g. a heap that never settles under it) comes back
+// untested with the reason; the others still count.
+struct CandidateFits {
+  std::vector<ModelResult> fitted;
+  std::vector<ModelResult> failed;
+  std::vector<std::string> tried;  // ids of both, in the order they were fitted
+};
+CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelExtension*>& testable,
+                             const ModelResult& baseline);
+
+// A candidate against the baseline: extra-sum-of-squares F test, and significant when it also
+// predicts held-out conditions better.
+void compare_with_baseline(ModelResult& candidate, const ModelResult& baseline, int noise_df, bool heldout_available);
+
+// The verdict: no significant candidate is "adequate"; the significant one with the lowest AIC is
+// the cause, unless a rival can mimic its predictions ("ambiguous", with what would separate them).
+struct Verdict {
+  std::string verdict;
+  std::vector<std::string> cause;
+  int winner = -1;  // index into the fitted candidates, -1 when adequate
+  std::vector<MimicTest> mimics;
+  double separation_chi2 = -1;
+  Separation separation;
+};
+Verdict decide_verdict(DiagnosisContext& c, const ModelResult& baseline, const std::vector<ModelResult>& fitted);
+
+// Held-out error of the primary measure, baseline and the extended model (the winner, or the
+// baseline again when adequate), and the gain in percent.
+struct HeldOutGain {
+  double baseline = 0, extended = 0, percent = 0;
+};
+HeldOutGain heldout_gain(const DiagnosisContext& c, const ModelResult& baseline, const Verdict& v,
+                         const std::vector<ModelResult>& fitted);
+
+}  // namespace repose

@@ -1,0 +1,162 @@
+// The findings of a diagnosis in plain words, built from the stages' results (diagnose_stages.h).
+#include <algorithm>
+#include <cstdio>
+
+#include "diagnosis/diagnosis_report.h"
+
+namespace repose {
+
+namespace {
+
+std::string num(double v, int digits = 4) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, v);
+  return buf;
+}
+
+// A length in mm, anything else in its own unit.
+std::string in_unit(double v, const std::string& unit) {
+  if (unit == "m") return num(v * 1000, 3) + " mm";
+  return num(v, 3) + (unit == "1" ? "" : " " + unit);
+}
+
+const char* unit_of(const std::string& measure) {
+  for (const auto& m : known_measures())
+    if (measure == m.name) return m.unit;
+  return "";
+}
+
+// "name = value, ..." of a model's fitted parameters.
+std::string fitted_values(const ModelResult& r) {
+  std::string fitted;
+  for (size_t k = 0; k < r.params.size(); ++k) fitted += (k ? ", " : "") + r.parameters[k].name + " = " + num(r.params[k]);
+  return fitted;
+}
+
+std::string baseline_statement(const Observations& obs, const Diagnosis& d) {
+  std::string fitted = fitted_values(d.baseline);
+  return "Baseline (" + d.baseline_model + "): " + (fitted.empty() ? std::string("parameters as given") : "fitted " + fitted) +
+         "; chi^2 = " + num(d.baseline.chi2) + " over " + std::to_string(obs.groups.size()) +
+         " measured means, weighed by their replicate scatter" +
+         (d.scatter_scored ? std::string(", and their replicate variances against the given sigma (the scatter is "
+                                         "data too)")
+                           : std::string()) +
+         ".";
+}
+
+std::string lack_of_fit_statement(const LackOfFit& overall) {
+  if (overall.p < kDiagnosisSignificance)
+    return "Lack of fit: the baseline misses the measured means by more than their replicate scatter allows "
+           "(chi^2/df = " + num(overall.chi2 / overall.df, 3) + ", F test p = " + num(overall.p, 2) + ").";
+  return "No lack of fit: the baseline agrees with the measured means within their replicate scatter (chi^2/df = " +
+         num(overall.chi2 / overall.df, 3) + ", p = " + num(overall.p, 2) + ").";
+}
+
+std::string trend_statement(const Trend& t) {
+  std::string unit = unit_of(t.measure);
+  std::string per = t.variable == "t" ? "s" : t.variable.substr(t.variable.rfind('.') + 1);
+  if (!(t.p < kDiagnosisSignificance))
+    return "No significant trend of " + t.measure + " residuals with " + t.variable + " (p = " + num(t.p, 2) + ").";
+  return "Residuals of " + t.measure + " (measured - simulated) " + (t.slope > 0 ? "rise" : "fall") + " with " +
+         (t.variable == "t" ? "time in the series" : t.variable) + ": slope " + num(t.slope, 3) + " " + unit + " per " +
+         per + " (z = " + num(t.z, 3) + ", p = " + num(t.p, 2) + "): the baseline " +
+         (t.slope > 0 ? "under" : "over") + "-predicts at large " + (t.variable == "t" ? "t" : per) + ".";
+}
+
+std::string candidate_statement(const Diagnosis& d, const ModelResult& r) {
+  if (!r.simulation_error.empty()) return r.id + ": not tested, its simulation failed (" + r.simulation_error + ").";
+  const ModelResult& base = d.baseline;
+  return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + " (F = " + num(r.f, 3) +
+         ", p = " + num(r.p, 2) + "), AIC " + num(base.aic) + " -> " + num(r.aic) +
+         (d.heldout_available ? ", held-out error " + in_unit(r.heldout_rms, d.primary_unit) + " vs " +
+                                    in_unit(base.heldout_rms, d.primary_unit) + " (baseline)"
+                              : std::string()) +
+         (r.significant ? ": beats the baseline." : ": no better than the baseline.");
+}
+
+const ModelResult* candidate(const Diagnosis& d, const std::string& id) {
+  for (const auto& c : d.candidates)
+    if (c.id == id) return &c;
+  return nullptr;
+}
+
+void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
+  if (d.verdict == "adequate") {
+    out.push_back("Verdict: the baseline is adequate; no candidate extension explains the data better (each fails the "
+                  "F test at 1 % or the held-out comparison).");
+    if (d.lack_of_fit.front().p < kDiagnosisSignificance) {
+      std::string untested;
+      for (const auto& c : d.candidates)
+        if (!c.tested) untested += (untested.empty() ? "" : ", ") + c.id;
+      out.push_back("But the baseline does miss the data (lack of fit above): the cause lies outside the candidates "
+                    "tested" +
+                    (untested.empty() ? std::string(".") : " (not testable with these measures: " + untested + ")."));
+    }
+  } else if (d.verdict == "effect") {
+    out.push_back("Verdict: effect. The cause is " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) + ").");
+  } else {
+    std::string names;
+    for (const auto& c : d.cause) names += (names.empty() ? "" : " and ") + c;
+    out.push_back("Verdict: ambiguous between " + names + ": the data cannot tell them apart. " +
+                  "To separate them, measure " + d.separating_measurement + ".");
+  }
+}
+
+}  // namespace
+
+std::string separation_in_words(const Separation& s, const Observations& obs) {
+  switch (s.kind) {
+    case Separation::Kind::None: return "";
+    case Separation::Kind::MoreDropData:
+      return "more replicates or a wider range of conditions (the trajectories already measured differ too little "
+             "between the two)";
+    case Separation::Kind::DropTrajectory:
+      return "the trajectory z(t) of the drop (measure 'height' with a t column, from the camera): the two fitted "
+             "models differ there by up to " + num(s.largest_difference * 1000, 3) + " mm at t = " + num(s.at_time, 3) +
+             " s in condition " + s.condition + ", while their rebound heights agree";
+    case Separation::Kind::WiderCondition:
+      return "more replicates, or a wider range of the condition (" +
+             (s.condition.empty() ? std::string("none varies yet") : s.condition) + ")";
+    case Separation::Kind::SecondRig:
+      return "more replicate heaps, or a second rig that loads the grains differently (a flow or a shear test): the "
+             "angle and the bed height move alike under both";
+    case Separation::Kind::BedHeight:
+      return "the bed height before the lift (measure 'bed_height'): packing separates a size spread from rolling "
+             "resistance, which the angle alone confounds";
+  }
+  return "";
+}
+
+std::vector<std::string> diagnosis_statements(const Observations& obs, const Diagnosis& d) {
+  std::vector<std::string> out;
+  out.push_back(baseline_statement(obs, d));
+  for (const auto& [m, n] : obs.noise)
+    if (n.inflation > 1.2)
+      out.push_back("The " + m + " series' noise is correlated from frame to frame (lag-1 correlation " + num(n.lag1, 2) +
+                    " of the replicates' deviations along t): the residuals are whitened as AR(1) in the score, and "
+                    "the trend tests count " + num(n.inflation, 3) + " frames as one.");
+  out.push_back(lack_of_fit_statement(d.lack_of_fit.front()));
+  for (const Trend& t : d.trends) out.push_back(trend_statement(t));
+  for (const std::string& id : d.tried) {
+    const ModelResult& r = *candidate(d, id);
+    out.push_back(candidate_statement(d, r));
+    if (r.refilled > 0)
+      out.push_back(r.id + ": " + std::to_string(r.refilled) + " of its " + std::to_string(r.heaps) +
+                    " heaps did not fit the case's fill box by random insertion and were filled largest grain first" +
+                    (r.fill_raised > 0 ? " in the box raised by up to " + num(100 * r.fill_raised, 3) + " % of its height"
+                                       : std::string()) +
+                    ".");
+  }
+  for (const MimicTest& m : d.mimics)
+    out.push_back(m.rival + " refitted to " + m.winner + "'s predictions misses them by chi^2 = " + num(m.chi2, 3) +
+                  " (separable at 3 sigma above " + num(kSeparableChi2, 2) + "); AIC difference " + num(m.aic_difference, 3) + ".");
+  verdict_statements(d, out);
+  if (d.heldout_available && d.verdict != "adequate")
+    out.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " + d.primary_measure +
+                  (d.scatter_scored ? " (mean and replicate SD)" : "") + " to " +
+                  in_unit(d.heldout_error_extended, d.primary_unit) + " (RMS), the baseline to " +
+                  in_unit(d.heldout_error_baseline, d.primary_unit) + ": " + num(d.gain_percent, 3) + " % less error.");
+  return out;
+}
+
+}  // namespace repose
