@@ -94,12 +94,38 @@ void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
     }
   } else if (d.verdict == "effect") {
     out.push_back("Verdict: effect. The cause is " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) + ").");
+  } else if (d.separation.kind == Separation::Kind::Untested) {
+    std::string names;
+    for (const auto& c : d.untested_rivals) names += (names.empty() ? "" : " and ") + c;
+    out.push_back("Verdict: ambiguous. " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) +
+                  ") beats the baseline, but " + names + " could not be tested and acts on the same measures: " +
+                  "it might explain the data as well. " + d.separating_measurement + ".");
   } else {
     std::string names;
     for (const auto& c : d.cause) names += (names.empty() ? "" : " and ") + c;
     out.push_back("Verdict: ambiguous between " + names + ": the data cannot tell them apart. " +
                   "To separate them, measure " + d.separating_measurement + ".");
   }
+  // How sure: the Akaike weight of what the verdict names, among the baseline, the candidates and
+  // any untested rival (given the best AIC).
+  std::string named = d.cause.empty() ? "the baseline" : d.cause[0];
+  std::string others;
+  for (const auto& [id, w] : d.weights)
+    if (id != (d.cause.empty() ? "baseline" : d.cause[0]) && w >= 0.005)
+      others += (others.empty() ? "" : ", ") + id + " " + num(w, 2);
+  out.push_back("Confidence " + num(d.confidence, 2) + ": the Akaike weight of " + named +
+                (others.empty() ? std::string(" (every other model below 0.005)") : " (" + others + ")") + ".");
+}
+
+// The pairs of candidates, told apart or not.
+std::string pairs_statement(const Diagnosis& d) {
+  std::string apart, not_apart;
+  for (const auto& p : d.pairs) {
+    std::string& list = p.told_apart ? apart : not_apart;
+    list += (list.empty() ? "" : ", ") + p.a + "/" + p.b;
+  }
+  return "These data tell apart " + (apart.empty() ? std::string("no pair") : apart) +
+         (not_apart.empty() ? std::string("") : "; not " + not_apart) + " (each refitted to the other's predictions).";
 }
 
 }  // namespace
@@ -120,6 +146,20 @@ std::string separation_in_words(const Separation& s, const Observations& obs) {
     case Separation::Kind::SecondRig:
       return "more replicate heaps, or a second rig that loads the grains differently (a flow or a shear test): the "
              "angle and the bed height move alike under both";
+    case Separation::Kind::HeapMeasure:
+      return s.measure + (std::find(obs.measures.begin(), obs.measures.end(), s.measure) == obs.measures.end()
+                              ? " (not measured here)"
+                              : " (measured here: more heaps)") +
+             ": the two fitted models differ there by " +
+             (s.measure == "repose_angle" ? num(s.largest_difference, 3) + " deg"
+              : s.measure == "profile_convexity" ? num(s.largest_difference, 3)
+                                                 : num(s.largest_difference * 1000, 3) + " mm") +
+             " on average, " + num(s.heap_sds, 2) + " SDs of one heap";
+    case Separation::Kind::HeapAfterLift:
+      return "the heap after the lift (repose_angle, runout, profile_convexity): a bed alone shows packing only";
+    case Separation::Kind::Untested:
+      return "To decide, make " + s.measure + " testable (its reason is in the candidates table) or measure what only "
+             "the named cause changes";
     case Separation::Kind::BedHeight:
       return "the bed height before the lift (measure 'bed_height'): packing separates a size spread from rolling "
              "resistance, which the angle alone confounds";
@@ -150,6 +190,7 @@ std::vector<std::string> diagnosis_statements(const Observations& obs, const Dia
   for (const MimicTest& m : d.mimics)
     out.push_back(m.rival + " refitted to " + m.winner + "'s predictions misses them by chi^2 = " + num(m.chi2, 3) +
                   " (separable at 3 sigma above " + num(kSeparableChi2, 2) + "); AIC difference " + num(m.aic_difference, 3) + ".");
+  if (!d.pairs.empty()) out.push_back(pairs_statement(d));
   verdict_statements(d, out);
   if (d.heldout_available && d.verdict != "adequate")
     out.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " + d.primary_measure +

@@ -19,4 +19,9 @@ const std::vector<std::string>& heap_measure_names();
 // convexity of 0, as a flat heap would; its run-out is still measured.
 std::map<std::string, double> heap_measures(const ReposeResult& heap, const std::string& heap_side);
 
+// The same from a measured picture's results (repose heap-angle on a user's own heap): the angle of
+// the side asked for (the valid sides' mean for "both"), the bed height of a bed before the lift.
+std::map<std::string, double> heap_measures(double angle_deg, double bed_height, const HeapProfile& profile,
+                                            const std::string& heap_side);
+
 }  // namespace repose
