@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -402,8 +403,9 @@ void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
   if (side == "both" && !std::isfinite(r.m.mean_deg)) throw std::runtime_error(r.file + ": the heap has no measurable slope");
   double angle = side == "both" ? r.m.mean_deg : fit.angle_deg;
   std::printf("measure,value\n");
-  for (const auto& [name, value] : heap_measures(angle, r.bed.value_or(0), r.profile, side))
-    if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), value);
+  std::map<std::string, double> values = heap_measures(angle, r.bed.value_or(0), r.profile, side);
+  for (const std::string& name : heap_measure_names())
+    if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
 }
 
 int run_heap_angle(int argc, char** argv) {

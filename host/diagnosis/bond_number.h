@@ -4,7 +4,7 @@
 // where it is (4/27) (k pi R*)^3 / (4/3 E* sqrt R*)^2: the largest pull a contact holds before the
 // grains part. Bo << 1 leaves a heap as dry grains make it; of order one, cohesion shapes its flow
 // and its slope; well above, grains move as clods. The diagnosis searches a heap's cohesion over
-// Bond numbers 1e-3 to 10 of the case's grains and reports the Bond number of what it fits.
+// Bond numbers 1e-3 to 3 of the case's grains and reports the Bond number of what it fits.
 #pragma once
 #include "case/case_spec.h"
 

@@ -74,14 +74,14 @@ const std::vector<ModelExtension>& model_extensions() {
          body_plate_interaction(s).cohesion_energy_density = p.at(0);
          s.contact.cohesion_friction = CohesionFriction::Contact;
        },
-       // In a heap the grains' own stiffness and weight set what matters (bond_number.h): from
-       // Bond number 1e-3 (dry as far as a heap can tell) to 10 (clods), not decades of soft-sphere
-       // nonsense where the attraction alone would press grains a radius deep.
+       // In a heap the grains' own stiffness and weight set what matters (bond_number.h): Bond
+       // numbers from 1e-3 (dry as far as a heap can tell) to 3 (clods: at 2.5 slot heaps scatter
+       // by 20 deg between fills, and never settle), not decades of soft-sphere nonsense.
        false,
        [](const CaseSpec& s) -> std::vector<FreeParameter> {
          if (s.experiment.type != "repose") return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
          return {{"cohesion_energy_density", "J/m^3", heap_cohesion_for_bond_number(s, 1e-3),
-                  heap_cohesion_for_bond_number(s, 10.0), true}};
+                  heap_cohesion_for_bond_number(s, 3.0), true}};
        }},
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "

@@ -184,11 +184,11 @@ TEST_CASE("granular Bond number of the slot heap's grains: pull-off force over w
   CaseSpec spec = load_case(slot_heap());
   CHECK(heap_bond_number(spec, 8000) == Approx(0.315).epsilon(0.01));
   CHECK(heap_cohesion_for_bond_number(spec, heap_bond_number(spec, 8000)) == Approx(8000));
-  // The heap's search range: Bond numbers 1e-3 to 10.
+  // The heap's search range: Bond numbers 1e-3 to 3.
   Observations obs = heap_observations();
   Predictor predictor(obs, {}, false, 1, 2);
   auto params = predictor.parameters(find_extension("cohesion"));
   REQUIRE(params.size() == 1);
   CHECK(heap_bond_number(spec, params[0].lo) == Approx(1e-3));
-  CHECK(heap_bond_number(spec, params[0].hi) == Approx(10));
+  CHECK(heap_bond_number(spec, params[0].hi) == Approx(3));
 }
