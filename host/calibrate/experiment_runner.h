@@ -1,6 +1,5 @@
-// The one registry through which a campaign reaches the virtual experiments: an experiment
-// type ("drop", ...) maps to a function that runs a loaded case and returns named responses.
-// Adding an experiment is one `register_experiment` line in experiment_runner.cpp.
+// What a campaign sees of the experiment registry (experiments/registry.h): the experiment types
+// by name, the responses each can report (for checking plans), and a run that returns them.
 #pragma once
 #include <functional>
 #include <map>
@@ -27,7 +26,7 @@ struct ExperimentType {
   ExperimentFunction run;
 };
 
-// Every registered experiment, by name.
+// Every experiment type, by name.
 const std::map<std::string, ExperimentType>& experiments();
 // Throws std::runtime_error listing the registered names when `name` is not one of them.
 const ExperimentType& find_experiment(const std::string& name);

@@ -16,6 +16,7 @@
 
 #include "case/body_pose.h"
 #include "case/case_override.h"
+#include "case/experiment_keys.h"
 #include "case/material_presets.h"
 #include "case/particle_factory.h"
 #include "case/spelling.h"
@@ -191,60 +192,30 @@ class CaseReader {
     spec_.output.vtk = s->boolean("vtk").value_or(spec_.output.vtk);
   }
 
+  // [experiment]: its type picks the experiment that reads the rest (case/experiment_keys.h).
   void read_experiment() {
     auto s = table("experiment");
     if (!s) return;
     ExperimentSpec& ex = spec_.experiment;
-    std::vector<std::string> types{"drop", "slide", "roll", "repose"};
-    std::string type = s->required_text("type", " (drop, slide, roll or repose)");
-    if (std::find(types.begin(), types.end(), type) == types.end())
-      s->fail("type", "unknown experiment '" + type + "' (drop, slide, roll or repose)" + did_you_mean(type, types));
+    const auto& readers = experiment_key_readers();
+    if (readers.empty())
+      s->fail("the program has not installed the experiments that read [experiment] (install_experiments())");
+    std::vector<std::string> types;
+    for (const auto& r : readers) types.push_back(r.type);
+    std::string listed;
+    for (size_t k = 0; k < types.size(); ++k)
+      listed += (k == 0 ? "" : k + 1 == types.size() ? " or " : ", ") + types[k];
+    std::string type = s->required_text("type", " (" + listed + ")");
+    auto reader = std::find_if(readers.begin(), readers.end(), [&](const auto& r) { return r.type == type; });
+    if (reader == readers.end())
+      s->fail("type", "unknown experiment '" + type + "' (" + listed + ")" + did_you_mean(type, types));
     ex.type = type;
     std::vector<std::string> allowed{"type", "max_time"};
-    std::vector<std::string> tilt{"plate",          "tilt_rate",   "tilt_axis", "settle_time",
-                                  "onset_distance", "onset_speed", "max_angle"};
-    if (type == "drop") allowed.insert(allowed.end(), {"drop_height", "camera_fps"});
-    if (type == "slide" || type == "roll") allowed.insert(allowed.end(), tilt.begin(), tilt.end());
-    if (type == "roll") allowed.insert(allowed.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
-    if (type == "repose")
-      allowed.insert(allowed.end(), {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"});
+    allowed.insert(allowed.end(), reader->keys.begin(), reader->keys.end());
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
-    if (auto h = s->number("drop_height")) ex.drop_height = positive(*s, "drop_height", *h);
-    if (auto f = s->number("camera_fps")) ex.camera_fps = positive(*s, "camera_fps", *f);
-    ex.plate = s->text("plate").value_or("");
-    if (auto r = s->number("tilt_rate")) ex.tilt_rate_deg = positive(*s, "tilt_rate", *r);
-    if (auto a = s->vector3("tilt_axis")) ex.tilt_axis = unit_vector(*s, "tilt_axis", *a);
-    if (auto t = s->number("settle_time")) ex.settle_time = non_negative(*s, "settle_time", *t);
-    if (auto d = s->number("onset_distance")) ex.onset_distance = positive(*s, "onset_distance", *d);
-    if (auto v = s->number("onset_speed")) ex.onset_speed = non_negative(*s, "onset_speed", *v);
-    if (auto a = s->number("max_angle")) {
-      if (!(*a > 0 && *a < 90)) s->fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
-      ex.max_angle_deg = *a;
-    }
-    ex.method = s->choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
-    if (auto b = s->number("incline_angle")) {
-      if (!(*b > 0 && *b < 60)) s->fail("incline_angle", format_number(*b) + " must lie between 0 and 60 degrees");
-      ex.incline_deg = *b;
-    }
-    if (auto d = s->number("slope_distance")) ex.slope_distance = positive(*s, "slope_distance", *d);
-    if (auto v = s->number("stop_speed")) ex.stop_speed = positive(*s, "stop_speed", *v);
-    ex.lift_wall = s->text("lift_wall").value_or("");
-    if (type == "repose" && ex.lift_wall.empty())
-      s->missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
-    if (auto t = s->number("lift_end")) ex.lift_end = non_negative(*s, "lift_end", *t);
-    if (auto e = s->number("settle_energy")) ex.settle_energy = positive(*s, "settle_energy", *e);
-    ex.view = s->choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
-    ex.heap_side = s->choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
-    ex.axisymmetric = s->boolean("axisymmetric").value_or(false);
-    if (auto n = s->integer("views")) {
-      if (*n < 1 || *n > 180) s->fail("views", std::to_string(*n) + " must lie between 1 and 180");
-      ex.views = int(*n);
-      if (ex.views > 1 && ex.heap_side != "both")
-        s->fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
-    }
-    if (auto z = s->number("floor_z")) ex.heap_floor_z = *z;
+    reader->read(*s, ex);
   }
 
   // [experiment] names walls; they must exist (checked once all walls are read).

@@ -122,11 +122,12 @@ int run_synth_data(int argc, char** argv) {
                  "slide case: the body-plate sliding friction of the truth; roll case: its rolling friction");
   app.add_option("--angle-noise", truth.angle_noise, "heap, slide, tilt-roll case: SD of one measured angle, deg (default 0.5)");
   app.add_flag("--bed-only", truth.bed_height_only, "heap case: bed heights only (the bed alone is simulated, no lift)");
-  app.add_option("--measures", truth.heap_measures,
-                 "heap case: the measures written, comma-separated, of repose_angle, bed_height, heap_height, runout, "
-                 "profile_convexity (default repose_angle,bed_height)")
+  app.add_option("--measures", truth.measures,
+                 "the scalar measures written, comma-separated (a heap's: repose_angle, bed_height, heap_height, "
+                 "runout, profile_convexity; default the experiment's usual ones: a heap's repose_angle,bed_height)")
       ->delimiter(',');
-  app.add_option("--convexity-noise", truth.convexity_noise, "heap case: SD of one measured profile_convexity (default 0.01)");
+  app.add_option("--unitless-noise", truth.unitless_noise,
+                 "SD of one measured dimensionless value such as profile_convexity (default 0.01)");
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)");
   app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)");
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)");

@@ -9,7 +9,7 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   Predictor predictor(obs, options.given, options.fit_baseline, options.threads, options.simulated_replicates);
   DiagnosisContext c = describe_data(obs, predictor);
   Diagnosis d;
-  d.baseline_model = predictor.diagnosed().baseline_model;
+  d.baseline_model = predictor.role().baseline_model;
   d.heldout_available = c.heldout_available;
   d.primary_measure = c.primary_measure;
   d.primary_unit = c.primary_unit;

@@ -16,12 +16,6 @@ constexpr double kAicClose = 2.0;       // Burnham & Anderson: models within 2 h
 
 double two_sided_normal_p(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
 
-const char* unit_of(const std::string& measure) {
-  for (const auto& m : known_measures())
-    if (measure == m.name) return m.unit;
-  return "";
-}
-
 // Weighted least-squares slope of residuals on x (weights 1/var, variances known from the
 // replicate scatter): slope, its standard error, z and p.
 Trend slope_of(const std::vector<double>& x, const std::vector<double>& r, const std::vector<double>& w) {
@@ -151,7 +145,7 @@ Separation separation_of(DiagnosisContext& c, const ModelResult& best, const Mod
   Separation s;
   size_t far = obs.conditions.size() - 1;
   bool has_series = std::any_of(obs.groups.begin(), obs.groups.end(), [](const auto& g) { return g.series; });
-  if (c.predictor.experiment() == "drop") {
+  if (c.predictor.role().separating == SeparatingMeasurement::CameraTrack) {
     // The fitted models' drops at the largest condition: where their trajectories differ most.
     Outcome a = c.predictor.simulate(far, find_extension(best.id), best.params);
     Outcome b = c.predictor.simulate(far, find_extension(second.id), second.params);
@@ -165,7 +159,7 @@ Separation separation_of(DiagnosisContext& c, const ModelResult& best, const Mod
     }
     s.kind = has_series ? Separation::Kind::MoreDropData : Separation::Kind::DropTrajectory;
     s.condition = obs.conditions[far].label;
-  } else if (c.predictor.experiment() != "repose") {
+  } else if (c.predictor.role().separating == SeparatingMeasurement::WiderCondition) {
     s.kind = Separation::Kind::WiderCondition;
     s.condition = obs.variables.empty() ? "" : obs.variables.front();
   } else {

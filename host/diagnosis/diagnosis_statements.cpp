@@ -20,12 +20,6 @@ std::string in_unit(double v, const std::string& unit) {
   return num(v, 3) + (unit == "1" ? "" : " " + unit);
 }
 
-const char* unit_of(const std::string& measure) {
-  for (const auto& m : known_measures())
-    if (measure == m.name) return m.unit;
-  return "";
-}
-
 // "name = value, ..." of a model's fitted parameters.
 std::string fitted_values(const ModelResult& r) {
   std::string fitted;

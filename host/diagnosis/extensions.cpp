@@ -5,37 +5,14 @@
 
 #include "diagnosis/bond_number.h"
 #include "diagnosis/elongated_body.h"
-#include "experiments/body_frame.h"
+#include "experiments/registry.h"
 
 namespace repose {
 
-Interaction& body_plate_interaction(CaseSpec& spec) {
-  int a = 0;
-  if (!spec.spheres.empty()) a = spec.spheres[0].material;
-  else if (!spec.bodies.empty()) a = spec.bodies[0].material;
-  else throw std::runtime_error(spec.path + ": the case has no body");
-  // A drop's plate is its first plane wall; a tilt or roll test names its plate (default the first wall).
-  const WallSpec* plate = nullptr;
-  if (spec.experiment.type == "drop") {
-    auto it = std::find_if(spec.walls.begin(), spec.walls.end(),
-                           [](const WallSpec& w) { return w.type == WallSpec::Type::Plane; });
-    if (it == spec.walls.end()) throw std::runtime_error(spec.path + ": the case has no plane wall (plate)");
-    plate = &*it;
-  } else {
-    plate = &spec.walls.at(find_wall(spec, spec.experiment.plate, "plate"));
-  }
-  int b = plate->material;
-  for (auto& in : spec.interactions)
-    if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;
-  throw std::runtime_error(spec.path + ": no [[interaction]] between the body and the plate");
-}
-
-Interaction& heap_interaction(CaseSpec& spec) {
-  if (spec.fills.empty()) throw std::runtime_error(spec.path + ": the case has no [[fill]] of grains");
-  int a = spec.fills[0].material;
-  for (auto& in : spec.interactions)
-    if (in.material_a == a && in.material_b == a) return in;
-  throw std::runtime_error(spec.path + ": no [[interaction]] of the grains' material with itself");
+Interaction& tested_contact(CaseSpec& spec) {
+  const Experiment* e = experiment_for(spec);
+  if (!e) throw std::runtime_error(spec.path + ": the case runs no experiment, so no tested contact");
+  return e->tested_contact(spec);
 }
 
 const std::vector<ModelExtension>& model_extensions() {
@@ -46,7 +23,7 @@ const std::vector<ModelExtension>& model_extensions() {
        {{"viscoelastic_time", "s", 1e-6, 3e-2, true}},
        {"rebound_height", "restitution", "height"},
        "",
-       [](CaseSpec& s, const std::vector<double>& p) { body_plate_interaction(s).viscoelastic_time = p.at(0); }},
+       [](CaseSpec& s, const std::vector<double>& p) { tested_contact(s).viscoelastic_time = p.at(0); }},
       {"air_drag",
        "quadratic air drag 0.5 rho C_d A v^2 on the body (A its projected area, rho = 1.2 kg/m^3)",
        {{"drag_coefficient", "1", 1e-3, 2.0, true}},  // 2: a flat plate broadside, the bluffest body
@@ -59,27 +36,24 @@ const std::vector<ModelExtension>& model_extensions() {
       {"cohesion",
        "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture); on one body, with "
        "friction and rolling resistance on the contact's repulsion, which the attraction raises (wet contacts "
-       "grip harder); in a heap between the grains, with the case's own [contact] cohesion_friction",
+       "grip harder); between a bulk's grains, with the case's own [contact] cohesion_friction",
        {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
        {"rebound_height", "restitution", "height", "slide_angle", "roll_angle", "repose_angle", "bed_height",
         "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
-         // A heap's attraction holds its grains together whatever friction sees, and the case states
-         // its engine's convention; a tilted body is revealed only through the grip.
-         if (s.experiment.type == "repose") {
-           heap_interaction(s).cohesion_energy_density = p.at(0);
-           return;
-         }
-         body_plate_interaction(s).cohesion_energy_density = p.at(0);
-         s.contact.cohesion_friction = CohesionFriction::Contact;
+         tested_contact(s).cohesion_energy_density = p.at(0);
+         // Grains of a bulk (a heap filled from [[fill]]s) are held together by the attraction
+         // whatever friction sees, and the case states its engine's convention; a tilted body is
+         // revealed only through the grip.
+         if (s.fills.empty()) s.contact.cohesion_friction = CohesionFriction::Contact;
        },
-       // In a heap the grains' own stiffness and weight set what matters (bond_number.h): Bond
+       false,
+       // In a bulk the grains' own stiffness and weight set what matters (bond_number.h): Bond
        // numbers from 1e-3 (dry as far as a heap can tell) to 3 (clods: at 2.5 slot heaps scatter
        // by 20 deg between fills, and never settle), not decades of soft-sphere nonsense.
-       false,
        [](const CaseSpec& s) -> std::vector<FreeParameter> {
-         if (s.experiment.type != "repose") return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
+         if (s.fills.empty()) return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
          return {{"cohesion_energy_density", "J/m^3", heap_cohesion_for_bond_number(s, 1e-3),
                   heap_cohesion_for_bond_number(s, 3.0), true}};
        }},

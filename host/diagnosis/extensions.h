@@ -9,15 +9,9 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "stats/free_parameter.h"
 
 namespace repose {
-
-struct FreeParameter {
-  std::string name;  // as reported, e.g. "drag_coefficient"
-  std::string unit;
-  double lo = 0, hi = 1;  // search range
-  bool log_scale = false; // search log(value) (strengths spanning decades)
-};
 
 struct ModelExtension {
   std::string id;           // "air_drag"
@@ -38,14 +32,9 @@ struct ModelExtension {
 const std::vector<ModelExtension>& model_extensions();
 const ModelExtension* find_extension(const std::string& id);
 
-// The interaction between a drop, tilt or roll case's body (its first sphere, else its first
-// clump) and its plate (a drop's first plane wall; a tilt or roll test's [experiment] plate,
-// default the first wall): the contact those tests calibrate and the extensions act on. Throws
-// naming the case when absent.
-Interaction& body_plate_interaction(CaseSpec& spec);
-
-// The grains' contact with each other in a heap case: the first [[fill]]'s material with itself.
-// Throws naming the case when absent.
-Interaction& heap_interaction(CaseSpec& spec);
+// The contact the case's experiment calibrates (Experiment::tested_contact: a drop's body and
+// plate, a heap's grains with each other, ...), which contact-model extensions act on. Throws
+// naming the case when it has none.
+Interaction& tested_contact(CaseSpec& spec);
 
 }  // namespace repose

@@ -1,7 +1,5 @@
 #include "diagnosis/measured_data.h"
 
-#include "diagnosis/diagnosed_experiments.h"
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +8,7 @@
 #include <sstream>
 
 #include "case/case_error.h"
+#include "experiments/registry.h"
 
 namespace repose {
 
@@ -72,13 +71,14 @@ double number(const std::string& file, int line, const Cell& cell, const std::st
 }  // namespace
 
 const std::vector<MeasureInfo>& known_measures() {
-  static const std::vector<MeasureInfo> m = {
-      {"rebound_height", false, "m"}, {"restitution", false, "1"},  {"height", true, "m"},
-      {"slide_angle", false, "deg"},  {"roll_distance", false, "m"}, {"repose_angle", false, "deg"},
-      {"bed_height", false, "m"},     {"roll_angle", false, "deg"},    {"heap_height", false, "m"},
-      {"runout", false, "m"},         {"profile_convexity", false, "1"},
-  };
-  return m;
+  static const std::vector<MeasureInfo> measures = diagnosed_measures();
+  return measures;
+}
+
+std::string unit_of(const std::string& measure) {
+  for (const auto& m : known_measures())
+    if (measure == m.name) return m.unit;
+  return "";
 }
 
 MeasuredData read_measured_data(const std::string& path) {
@@ -131,7 +131,7 @@ MeasuredData read_measured_data(const std::string& path) {
                              [&](const MeasureInfo& i) { return m.measure == i.name; });
     if (info == known_measures().end()) {
       std::string names;
-      for (const auto& i : known_measures()) names += std::string(names.empty() ? "" : ", ") + i.name;
+      for (const auto& i : known_measures()) names += (names.empty() ? "" : ", ") + i.name;
       fail(path, line_no, cell("measure"), "measure", "unknown measure '" + m.measure + "' (" + names + ")");
     }
     m.value = number(path, line_no, cell("value"), "value");
@@ -159,32 +159,11 @@ MeasuredData read_measured_data(const std::string& path) {
       }
     }
     const CaseSpec& spec = loaded[key];
-    // Lengths a thousand times the rig's size are millimetres written as metres.
-    if (std::string(info->unit) == "m" && spec.experiment.type == "drop" &&
-        m.value > 10 * spec.experiment.drop_height)
-      fail(path, line_no, cell("value"), "value",
-           std::to_string(m.value) + " m is more than ten times the drop height " +
-               std::to_string(spec.experiment.drop_height) + " m: millimetres? Values are in SI units (m)");
-    double fill_height = 0;  // the tallest [[fill]] region: a bed cannot stand higher
-    for (const FillSpec& f : spec.fills)
-      fill_height = std::max(fill_height, f.shape == FillSpec::Shape::Box ? f.box_max[2] - f.box_min[2] : f.cyl_height);
-    if (std::string(info->unit) == "m" && spec.experiment.type == "repose" && fill_height > 0 &&
-        m.value > 10 * fill_height)
-      fail(path, line_no, cell("value"), "value",
-           std::to_string(m.value) + " m is more than ten times the fill region's height " +
-               std::to_string(fill_height) + " m: millimetres? Values are in SI units (m)");
-    if (m.measure == "roll_distance" && spec.experiment.type == "roll" && spec.experiment.method == "incline") {
-      // Energy: a body rolling against mu_r m g R stops within S sin(beta) / mu_r; at the
-      // smallest rolling friction diagnose fits that bounds any honest L.
-      double beta = spec.experiment.incline_deg * 3.14159265358979323846 / 180;
-      double longest = spec.experiment.slope_distance * std::sin(beta) / kSmallestRollingFriction;
-      if (m.value > longest)
-        fail(path, line_no, cell("value"), "value",
-             std::to_string(m.value) + " m is farther than the body can roll from S = " +
-                 std::to_string(spec.experiment.slope_distance) + " m at rolling friction " + std::to_string(kSmallestRollingFriction).substr(0, 5) + " (" +
-                 std::to_string(longest) + " m): millimetres? Values are in SI units (m)");
+    if (const Experiment* e = experiment_for(spec)) {
+      std::string problem = e->implausible(*info, m.value, spec);
+      if (!problem.empty()) fail(path, line_no, cell("value"), "value", problem);
     }
-    if (std::string(info->unit) == "deg" && (m.value <= 0 || m.value >= 90))
+    if (info->unit == "deg" && (m.value <= 0 || m.value >= 90))
       fail(path, line_no, cell("value"), "value", "an angle in degrees must lie in (0, 90)");
     data.rows.push_back(std::move(m));
   }

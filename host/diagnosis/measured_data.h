@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "case/case_loader.h"
+#include "experiments/experiment.h"
 
 namespace repose {
 
@@ -32,13 +33,11 @@ struct MeasuredData {
   std::vector<Measurement> rows;
 };
 
-// The measures an experiment reports: name, whether it is a time series, and its unit.
-struct MeasureInfo {
-  const char* name;
-  bool series;
-  const char* unit;  // "m", "deg", "1"
-};
+// Every measure the experiments diagnose simulates report: name, whether it is a time series, and
+// its unit (experiments/registry.h).
 const std::vector<MeasureInfo>& known_measures();
+// A known measure's unit ("m", "deg", "1"); "" for an unknown one.
+std::string unit_of(const std::string& measure);
 
 // Throws DataError naming file, line and column.
 MeasuredData read_measured_data(const std::string& path);

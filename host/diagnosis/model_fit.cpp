@@ -6,18 +6,6 @@
 
 namespace repose {
 
-namespace {
-
-double to_unit(const FreeParameter& p, double v) {
-  return p.log_scale ? std::log(v / p.lo) / std::log(p.hi / p.lo) : (v - p.lo) / (p.hi - p.lo);
-}
-double from_unit(const FreeParameter& p, double u) {
-  u = std::clamp(u, 0.0, 1.0);
-  return p.log_scale ? p.lo * std::exp(u * std::log(p.hi / p.lo)) : p.lo + u * (p.hi - p.lo);
-}
-
-}  // namespace
-
 std::vector<double> group_chi_squares(const Observations& obs, const Prediction& predicted, const Prediction* target) {
   size_t groups = obs.groups.size();
   std::vector<double> z(groups), out(groups);
@@ -70,7 +58,7 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
   for (const auto& g : obs.groups) fit.groups += use[g.condition] ? 1 : 0;
   auto values = [&](const std::vector<double>& u) {
     std::vector<double> v(n);
-    for (size_t k = 0; k < n; ++k) v[k] = from_unit(params[k], u[k]);
+    for (size_t k = 0; k < n; ++k) v[k] = params[k].from_unit(u[k]);
     return v;
   };
   auto objective = [&](const std::vector<double>& u) {
@@ -80,8 +68,8 @@ ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const 
 
   std::vector<double> u0(n, 0.5);
   for (size_t k = 0; k < n; ++k) {
-    if (k < start.size()) u0[k] = std::clamp(to_unit(params[k], start[k]), 0.0, 1.0);
-    else if (predictor.fits_baseline() && k == 0) u0[k] = to_unit(params[0], predictor.case_baseline_value());
+    if (k < start.size()) u0[k] = std::clamp(params[k].to_unit(start[k]), 0.0, 1.0);
+    else if (predictor.fits_baseline() && k == 0) u0[k] = params[0].to_unit(predictor.case_baseline_value());
   }
   if (n == 0) {
     fit.predicted = predictor.predict(extension, {}, use);

@@ -1,10 +1,8 @@
 // Simulated values of the measured quantities: every condition of the data is run as its virtual
-// experiment with the model under test, on the cpu backend, spread over a few threads, each
-// result cached by (condition, model, parameters, replicate) for the run. Two experiments:
-// - drop (rebound_height, restitution, the height series): the baseline's free parameter is the
-//   body-plate restitution;
-// - repose (repose_angle, bed_height), on cases whose grains come from sphere [[fill]]s: the
-//   baseline's free parameter is the grains' sliding friction with each other.
+// experiment (experiments/registry.h: the experiment its case names, which says how a diagnosis
+// simulates it and what the baseline's free parameter is) with the model under test, on the cpu
+// backend, spread over a few threads, each result cached by (condition, model, parameters,
+// replicate) for the run.
 //
 // A stochastic model is simulated `simulated_replicates` times per condition, replicate r with
 // seed + r in every evaluation (common random numbers: the same draws whatever the parameters, so
@@ -18,10 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "diagnosis/diagnosed_experiments.h"
 #include "diagnosis/extensions.h"
 #include "diagnosis/observations.h"
-#include "experiments/drop.h"
+#include "experiments/experiment.h"
 
 namespace repose {
 
@@ -32,10 +29,7 @@ struct Prediction {
 };
 
 // One simulated experiment: its scalar measures and, for a drop, the camera's trajectory.
-struct Outcome {
-  std::map<std::string, double> values;
-  std::vector<std::pair<double, double>> trajectory;  // drop: (t, height of the lowest point)
-};
+using Outcome = DiagnosticOutcome;
 
 class Predictor {
  public:
@@ -49,10 +43,10 @@ class Predictor {
   std::vector<FreeParameter> parameters(const ModelExtension* extension) const;
   bool fits_baseline() const { return fit_baseline_; }
   double case_baseline_value() const;  // of the first condition's case (the start of a fit)
-  const std::string& experiment() const { return experiment_->id; }  // "drop", "repose", ...
-  const DiagnosedExperiment& diagnosed() const { return *experiment_; }
+  std::string experiment() const { return experiment_->id(); }  // "drop", "repose", ...
+  const DiagnosisRole& role() const { return *role_; }
   // A heap costs ~1000 drops: fits then spend fewer evaluations (model_fit.cpp).
-  bool expensive() const { return experiment() == "repose"; }
+  bool expensive() const { return role_->expensive; }
   // Whether the model's result depends on the replicate's seed (a clump body, a filled heap).
   bool stochastic(const ModelExtension* extension, const std::vector<double>& params) const;
 
@@ -80,13 +74,15 @@ class Predictor {
   int simulated_replicates() const { return replicates_; }
 
  private:
+  // Counts a heap model's fill as placed (heap_fill.h: largest first, or in a raised box, when
+  // the case's own fill found no room), from its fills against the condition's case.
+  void record_fill(size_t condition, const ModelExtension* extension, const CaseSpec& spec) const;
   CaseSpec model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
                       int replicate) const;
-  Outcome run_drop_condition(CaseSpec spec) const;
-  Outcome run_heap_condition(const CaseSpec& spec) const;
-  Outcome run_tilt_or_roll_condition(const CaseSpec& spec) const;
+  void check_measures() const;
   const Observations& obs_;
-  const DiagnosedExperiment* experiment_ = nullptr;
+  const Experiment* experiment_ = nullptr;
+  const DiagnosisRole* role_ = nullptr;
   std::vector<CaseSpec> specs_;  // per condition, loaded once (a heap's with its fills unexpanded)
   bool fit_baseline_;
   unsigned threads_;

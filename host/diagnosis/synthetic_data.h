@@ -2,6 +2,7 @@
 // hidden: the case's experiment simulated with a truth model (the baseline plus, optionally, one
 // extension of given strength) at several conditions, each replicate with Gaussian noise of a
 // stated size, written in the measured-data CSV format (README "Measured data").
+// The experiment the case names says how (experiments/experiment.h, DiagnosisRole):
 // - A drop case varies the drop height. A truth whose body is a clump (extension `shape`) lands
 //   at a random orientation: every replicate is its own drop, with seeds no diagnosis uses
 //   (1,000,000 + 10,000 seed + 100 condition index + replicate).
@@ -29,14 +30,15 @@ struct SyntheticTruth {
   std::vector<double> heights;           // drop heights, m (the condition variable); other cases:
                                          // the values of condition_key
   // The key the conditions vary in a heap, slide or roll case (any case key); empty: the
-  // experiment's own (diagnosed_experiments.cpp: fill.0.count, experiment.slope_distance,
-  // material.0.density).
+  // experiment's own (its DiagnosisRole: experiment.drop_height, fill.0.count,
+  // experiment.slope_distance, material.0.density).
   std::string condition_key;
   double angle_noise = 0.5;              // SD of one measured angle, deg (lengths: `noise`)
   bool bed_height_only = false;          // heap: only bed_height rows (the bed alone is simulated)
-  // heap: the measures written for each heap (heap_measures.h); empty: repose_angle, bed_height.
-  std::vector<std::string> heap_measures;
-  double convexity_noise = 0.01;         // SD of one measured profile_convexity (dimensionless)
+  // The scalar measures written (any the experiment reports: a heap's heap_height, runout,
+  // profile_convexity too); empty: the experiment's usual ones (a heap's repose_angle, bed_height).
+  std::vector<std::string> measures;
+  double unitless_noise = 0.01;          // SD of one measured dimensionless value (profile_convexity)
   int replicates = 5;
   double noise = 0.001;                  // SD of one measured length (rebound height, bed height, L), m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s

@@ -79,4 +79,10 @@ size_t find_wall(const CaseSpec& spec, const std::string& name, const std::strin
                            (name.empty() ? "" : " (named '" + name + "')"));
 }
 
+Interaction& interaction_between(CaseSpec& spec, int a, int b, const std::string& what) {
+  for (auto& in : spec.interactions)
+    if ((in.material_a == a && in.material_b == b) || (in.material_a == b && in.material_b == a)) return in;
+  throw std::runtime_error(spec.path + ": no [[interaction]] between " + what);
+}
+
 }  // namespace repose

@@ -23,5 +23,8 @@ void shift_to_rest(CaseSpec& spec, const Vec3d& shift);
 // Index of the [[wall]] named `name`, or of the first wall when `name` is empty; throws
 // std::runtime_error naming the case when there is none.
 size_t find_wall(const CaseSpec& spec, const std::string& name, const std::string& role);
+// The [[interaction]] of materials a and b (either order); throws naming the case and `what`
+// ("the body and the plate") when the case gives none.
+Interaction& interaction_between(CaseSpec& spec, int a, int b, const std::string& what);
 
 }  // namespace repose

@@ -1,6 +1,6 @@
-// The free-fall collision test of both seeds: a body released at rest with its lowest point H
+// The free-fall collision test of both studies: a body released at rest with its lowest point H
 // above a plate; a simulated high-speed camera tracks the lowest point, the rebound height h is
-// the highest point seen after the first impact, and e = sqrt(h/H) (cabbage seed Eq. 1).
+// the highest point seen after the first impact, and e = sqrt(h/H) (the cabbage study's Eq. 1).
 #pragma once
 #include <string>
 #include <utility>
@@ -8,6 +8,7 @@
 
 #include "case/case_spec.h"
 #include "engine/step_program.h"
+#include "experiments/experiment.h"
 
 namespace repose {
 
@@ -16,6 +17,7 @@ struct DropOptions {
   int device = -1;
   unsigned threads = 1;
   bool random_orientation = true;  // a clump falls at a random orientation drawn from the seed
+  bool require_rebound = true;     // false: a body that never leaves the plate is a result
 };
 
 struct DropResult {
@@ -25,13 +27,48 @@ struct DropResult {
   double restitution = 0;           // sqrt(h/H)
   double impact_speed = 0;          // m/s, normal to the plate, just before contact
   double contact_time = 0;          // s, first impact
+  bool rebounded = true;            // false: still on the plate at max_time (require_rebound off)
   std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
 };
 
 // The case's one sphere or one clump is the body (a clump at a random orientation from
 // simulation.seed unless options say otherwise), its first plane wall the plate; [experiment]
 // drop_height, camera_fps and max_time apply. Throws std::runtime_error naming the case when
-// the case is not a drop test or the body never rebounds.
+// the case is not a drop test or (require_rebound) the body never rebounds.
 DropResult run_drop(const CaseSpec& spec, const DropOptions& options = {});
+
+// Shifts the case's time step so that the body meets the plate half a step after a step boundary
+// (its fall from rest, with air drag on a sphere, computed in closed form). A drop's rebound then
+// varies smoothly with the parameters instead of jumping where the impact crosses a step: the
+// diagnosis's fits need that (docs/diagnosis.md).
+void align_impact_phase(CaseSpec& spec);
+
+// The drop as a registered experiment (experiments/registry.h): keys drop_height and camera_fps;
+// `repose experiment drop` writes drop.json and trajectory.csv; a diagnosis fits the body-plate
+// restitution to rebound heights, restitutions and the camera's track.
+class DropExperiment : public Experiment {
+ public:
+  std::string id() const override { return "drop"; }
+  std::string description() const override { return "drop (restitution)"; }
+  std::vector<std::string> keys() const override { return {"drop_height", "camera_fps"}; }
+  void read_keys(const Section& s, ExperimentSpec& ex) const override;
+  std::vector<std::string> responses() const override;
+  ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  const DiagnosisRole* diagnosis() const override;
+  Interaction& tested_contact(CaseSpec& spec) const override;
+  std::string diagnosis_problem(const CaseSpec& spec) const override;
+  bool stochastic(const CaseSpec& spec) const override { return !spec.bodies.empty(); }
+  DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
+                                           bool strict) const override;
+  std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;
+
+ protected:
+  // The outcome of one measured drop (values, JSON, camera track) and of its replicates.
+  ExperimentOutcome outcome(const CaseSpec& spec, const DropResult& r) const;
+  void add_replicates(ExperimentOutcome& o, const CaseSpec& spec, const ExperimentRun& run, const DropResult& first) const;
+  virtual DropResult drop(const CaseSpec& spec, const DropOptions& options) const { return run_drop(spec, options); }
+};
+
+const Experiment& drop_experiment();
 
 }  // namespace repose

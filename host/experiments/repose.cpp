@@ -4,13 +4,18 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 
 #include "engine/backend_factory.h"
 #include "engine/model.h"
+#include "case/particle_factory.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/heap_fill.h"
 #include "measure/bed_height.h"
+#include "measure/heap_png.h"
+#include "util/atomic_file.h"
 #include "util/progress.h"
 
 namespace repose {
@@ -34,8 +39,7 @@ double max_kinetic_energy(const HostState& st) {
   return most;
 }
 
-}  // namespace
-
+// Twice the volume-weighted mean height of the grains above the floor (measure/bed_height.h).
 double bed_height(const HostState& st, const std::optional<double>& floor) {
   std::vector<Sphere> grains;
   grains.reserve(st.pos.size());
@@ -43,7 +47,10 @@ double bed_height(const HostState& st, const std::optional<double>& floor) {
   return uniform_bed_height(grains, floor);
 }
 
-ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled) {
+}  // namespace
+
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled,
+                        bool require_slope) {
   const ExperimentSpec& ex = spec.experiment;
   const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
@@ -105,20 +112,28 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   opts.floor_z = floor_z;
   r.heap = measure_heap_angle(r.spheres, opts);
   r.profile = measure_heap_profile(r.heap);
+  // No slope: an error, or (require_slope off) a result with angle 0.
+  auto no_slope = [&](const std::string& problem) {
+    if (require_slope) throw std::runtime_error(spec.path + ": " + problem);
+    r.sloped = false;
+    r.problem = spec.path + ": " + problem;
+    r.angle_deg = 0;
+    return r;
+  };
   if (ex.heap_side == "left") {
-    if (!r.heap.left.valid) throw std::runtime_error(spec.path + ": no left slope: " + r.heap.left.problem);
+    if (!r.heap.left.valid) return no_slope("no left slope: " + r.heap.left.problem);
     r.angle_deg = r.heap.left.angle_deg;
   } else if (ex.heap_side == "right") {
-    if (!r.heap.right.valid) throw std::runtime_error(spec.path + ": no right slope: " + r.heap.right.problem);
+    if (!r.heap.right.valid) return no_slope("no right slope: " + r.heap.right.problem);
     r.angle_deg = r.heap.right.angle_deg;
   } else {
     if (!r.heap.left.valid && !r.heap.right.valid)
-      throw std::runtime_error(spec.path + ": the heap has no measurable slope (" + r.heap.left.problem + ")");
+      return no_slope("the heap has no measurable slope (" + r.heap.left.problem + ")");
     r.angle_deg = r.heap.mean_deg;
   }
   if (ex.views > 1) {
     r.views = measure_heap_angle_views(r.spheres, ex.views, opts);
-    if (r.views->valid_slopes == 0) throw std::runtime_error(spec.path + ": no view of the heap shows a measurable slope");
+    if (r.views->valid_slopes == 0) return no_slope("no view of the heap shows a measurable slope");
     r.angle_deg = r.views->mean_deg;
   }
   if (ex.axisymmetric) {
@@ -127,6 +142,308 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     r.heap_3d = measure_axisymmetric_heap_angle(r.spheres, a);
   }
   return r;
+}
+
+double measure_bed_height(const CaseSpec& spec) {
+  const ExperimentSpec& ex = spec.experiment;
+  const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
+  Model model = build_model(spec);
+  // run_repose's sampling: batches of 0.05 s, the bed taken at the first sample at the lift.
+  uint64_t sample_steps = steps_in(0.05, model.dt);
+  Simulation sim = experiment_simulation(model, {}, sample_steps, 200);
+  do sim.advance(sample_steps);
+  while (sim.time() < lift.motion.start_time - 1e-9);
+  return bed_height(sim.state(), ex.heap_floor_z);
+}
+
+const std::vector<std::string>& heap_measure_names() {
+  static const std::vector<std::string> names = {"repose_angle", "bed_height", "heap_height", "runout",
+                                                 "profile_convexity"};
+  return names;
+}
+
+std::map<std::string, double> heap_measures(double angle_deg, double bed_height, const HeapProfile& profile,
+                                            const std::string& heap_side) {
+  std::vector<const SlopeProfile*> sides;
+  if (heap_side != "right") sides.push_back(&profile.left);
+  if (heap_side != "left") sides.push_back(&profile.right);
+  double runout = 0, convexity = 0;
+  for (const SlopeProfile* s : sides) {
+    runout += s->runout / double(sides.size());
+    if (s->valid) convexity += s->convexity / double(sides.size());
+  }
+  return {{"repose_angle", angle_deg},
+          {"bed_height", bed_height},
+          {"heap_height", profile.height},
+          {"runout", runout},
+          {"profile_convexity", convexity}};
+}
+
+std::map<std::string, double> heap_measures(const ReposeResult& heap, const std::string& heap_side) {
+  return heap_measures(heap.angle_deg, heap.bed_height, heap.profile, heap_side);
+}
+
+std::vector<std::string> repose_keys() {
+  return {"lift_wall", "lift_end", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
+}
+
+void read_repose_keys(const Section& s, ExperimentSpec& ex) {
+  ex.lift_wall = s.text("lift_wall").value_or("");
+  if (ex.lift_wall.empty()) s.missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
+  if (auto t = s.number("lift_end")) ex.lift_end = non_negative(s, "lift_end", *t);
+  if (auto e = s.number("settle_energy")) ex.settle_energy = positive(s, "settle_energy", *e);
+  ex.view = s.choice<std::string>("view", {{"x", "x"}, {"y", "y"}}, ex.view);
+  ex.heap_side = s.choice<std::string>("heap_side", {{"left", "left"}, {"right", "right"}, {"both", "both"}}, ex.heap_side);
+  ex.axisymmetric = s.boolean("axisymmetric").value_or(false);
+  if (auto n = s.integer("views")) {
+    if (*n < 1 || *n > 180) s.fail("views", std::to_string(*n) + " must lie between 1 and 180");
+    ex.views = int(*n);
+    if (ex.views > 1 && ex.heap_side != "both")
+      s.fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
+  }
+  if (auto z = s.number("floor_z")) ex.heap_floor_z = *z;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The registered experiment.
+
+namespace {
+
+OrderedJson slope_json(const SlopeFit& s) {
+  OrderedJson j;
+  j["valid"] = s.valid;
+  if (s.valid) {
+    j["angle_deg"] = s.angle_deg;
+    j["from"] = s.from;
+    j["to"] = s.to;
+  } else {
+    j["problem"] = s.problem;
+  }
+  return j;
+}
+
+OrderedJson profile_json(const SlopeProfile& p) {
+  OrderedJson j;
+  j["runout"] = p.runout;
+  j["toe"] = p.toe;
+  j["convexity"] = p.valid ? OrderedJson(p.convexity) : OrderedJson(nullptr);
+  if (!p.valid) j["problem"] = p.problem;
+  return j;
+}
+
+OrderedJson views_json(const HeapViewsAngle& views) {
+  OrderedJson v;
+  v["mean_deg"] = views.mean_deg;
+  v["sd_deg"] = views.sd_deg;
+  v["valid_slopes"] = views.valid_slopes;
+  v["centre"] = {views.centre.x, views.centre.y};
+  OrderedJson per = OrderedJson::array();
+  auto angle = [](double a) { return std::isfinite(a) ? OrderedJson(a) : OrderedJson(nullptr); };
+  for (size_t k = 0; k < views.azimuth_deg.size(); ++k)
+    per.push_back({{"azimuth_deg", views.azimuth_deg[k]}, {"left_deg", angle(views.left_deg[k])},
+                   {"right_deg", angle(views.right_deg[k])}});
+  v["per_view"] = per;
+  return v;
+}
+
+OrderedJson axisymmetric_json(const AxisymmetricHeapAngle& heap) {
+  OrderedJson a;
+  a["mean_deg"] = heap.mean_deg;
+  a["spread_deg"] = heap.spread_deg;
+  a["min_deg"] = heap.min_deg;
+  a["max_deg"] = heap.max_deg;
+  a["valid_sectors"] = heap.valid_sectors;
+  a["centre"] = {heap.centre.x, heap.centre.y};
+  OrderedJson sectors = OrderedJson::array();
+  for (const auto& s : heap.sectors) {
+    OrderedJson e = slope_json(s.fit);
+    e["from_deg"] = s.from_deg;
+    e["to_deg"] = s.to_deg;
+    sectors.push_back(e);
+  }
+  a["sectors"] = sectors;
+  return a;
+}
+
+OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
+  OrderedJson j;
+  j["experiment"] = "repose";
+  j["case"] = spec.path;
+  j["heap_side"] = spec.experiment.heap_side;
+  j["angle_deg"] = r.angle_deg;
+  j["left"] = slope_json(r.heap.left);
+  j["right"] = slope_json(r.heap.right);
+  j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? OrderedJson(r.heap.mean_deg) : OrderedJson(nullptr);
+  j["heap_height"] = r.heap.heap_height;
+  j["bed_height"] = r.bed_height;
+  j["left_profile"] = profile_json(r.profile.left);
+  j["right_profile"] = profile_json(r.profile.right);
+  j["floor_z"] = r.heap.floor_z;
+  j["particles_measured"] = r.particles_measured;
+  j["settle_time"] = r.settle_time;
+  j["largest_kinetic_energy"] = r.kinetic_energy;
+  if (r.views) j["views"] = views_json(*r.views);
+  if (r.heap_3d) j["axisymmetric"] = axisymmetric_json(*r.heap_3d);
+  return j;
+}
+
+void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r) {
+  o.files.push_back({"energy.csv", [r](const std::string& path) {
+                       write_file_atomically(path, [&](std::ostream& out) {
+                         out << "t,largest_kinetic_energy\n";
+                         for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
+                       });
+                     }});
+  o.files.push_back({"heap.csv", [r](const std::string& path) {
+                       write_file_atomically(path, [&](std::ostream& out) {
+                         out << "x,y,z,radius\n";
+                         for (const auto& s : r->spheres)
+                           out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
+                       });
+                     }});
+  if (!r->wall_forces.rows.empty())
+    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
+                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
+                       }});
+  o.files.push_back({"heap.png", [r](const std::string& path) { write_heap_angle_png(path, r->heap); }});
+}
+
+std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& r) {
+  auto side = [](const SlopeFit& s) { return s.valid ? std::to_string(s.angle_deg).substr(0, 5) + " deg" : std::string("none"); };
+  std::vector<std::string> lines;
+  lines.push_back(printf_text("repose %s: angle of repose %.2f deg (left %s, right %s), heap %.3g m high, %zu particles",
+                              spec.name.c_str(), r.angle_deg, side(r.heap.left).c_str(), side(r.heap.right).c_str(),
+                              r.heap.heap_height, r.particles_measured));
+  for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
+    lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
+                                p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));
+  lines.push_back(printf_text("  bed before the lift: %.4g m high", r.bed_height));
+  if (r.views)
+    lines.push_back(printf_text("  %zu views around the heap: mean %.2f deg, sd %.2f deg over %d slopes (the angle)",
+                                r.views->azimuth_deg.size(), r.views->mean_deg, r.views->sd_deg, r.views->valid_slopes));
+  if (r.heap_3d)
+    lines.push_back(printf_text("  3D sector fit: mean %.2f deg, spread %.2f deg over %d sectors", r.heap_3d->mean_deg,
+                                r.heap_3d->spread_deg, r.heap_3d->valid_sectors));
+  return lines;
+}
+
+}  // namespace
+
+std::vector<std::string> ReposeExperiment::responses() const {
+  return {"angle", "angle_3d", "angle_front", "angle_views_sd", "heap_height", "settle_time", "particles_measured"};
+}
+
+ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
+  auto r = std::make_shared<const ReposeResult>(run_repose(spec, run, false, run.strict));
+  ExperimentOutcome o;
+  if (!r->sloped) {
+    o.status = OutcomeStatus::NoSlope;
+    o.problem = r->problem;
+    return o;
+  }
+  if (!run.picture_path.empty()) write_heap_angle_png(run.picture_path, r->heap);
+  o.values = {{"angle", r->angle_deg}, {"heap_height", r->heap.heap_height}, {"settle_time", r->settle_time},
+              {"particles_measured", double(r->particles_measured)}};
+  if (r->heap_3d && r->heap_3d->valid_sectors > 0) o.values["angle_3d"] = r->heap_3d->mean_deg;
+  o.values["angle_front"] = r->heap.mean_deg;  // the single front view, also when the angle is several views' mean
+  if (r->views) o.values["angle_views_sd"] = r->views->sd_deg;
+  o.json = repose_json(spec, *r);
+  add_repose_files(o, r);
+  o.lines = repose_lines(spec, *r);
+  o.written = [](const std::string& dir) { return "wrote " + dir + "/repose.json, heap.png, heap.csv, energy.csv, wall_forces.csv"; };
+  return o;
+}
+
+const DiagnosisRole* ReposeExperiment::diagnosis() const {
+  static const DiagnosisRole role = [] {
+    DiagnosisRole r;
+    r.measures = {{"repose_angle", false, "deg"}, {"bed_height", false, "m"},  {"heap_height", false, "m"},
+                  {"runout", false, "m"},         {"profile_convexity", false, "1"}};
+    r.synthetic = {"repose_angle", "bed_height"};
+    r.baseline = {"static_friction", "1", 0.05, 1.2, false};
+    r.baseline_field = &Interaction::static_friction;
+    r.baseline_model = "Hertz-Mindlin, one grain size, constant rolling torque";
+    r.condition = "fill.0.count";
+    r.truth_option = "grain_friction";
+    r.separating = SeparatingMeasurement::Packing;
+    r.expensive = true;  // a heap costs ~1000 drops
+    return r;
+  }();
+  return &role;
+}
+
+// The grains' contact with each other: the first [[fill]]'s material with itself.
+Interaction& ReposeExperiment::tested_contact(CaseSpec& spec) const {
+  if (spec.fills.empty()) throw std::runtime_error(spec.path + ": the case has no [[fill]] of grains");
+  int a = spec.fills[0].material;
+  for (auto& in : spec.interactions)
+    if (in.material_a == a && in.material_b == a) return in;
+  throw std::runtime_error(spec.path + ": no [[interaction]] of the grains' material with itself");
+}
+
+std::string ReposeExperiment::diagnosis_problem(const CaseSpec& spec) const {
+  bool sphere_fills = !spec.fills.empty();
+  size_t filled = 0;
+  for (const FillSpec& f : spec.fills) {
+    sphere_fills = sphere_fills && f.template_index < 0;
+    filled += size_t(f.count);
+  }
+  if (sphere_fills && spec.lattices.empty() && spec.bodies.empty() && spec.spheres.size() == filled) return "";
+  return "diagnose fills heaps from sphere [[fill]]s only (no [[sphere]], [[lattice]] or clumps), so that replicates "
+         "and size spreads can refill them";
+}
+
+// A fill too tight for a model's grains is placed again (heap_fill.h); the spec's fills say how.
+void ReposeExperiment::replicate(CaseSpec& spec, int r) const {
+  spec.seed += uint64_t(r);
+  for (FillSpec& f : spec.fills) f.seed += uint64_t(r);
+  fill_heap(spec);
+}
+
+void ReposeExperiment::reseed(CaseSpec& spec, uint64_t seed) const {
+  for (FillSpec& f : spec.fills) f.seed = seed;
+  fill_heap(spec);
+}
+
+DiagnosticOutcome ReposeExperiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
+                                                           bool strict) const {
+  DiagnosticOutcome out;
+  if (std::all_of(wanted.begin(), wanted.end(), [](const std::string& m) { return m == "bed_height"; })) {
+    out.values["bed_height"] = measure_bed_height(spec);  // the bed alone: no lift, no heap
+    return out;
+  }
+  // A lone grain that keeps spinning on the floor does not change the heap: measured unsettled.
+  // A model far from the data (met while searching) whose heap shows no slope, or no heap at all
+  // (grains so sticky that the soft contacts blow apart): no heap (zeros), so the search moves
+  // away from it.
+  try {
+    ReposeResult r = run_repose(spec, {}, true, strict);
+    if (r.sloped) {
+      out.values = heap_measures(r, spec.experiment.heap_side);
+      return out;
+    }
+  } catch (const std::exception& e) {
+    bool no_heap = dynamic_cast<const std::invalid_argument*>(&e) ||
+                   std::string(e.what()).find("no particle is left") != std::string::npos;
+    if (strict || !no_heap) throw;
+  }
+  for (const std::string& m : heap_measure_names()) out.values[m] = 0;
+  return out;
+}
+
+// Lengths a thousand times the rig's size are millimetres written as metres.
+std::string ReposeExperiment::implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const {
+  double fill_height = 0;  // the tallest [[fill]] region: a bed cannot stand higher
+  for (const FillSpec& f : spec.fills)
+    fill_height = std::max(fill_height, f.shape == FillSpec::Shape::Box ? f.box_max[2] - f.box_min[2] : f.cyl_height);
+  if (m.unit != "m" || !(fill_height > 0) || !(value > 10 * fill_height)) return "";
+  return std::to_string(value) + " m is more than ten times the fill region's height " + std::to_string(fill_height) +
+         " m: millimetres? Values are in SI units (m)";
+}
+
+const Experiment& repose_experiment() {
+  static const ReposeExperiment repose;
+  return repose;
 }
 
 }  // namespace repose

@@ -1,13 +1,15 @@
-// Angle-of-repose rigs of the seeds: the particles settle in a container, one wall of it lifts
+// Angle-of-repose rigs of the studies: the particles settle in a container, one wall of it lifts
 // or is pulled (drawing-plate baffle, bottomless cylinder, bucket gate: the case's [[wall]]
-// motion), the heap settles, and its angle is measured from a front-view picture as the seeds
-// did (host/measure): both slopes, their mean, and for axisymmetric heaps a 3D sector fit.
+// motion), the heap settles, and its angle is measured from a front-view picture as the
+// studies did (host/measure): both slopes, their mean, and for axisymmetric heaps a 3D sector fit.
 #pragma once
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "case/case_spec.h"
-#include "engine/backend.h"
+#include "experiments/experiment.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 #include "measure/heap_angle.h"
@@ -30,6 +32,8 @@ struct ReposeResult {
   double kinetic_energy = 0;      // J, the largest of any particle (or body) then
   bool settled = true;            // false: measured at max_time while something still moved
                                   // (only when the caller allows it, see run_repose)
+  bool sloped = true;             // false: no measurable slope (require_slope off; angle 0)
+  std::string problem;            // then: why, in words
   size_t particles_measured = 0;  // above the heap floor
   std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
   std::vector<Sphere> spheres;    // the settled heap
@@ -42,10 +46,52 @@ struct ReposeResult {
 // the heap as it stands at max_time, settled = false; the diagnosis does, since a lone grain that
 // keeps spinning on the floor, as one can under rolling = "epsd", which has no twisting
 // resistance, leaves the heap's shape as it is) or the measurement finds no slope.
-// The bed height (measure/bed_height.h) of the grains in a simulation state.
-double bed_height(const HostState& state, const std::optional<double>& floor_z);
-
+// `require_slope` false: a heap without a measurable slope is a result (sloped false), not an error.
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options = {},
-                        bool measure_unsettled = false);
+                        bool measure_unsettled = false, bool require_slope = true);
+
+// The bed alone, run up to the lift (a third of a heap's cost): run_repose's bed_height.
+double measure_bed_height(const CaseSpec& spec);
+
+// What a diagnosed heap reports, by measure name: the angle and the bed height, and the shape of
+// the heap in the same picture (measure/heap_profile.h): its height, its run-out and its profile's
+// convexity, taken on heap_side (the two sides' mean for "both"). In the order data files list
+// them: repose_angle, bed_height, heap_height, runout, profile_convexity.
+const std::vector<std::string>& heap_measure_names();
+std::map<std::string, double> heap_measures(const ReposeResult& heap, const std::string& heap_side);
+// The same from a measured picture (repose heap-angle on a user's own heap): the angle of the side
+// asked for, the bed height of a bed before the lift. A side whose profile could not be measured
+// gives a convexity of 0, as a flat heap would; its run-out is still measured.
+std::map<std::string, double> heap_measures(double angle_deg, double bed_height, const HeapProfile& profile,
+                                            const std::string& heap_side);
+
+// The [experiment] keys of a repose rig, and their reader.
+std::vector<std::string> repose_keys();
+void read_repose_keys(const Section& s, ExperimentSpec& ex);
+
+// The angle of repose as a registered experiment: `repose experiment repose` writes repose.json,
+// heap.png, heap.csv, energy.csv and wall_forces.csv; a diagnosis fits the grains' sliding
+// friction to angles and bed heights of heaps filled from sphere [[fill]]s.
+class ReposeExperiment : public Experiment {
+ public:
+  std::string id() const override { return "repose"; }
+  std::string description() const override { return "repose (angle of repose of a rig)"; }
+  std::vector<std::string> keys() const override { return repose_keys(); }
+  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_repose_keys(s, ex); }
+  std::vector<std::string> responses() const override;
+  ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  const DiagnosisRole* diagnosis() const override;
+  Interaction& tested_contact(CaseSpec& spec) const override;
+  std::string diagnosis_problem(const CaseSpec& spec) const override;
+  void prepare_for_diagnosis(CaseSpec& spec) const override { spec.spheres.clear(); }
+  void replicate(CaseSpec& spec, int r) const override;
+  void reseed(CaseSpec& spec, uint64_t seed) const override;
+  bool stochastic(const CaseSpec&) const override { return true; }
+  DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
+                                           bool strict) const override;
+  std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;
+};
+
+const Experiment& repose_experiment();
 
 }  // namespace repose

@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "engine/backend_factory.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/tilt.h"
+#include "util/atomic_file.h"
 #include "util/progress.h"
 
 namespace repose {
@@ -108,6 +111,148 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
   progress.finish();
   r.mu_r = S * std::sin(beta) / (S * std::cos(beta) + r.rolling_distance);
   return r;
+}
+
+std::vector<std::string> roll_keys() {
+  std::vector<std::string> keys = tilt_keys();
+  keys.insert(keys.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
+  return keys;
+}
+
+void read_roll_keys(const Section& s, ExperimentSpec& ex) {
+  read_tilt_keys(s, ex);
+  ex.method = s.choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
+  if (auto b = s.number("incline_angle")) {
+    if (!(*b > 0 && *b < 60)) s.fail("incline_angle", format_number(*b) + " must lie between 0 and 60 degrees");
+    ex.incline_deg = *b;
+  }
+  if (auto d = s.number("slope_distance")) ex.slope_distance = positive(s, "slope_distance", *d);
+  if (auto v = s.number("stop_speed")) ex.stop_speed = positive(s, "stop_speed", *v);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The registered experiments.
+
+std::vector<std::string> RollExperiment::responses() const {
+  return {"rolling_distance", "mu_r", "stop_time", "speed_at_foot"};
+}
+
+ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
+  auto r = std::make_shared<RollResult>(run_roll(spec, run, run.strict));
+  ExperimentOutcome o;
+  if (!r->stopped) {
+    o.status = OutcomeStatus::StillRolling;
+    o.problem = spec.path + ": the body had not stopped on the floor after max_time = " +
+                std::to_string(spec.experiment.max_time) + " s";
+  }
+  o.values = {{"rolling_distance", r->rolling_distance}, {"mu_r", r->mu_r}, {"stop_time", r->stop_time},
+              {"speed_at_foot", r->speed_at_foot}};
+  OrderedJson& j = o.json;
+  j["experiment"] = "roll";
+  j["method"] = "incline";
+  j["case"] = spec.path;
+  j["incline_deg"] = r->incline_deg;
+  j["slope_distance"] = r->slope_distance;
+  j["rolling_distance"] = r->rolling_distance;
+  j["mu_r"] = r->mu_r;
+  j["speed_at_foot"] = r->speed_at_foot;
+  j["stop_time"] = r->stop_time;
+  o.files.push_back({"trajectory.csv", [r](const std::string& path) {
+                       write_file_atomically(path, [&](std::ostream& out) {
+                         out << "t,x,speed\n";
+                         for (const auto& s : r->trajectory) out << s.time << "," << s.x << "," << s.speed << "\n";
+                       });
+                     }});
+  if (!r->wall_forces.rows.empty())
+    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
+                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
+                       }});
+  o.lines.push_back(printf_text(
+      "roll %s: beta = %.3g deg, S = %.4g m, rolling distance L = %.4g m, mu_r = S sin(beta) / (S cos(beta) + L) = %.4f",
+      spec.name.c_str(), r->incline_deg, r->slope_distance, r->rolling_distance, r->mu_r));
+  o.written = [](const std::string& dir) { return "wrote " + dir + "/roll.json, trajectory.csv, wall_forces.csv"; };
+  return o;
+}
+
+// Rolling friction spans decades between a ball bearing and a cabbage: searched in log.
+const DiagnosisRole* RollExperiment::diagnosis() const {
+  static const DiagnosisRole role = [] {
+    DiagnosisRole r;
+    r.measures = {{"roll_distance", false, "m"}};
+    r.synthetic = {"roll_distance"};
+    r.baseline = {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true};
+    r.baseline_field = &Interaction::rolling_friction;
+    r.baseline_model = "Hertz-Mindlin, constant rolling torque, no air";
+    r.condition = "experiment.slope_distance";
+    r.truth_option = "plate_friction";
+    return r;
+  }();
+  return &role;
+}
+
+Interaction& RollExperiment::tested_contact(CaseSpec& spec) const { return body_plate_contact(spec); }
+
+std::string RollExperiment::diagnosis_problem(const CaseSpec& spec) const { return one_body_problem(spec); }
+
+DiagnosticOutcome RollExperiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>&,
+                                                         bool strict) const {
+  // A model far from the data (met while searching) may roll on past max_time: predict the
+  // distance reached by then, so the search moves away from it.
+  RollResult r = run_roll(spec, {}, strict);
+  return {{{"roll_distance", r.rolling_distance}}, {}};
+}
+
+// Energy: a body rolling against mu_r m g R stops within S sin(beta) / mu_r; at the smallest
+// rolling friction a diagnosis fits that bounds any honest L.
+std::string RollExperiment::implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const {
+  if (m.name != "roll_distance") return "";
+  double beta = spec.experiment.incline_deg * kPi / 180;
+  double longest = spec.experiment.slope_distance * std::sin(beta) / kSmallestRollingFriction;
+  if (!(value > longest)) return "";
+  return std::to_string(value) + " m is farther than the body can roll from S = " +
+         std::to_string(spec.experiment.slope_distance) + " m at rolling friction " +
+         std::to_string(kSmallestRollingFriction).substr(0, 5) + " (" + std::to_string(longest) +
+         " m): millimetres? Values are in SI units (m)";
+}
+
+const Experiment& roll_experiment() {
+  static const RollExperiment roll;
+  return roll;
+}
+
+namespace {
+
+// Roll with method "tilt": a tilting-plate test that reads the roll keys.
+class RollTiltExperiment : public TiltExperiment {
+ public:
+  RollTiltExperiment()
+      : TiltExperiment("roll_tilt", "roll", "roll", "mu_r", role()) {}
+  std::string description() const override { return "roll, method tilt (mu_r: the tilt at which the body rolls)"; }
+
+ private:
+  static DiagnosisRole role() {
+    DiagnosisRole r;
+    r.measures = {{"roll_angle", false, "deg"}};
+    r.synthetic = {"roll_angle"};
+    r.baseline = {"rolling_friction", "1", kSmallestRollingFriction, 0.3, true};
+    r.baseline_field = &Interaction::rolling_friction;
+    r.baseline_model = "Hertz-Mindlin, constant rolling torque, no cohesion";
+    r.condition = "material.0.density";
+    r.truth_option = "plate_friction";
+    return r;
+  }
+
+ public:
+  bool handles(const CaseSpec& spec) const override { return spec.experiment.method == "tilt"; }
+  std::vector<std::string> keys() const override { return roll_keys(); }
+  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_roll_keys(s, ex); }
+};
+
+}  // namespace
+
+const Experiment& roll_tilt_experiment() {
+  static const RollTiltExperiment roll_tilt;
+  return roll_tilt;
 }
 
 }  // namespace repose

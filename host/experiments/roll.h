@@ -1,10 +1,11 @@
-// The inclined rolling test of the cabbage seed: the body is released at rest on a plate inclined
+// The inclined rolling test of the cabbage study: the body is released at rest on a plate inclined
 // at beta, its contact point a slope distance S above the foot, rolls down and onto a horizontal
-// plate, and stops after a distance L there; mu_r = S sin(beta) / (S cos(beta) + L) (seed Eq. 4).
+// plate, and stops after a distance L there; mu_r = S sin(beta) / (S cos(beta) + L) (the study's Eq. 4).
 #pragma once
 #include <vector>
 
 #include "case/case_spec.h"
+#include "experiments/experiment.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 
@@ -19,7 +20,7 @@ struct RollSample {
 struct RollResult {
   double incline_deg = 0, slope_distance = 0;
   double rolling_distance = 0;  // L, m, from the foot of the incline to where the body stopped
-  double mu_r = 0;              // the seed's formula
+  double mu_r = 0;              // the study's formula
   double stop_time = 0;
   double speed_at_foot = 0;     // m/s when the centre passed the foot
   bool stopped = true;          // false: still rolling at max_time (only when not required)
@@ -32,5 +33,37 @@ struct RollResult {
 // the case's walls. Throws std::runtime_error naming the case when the body does not stop on
 // the floor by max_time, unless `require_stop` is false: then L is where it got to by then.
 RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_stop = true);
+
+// The smallest rolling friction a diagnosis tries (a ball bearing): also what bounds a believable
+// rolling distance in measured data.
+constexpr double kSmallestRollingFriction = 0.002;
+
+// The [experiment] keys of a roll case (both methods: the tilt keys, method and the incline's),
+// and their reader.
+std::vector<std::string> roll_keys();
+void read_roll_keys(const Section& s, ExperimentSpec& ex);
+
+// The incline roll as a registered experiment: `repose experiment roll` writes roll.json,
+// trajectory.csv and wall_forces.csv; a diagnosis fits the body-plate rolling friction to L.
+class RollExperiment : public Experiment {
+ public:
+  std::string id() const override { return "roll"; }
+  std::string description() const override { return "roll (rolling friction: incline + floor)"; }
+  bool handles(const CaseSpec& spec) const override { return spec.experiment.method != "tilt"; }
+  std::vector<std::string> keys() const override { return roll_keys(); }
+  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_roll_keys(s, ex); }
+  std::vector<std::string> responses() const override;
+  ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  const DiagnosisRole* diagnosis() const override;
+  Interaction& tested_contact(CaseSpec& spec) const override;
+  std::string diagnosis_problem(const CaseSpec& spec) const override;
+  DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
+                                           bool strict) const override;
+  std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;
+};
+
+const Experiment& roll_experiment();
+// Roll with method "tilt": the tilt at which a body starts to roll (a tilting-plate test).
+const Experiment& roll_tilt_experiment();
 
 }  // namespace repose

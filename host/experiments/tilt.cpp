@@ -3,12 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "engine/backend_factory.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "util/atomic_file.h"
 #include "util/progress.h"
 
 namespace repose {
@@ -33,7 +35,7 @@ Vec3d rotate(Vec3d v, Vec3d k, double a) {
 
 }  // namespace
 
-TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) {
+TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
   CaseSpec spec = input;
   const ExperimentSpec& ex = spec.experiment;
   size_t plate_index = find_wall(spec, ex.plate, "tilting plate");
@@ -80,12 +82,16 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
   r.trajectory.push_back(previous);
   r.wall_forces.sample(sim);
   while (true) {
-    if (sim.time() >= end_time)
-      throw std::runtime_error(spec.path + ": the body did not move by " +
-                               (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
-                                                   : std::to_string(ex.onset_distance) + " m") +
-                               " up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
-                               " degrees (max_angle, max_time)");
+    if (sim.time() >= end_time) {
+      if (require_motion)
+        throw std::runtime_error(spec.path + ": the body did not move by " +
+                                 (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
+                                                     : std::to_string(ex.onset_distance) + " m") +
+                                 " up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
+                                 " degrees (max_angle, max_time)");
+      r.moved = false;
+      break;
+    }
     sim.advance(sample_steps);
     Vec3d w = first_body_spin(sim.state());
     for (int k = 0; k < 3; ++k) turned[k] += w[k] * double(sample_steps) * model.dt;
@@ -120,6 +126,111 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options) 
   progress.finish();
   r.tan_alpha = std::tan(r.onset_angle_deg * kPi / 180);
   return r;
+}
+
+std::vector<std::string> tilt_keys() {
+  return {"plate", "tilt_rate", "tilt_axis", "settle_time", "onset_distance", "onset_speed", "max_angle"};
+}
+
+void read_tilt_keys(const Section& s, ExperimentSpec& ex) {
+  ex.plate = s.text("plate").value_or("");
+  if (auto r = s.number("tilt_rate")) ex.tilt_rate_deg = positive(s, "tilt_rate", *r);
+  if (auto a = s.vector3("tilt_axis")) ex.tilt_axis = unit_vector(s, "tilt_axis", *a);
+  if (auto t = s.number("settle_time")) ex.settle_time = non_negative(s, "settle_time", *t);
+  if (auto d = s.number("onset_distance")) ex.onset_distance = positive(s, "onset_distance", *d);
+  if (auto v = s.number("onset_speed")) ex.onset_speed = non_negative(s, "onset_speed", *v);
+  if (auto a = s.number("max_angle")) {
+    if (!(*a > 0 && *a < 90)) s.fail("max_angle", format_number(*a) + " must lie between 0 and 90 degrees");
+    ex.max_angle_deg = *a;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The registered experiments.
+
+std::vector<std::string> TiltExperiment::responses() const {
+  return {"onset_angle_deg", "tan_alpha", "onset_time", "rolled_fraction"};
+}
+
+ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
+  auto r = std::make_shared<TiltResult>(run_tilt(spec, run, run.strict));
+  ExperimentOutcome o;
+  if (!r->moved) {
+    o.status = OutcomeStatus::DidNotMove;
+    o.problem = spec.path + ": the body did not move up to max_angle = " + format_number(spec.experiment.max_angle_deg) +
+                " degrees (or max_time)";
+    return o;
+  }
+  o.values = {{"onset_angle_deg", r->onset_angle_deg}, {"tan_alpha", r->tan_alpha}, {"onset_time", r->onset_time},
+              {"rolled_fraction", r->rolled_fraction}};
+  OrderedJson& j = o.json;
+  j["experiment"] = spec.experiment.type;
+  j["method"] = "tilt";
+  j["case"] = spec.path;
+  j["tilt_rate_deg_per_s"] = spec.experiment.tilt_rate_deg;
+  j["onset_distance"] = spec.experiment.onset_distance;
+  j["onset_angle_deg"] = r->onset_angle_deg;
+  j["onset_time"] = r->onset_time;
+  j[quantity_] = r->tan_alpha;
+  j["rolled_fraction"] = r->rolled_fraction;
+  o.files.push_back({"trajectory.csv", [r](const std::string& path) {
+                       write_file_atomically(path, [&](std::ostream& out) {
+                         out << "t,angle_deg,displacement\n";
+                         for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
+                       });
+                     }});
+  if (!r->wall_forces.rows.empty())
+    o.files.push_back({"wall_forces.csv", [r](const std::string& path) {
+                         write_file_atomically(path, [&](std::ostream& out) { r->wall_forces.write_csv(out); });
+                       }});
+  o.lines.push_back(printf_text("%s %s: the body starts to %s at alpha = %.3f deg, %s = tan(alpha) = %.4f (rolled fraction %.2f)",
+                                type_.c_str(), spec.name.c_str(), motion_.c_str(), r->onset_angle_deg, quantity_.c_str(),
+                                r->tan_alpha, r->rolled_fraction));
+  std::string type = type_;
+  o.written = [type](const std::string& dir) { return "wrote " + dir + "/" + type + ".json, trajectory.csv, wall_forces.csv"; };
+  return o;
+}
+
+Interaction& body_plate_contact(CaseSpec& spec) {
+  int a = 0;
+  if (!spec.spheres.empty()) a = spec.spheres[0].material;
+  else if (!spec.bodies.empty()) a = spec.bodies[0].material;
+  else throw std::runtime_error(spec.path + ": the case has no body");
+  const WallSpec& plate = spec.walls.at(find_wall(spec, spec.experiment.plate, "plate"));
+  return interaction_between(spec, a, plate.material, "the body and the plate");
+}
+
+std::string one_body_problem(const CaseSpec& spec) {
+  bool one_body = spec.fills.empty() && spec.lattices.empty() &&
+                  ((spec.spheres.size() == 1 && spec.bodies.empty()) || (spec.spheres.empty() && spec.bodies.size() == 1));
+  return one_body ? "" : "diagnose tilts or rolls one body (one [[sphere]] or one [[clump]], no fills or lattices)";
+}
+
+Interaction& TiltExperiment::tested_contact(CaseSpec& spec) const { return body_plate_contact(spec); }
+
+std::string TiltExperiment::diagnosis_problem(const CaseSpec& spec) const { return one_body_problem(spec); }
+
+DiagnosticOutcome TiltExperiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>&,
+                                                         bool strict) const {
+  TiltResult r = run_tilt(spec, {}, strict);
+  // The body held on up to max_angle: predict max_angle, the most the rig can tell.
+  double angle = r.moved ? r.onset_angle_deg : spec.experiment.max_angle_deg;
+  return {{{role_.measures.front().name, angle}}, {}};
+}
+
+const Experiment& slide_experiment() {
+  static const TiltExperiment slide("slide", "slide", "slide", "mu_s", [] {
+    DiagnosisRole r;
+    r.measures = {{"slide_angle", false, "deg"}};
+    r.synthetic = {"slide_angle"};
+    r.baseline = {"static_friction", "1", 0.05, 1.2, false};
+    r.baseline_field = &Interaction::static_friction;
+    r.baseline_model = "Hertz-Mindlin, Coulomb friction, no cohesion";
+    r.condition = "material.0.density";
+    r.truth_option = "plate_friction";
+    return r;
+  }());
+  return slide;
 }
 
 }  // namespace repose

@@ -1,11 +1,13 @@
-// The tilting-plate tests of both seeds: a body rests on a plate that tilts slowly at a constant
+// The tilting-plate tests of both studies: a body rests on a plate that tilts slowly at a constant
 // rate from level; the tilt at which the body starts to move down the plate gives
-// mu = tan(alpha): sliding for a body that cannot roll (cabbage seed, four bonded cabbages:
-// static friction), rolling for a single stalk (cotton seed: rolling friction angle).
+// mu = tan(alpha): sliding for a body that cannot roll (the cabbage study's four bonded
+// cabbages: static friction), rolling for a single stalk (the cotton-stalk study: rolling friction
+// angle).
 #pragma once
 #include <vector>
 
 #include "case/case_spec.h"
+#include "experiments/experiment.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 
@@ -21,6 +23,7 @@ struct TiltResult {
   double tan_alpha = 0;        // mu_s (slide) or the rolling friction coefficient (tilt roll)
   double onset_time = 0;       // s
   double rolled_fraction = 0;  // first body's rotation x rolling radius / displacement: ~1 rolls, ~0 slides
+  bool moved = true;           // false: held on up to max_angle or max_time (require_motion off)
   std::vector<TiltSample> trajectory;
   WallForceSeries wall_forces;
 };
@@ -28,7 +31,47 @@ struct TiltResult {
 // The plate is [experiment] plate (default the first wall: a rectangle or a plane); its motion is
 // replaced by the tilt: about tilt_axis through its centre at tilt_rate deg/s after settle_time.
 // Onset: the body centre moved onset_distance relative to the plate. Throws std::runtime_error
-// naming the case when the body never moves up to max_angle, or at max_time.
-TiltResult run_tilt(const CaseSpec& spec, const ExperimentRunOptions& options = {});
+// naming the case when the body never moves up to max_angle, or at max_time (unless
+// `require_motion` is false: then moved is false).
+TiltResult run_tilt(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_motion = true);
+
+// The [experiment] keys of a tilting plate, and their reader.
+std::vector<std::string> tilt_keys();
+void read_tilt_keys(const Section& s, ExperimentSpec& ex);
+
+// A tilting-plate test as a registered experiment: `repose experiment` writes TYPE.json,
+// trajectory.csv and wall_forces.csv; its outcome is the onset angle, tan(alpha) and how much
+// the body rolled; a diagnosis fits the body-plate friction the test measures to the onset angle.
+class TiltExperiment : public Experiment {
+ public:
+  // motion: what the body starts to do ("slide", "roll"); quantity: what tan(alpha) is ("mu_s").
+  TiltExperiment(std::string id, std::string type, std::string motion, std::string quantity, DiagnosisRole role)
+      : id_(std::move(id)), type_(std::move(type)), motion_(std::move(motion)), quantity_(std::move(quantity)),
+        role_(std::move(role)) {}
+  std::string id() const override { return id_; }
+  std::string type() const override { return type_; }
+  std::string description() const override { return type_ + " (" + quantity_ + " on a tilting plate)"; }
+  std::vector<std::string> keys() const override { return tilt_keys(); }
+  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_tilt_keys(s, ex); }
+  std::vector<std::string> responses() const override;
+  ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  const DiagnosisRole* diagnosis() const override { return &role_; }
+  Interaction& tested_contact(CaseSpec& spec) const override;
+  std::string diagnosis_problem(const CaseSpec& spec) const override;
+  DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
+                                           bool strict) const override;
+
+ private:
+  std::string id_, type_, motion_, quantity_;
+  DiagnosisRole role_;
+};
+
+// The contact between a tilt or roll case's body (its first sphere, else its first clump) and its
+// plate ([experiment] plate, default the first wall); throws naming the case when absent.
+Interaction& body_plate_contact(CaseSpec& spec);
+// Why a diagnosis cannot tilt or roll this case's body ("" when it can: one sphere or one clump).
+std::string one_body_problem(const CaseSpec& spec);
+
+const Experiment& slide_experiment();
 
 }  // namespace repose

@@ -5,13 +5,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "case/case_error.h"
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
+#include "case/case_error.h"
 #include "diagnosis/bond_number.h"
-#include "diagnosis/heap_bed.h"
-#include "diagnosis/heap_fill.h"
 #include "diagnosis/predictor.h"
+#include "experiments/heap_fill.h"
 #include "experiments/repose.h"
 
 using namespace repose;
@@ -109,7 +108,6 @@ TEST_CASE("the bed alone (no lift) measures the bed height run_repose measures, 
   CHECK(bed == heap.bed_height);
   CHECK(bed > 0.03);  // 120 grains of 10 mm over 80 x 30 mm: ~5 cm at a packing fraction of 0.55
 }
-
 TEST_CASE("a size spread too tight for the fill box is placed largest first, never lost", "[diagnosis][heap]") {
   // The issue's failure: 250 grains with a spread of 0.4 (radii 3-7 mm) in the slot's 80 x 30 x
   // 300 mm box: random sequential addition leaves some without room.
@@ -192,3 +190,4 @@ TEST_CASE("granular Bond number of the slot heap's grains: pull-off force over w
   CHECK(heap_bond_number(spec, params[0].lo) == Approx(1e-3));
   CHECK(heap_bond_number(spec, params[0].hi) == Approx(3));
 }
+

@@ -20,7 +20,7 @@ SyntheticTruth heap_truth(uint64_t seed) {
   truth.replicates = 6;
   truth.angle_noise = 0.5;
   truth.noise = 5e-4;
-  truth.heap_measures = {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"};
+  truth.measures = {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"};
   truth.seed = seed;
   return truth;
 }

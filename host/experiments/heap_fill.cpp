@@ -1,4 +1,4 @@
-#include "diagnosis/heap_fill.h"
+#include "experiments/heap_fill.h"
 
 #include <cmath>
 

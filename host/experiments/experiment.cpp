@@ -1,0 +1,42 @@
+#include "experiments/experiment.h"
+
+#include <cstdarg>
+#include <cstdio>
+#include <stdexcept>
+
+#include "util/atomic_file.h"
+
+namespace repose {
+
+Interaction& Experiment::tested_contact(CaseSpec& spec) const {
+  throw std::runtime_error(spec.path + ": the " + id() + " experiment names no contact it calibrates");
+}
+
+DiagnosticOutcome Experiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>&, bool) const {
+  throw std::runtime_error(spec.path + ": diagnose does not simulate the " + id() + " experiment");
+}
+
+const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome) {
+  if (outcome.status != OutcomeStatus::Measured) throw std::runtime_error(outcome.problem);
+  return outcome;
+}
+
+std::vector<std::string> write_outcome(const ExperimentOutcome& outcome, const std::string& json_name,
+                                       const std::string& dir) {
+  write_file_atomically(dir + "/" + json_name, [&](std::ostream& o) { o << outcome.json.dump(2) << "\n"; });
+  for (const OutputFile& f : outcome.files) f.write(dir + "/" + f.name);
+  std::vector<std::string> lines = outcome.lines;
+  if (outcome.written) lines.push_back(outcome.written(dir));
+  return lines;
+}
+
+std::string printf_text(const char* format, ...) {
+  char buf[1024];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buf, sizeof buf, format, args);
+  va_end(args);
+  return buf;
+}
+
+}  // namespace repose

@@ -1,0 +1,76 @@
+#include "experiments/registry.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "case/experiment_keys.h"
+#include "experiments/drop.h"
+#include "experiments/repose.h"
+#include "experiments/roll.h"
+#include "experiments/tilt.h"
+
+namespace repose {
+
+const std::vector<const Experiment*>& experiments() {
+  // Adding an experiment: its own file, and one line here.
+  static const std::vector<const Experiment*> list = {
+      &drop_experiment(),
+      &slide_experiment(),
+      &roll_experiment(),
+      &roll_tilt_experiment(),
+      &repose_experiment(),
+  };
+  return list;
+}
+
+const Experiment* experiment_for(const CaseSpec& spec) {
+  for (const Experiment* e : experiments())
+    if (e->type() == spec.experiment.type && e->handles(spec)) return e;
+  return nullptr;
+}
+
+const Experiment& experiment_of_type(const std::string& type, const CaseSpec& spec) {
+  for (const Experiment* e : experiments())
+    if (e->type() == type && e->handles(spec)) return *e;
+  std::string known;
+  for (const auto& t : experiment_types()) known += (known.empty() ? "" : ", ") + t;
+  throw std::runtime_error("unknown experiment '" + type + "' (" + known + ")");
+}
+
+std::vector<std::string> experiment_types() {
+  std::vector<std::string> types;
+  for (const Experiment* e : experiments())
+    if (std::find(types.begin(), types.end(), e->type()) == types.end()) types.push_back(e->type());
+  return types;
+}
+
+std::vector<std::string> responses_of_type(const std::string& type) {
+  std::vector<std::string> names;
+  for (const Experiment* e : experiments())
+    if (e->type() == type)
+      for (const auto& r : e->responses())
+        if (std::find(names.begin(), names.end(), r) == names.end()) names.push_back(r);
+  return names;
+}
+
+std::vector<MeasureInfo> diagnosed_measures() {
+  std::vector<MeasureInfo> measures;
+  for (const Experiment* e : experiments())
+    if (const DiagnosisRole* role = e->diagnosis())
+      for (const MeasureInfo& m : role->measures)
+        if (std::none_of(measures.begin(), measures.end(), [&](const MeasureInfo& k) { return k.name == m.name; }))
+          measures.push_back(m);
+  return measures;
+}
+
+void install_experiments() {
+  std::vector<ExperimentKeyReader> readers;
+  for (const Experiment* e : experiments()) {
+    bool known = std::any_of(readers.begin(), readers.end(), [&](const auto& r) { return r.type == e->type(); });
+    if (!known)
+      readers.push_back({e->type(), e->keys(), [e](const Section& s, ExperimentSpec& ex) { e->read_keys(s, ex); }});
+  }
+  set_experiment_key_readers(std::move(readers));
+}
+
+}  // namespace repose
