@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -14,11 +15,14 @@
 #include "cli/verbs.h"
 #include "util/hash.h"
 #include "util/version.h"
+#include "experiments/repose.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
 #include "geometry/templates.h"
+#include "measure/bed_height.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
 
@@ -302,6 +306,120 @@ std::string slope_text(const SlopeFit& f, const char* coordinate) {
   return buf;
 }
 
+void profile_json(JsonOut& j, const char* key, const SlopeProfile& p) {
+  j.open(key).number("runout", p.runout).number("toe", p.toe).boolean("valid", p.valid);
+  if (p.valid) j.number("convexity", p.convexity).integer("points", static_cast<long long>(p.points));
+  else j.string("problem", p.problem);
+  j.close();
+}
+
+std::string profile_text(const SlopeProfile& p, const char* coordinate) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "run-out %.4g m (toe at %s = %.4g m), convexity ", p.runout, coordinate, p.toe);
+  if (!p.valid) return buf + ("not measured: " + p.problem);
+  char c[64];
+  std::snprintf(c, sizeof c, "%+.3f (%zu columns)", p.convexity, p.points);
+  return buf + std::string(c);
+}
+
+// What `repose heap-angle` measured on one input: a sphere CSV or a PNG silhouette.
+struct HeapAngleRun {
+  std::string file, view;
+  bool photo = false;
+  std::vector<Sphere> spheres;
+  HeapAngleOptions options;
+  HeapAngle m;
+  HeapProfile profile;
+  std::optional<double> bed;  // a sphere CSV's bed height
+  std::optional<HeapViewsAngle> around;
+  std::optional<AxisymmetricHeapAngle> axisymmetric;
+};
+
+void print_heap_text(const HeapAngleRun& r) {
+  const HeapAngle& m = r.m;
+  if (r.photo)
+    std::printf("heap %s: photograph, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", r.file.c_str(), m.image.pixel * 1e3,
+                m.image.width, m.image.height, m.floor_z);
+  else
+    std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", r.file.c_str(),
+                r.spheres.size(), r.view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  const char* horizontal = r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y";
+  std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
+              m.heap_height, horizontal, m.crest, m.holes_filled, r.options.band_low, r.options.band_high);
+  std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
+  std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
+  std::printf("mean angle   %7.3f deg\n", m.mean_deg);
+  std::printf("left shape   %s\n", profile_text(r.profile.left, horizontal).c_str());
+  std::printf("right shape  %s\n", profile_text(r.profile.right, horizontal).c_str());
+  if (r.bed)
+    std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
+                "before the lift)\n", *r.bed);
+  if (const auto& v = r.around) {
+    std::printf("%zu views     about (%.6g, %.6g) m: mean %.3f deg, sd %.3f deg over %d slopes\n", v->azimuth_deg.size(),
+                v->centre.x, v->centre.y, v->mean_deg, v->sd_deg, v->valid_slopes);
+    for (size_t k = 0; k < v->azimuth_deg.size(); ++k)
+      std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", v->azimuth_deg[k], v->left_deg[k], v->right_deg[k]);
+  }
+  if (const auto& a = r.axisymmetric) {
+    std::printf("3D fit       %d of %zu sectors, centre (%.6g, %.6g) m: mean %.3f deg, spread %.3f deg, range %.3f-%.3f deg\n",
+                a->valid_sectors, a->sectors.size(), a->centre.x, a->centre.y, a->mean_deg, a->spread_deg, a->min_deg,
+                a->max_deg);
+    for (const SectorFit& s : a->sectors)
+      std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
+  }
+}
+
+std::string heap_json(const HeapAngleRun& r) {
+  const HeapAngle& m = r.m;
+  JsonOut j;
+  j.open().string("file", r.file).integer("spheres", static_cast<long long>(r.spheres.size())).boolean("photograph", r.photo);
+  j.string("view", r.view).number("pixel", m.image.pixel).number("floor_z", m.floor_z);
+  j.number("heap_height", m.heap_height).number("crest", m.crest);
+  j.number("band_low", r.options.band_low).number("band_high", r.options.band_high);
+  slope_json(j, "left", m.left);
+  slope_json(j, "right", m.right);
+  j.number("mean_deg", m.mean_deg);
+  profile_json(j, "left_profile", r.profile.left);
+  profile_json(j, "right_profile", r.profile.right);
+  if (r.bed) j.number("bed_height", *r.bed);
+  if (const auto& v = r.around) {
+    j.open("views").number("centre_x", v->centre.x).number("centre_y", v->centre.y);
+    j.integer("valid_slopes", v->valid_slopes).number("mean_deg", v->mean_deg).number("sd_deg", v->sd_deg);
+    j.open("per_view", '[');
+    for (size_t k = 0; k < v->azimuth_deg.size(); ++k)
+      j.open().number("azimuth_deg", v->azimuth_deg[k]).number("left_deg", v->left_deg[k]).number("right_deg", v->right_deg[k]).close();
+    j.close(']').close();
+  }
+  if (const auto& a = r.axisymmetric) {
+    j.open("axisymmetric").number("centre_x", a->centre.x).number("centre_y", a->centre.y);
+    j.integer("valid_sectors", a->valid_sectors).number("mean_deg", a->mean_deg).number("spread_deg", a->spread_deg);
+    j.number("min_deg", a->min_deg).number("max_deg", a->max_deg);
+    j.open("sectors", '[');
+    for (const SectorFit& s : a->sectors) {
+      j.open().number("from_deg", s.from_deg).number("to_deg", s.to_deg);
+      slope_json(j, "fit", s.fit);
+      j.close();
+    }
+    j.close(']').close();
+  }
+  j.open("provenance").string("version", repose_version()).string("input_fnv1a", file_hash(r.file)).close();
+  j.close();
+  return j.text() + "\n";
+}
+
+// The diagnosis measures of one side as measured-data rows (measure,value): what a user copies
+// into the data CSV next to the case, the condition and the replicate.
+void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
+  const SlopeFit& fit = side == "left" ? r.m.left : r.m.right;
+  if (side != "both" && !fit.valid) throw std::runtime_error(r.file + ": no " + side + " slope: " + fit.problem);
+  if (side == "both" && !std::isfinite(r.m.mean_deg)) throw std::runtime_error(r.file + ": the heap has no measurable slope");
+  double angle = side == "both" ? r.m.mean_deg : fit.angle_deg;
+  std::printf("measure,value\n");
+  std::map<std::string, double> values = heap_measures(angle, r.bed.value_or(0), r.profile, side);
+  for (const std::string& name : heap_measure_names())
+    if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
+}
+
 int run_heap_angle(int argc, char** argv) {
   CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
   std::string file, view = "y", png, json;
@@ -311,7 +429,20 @@ int run_heap_angle(int argc, char** argv) {
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
   std::optional<double> floor_z;
-  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up")->required();
+  int threshold = 128;
+  bool light_heap = false;
+  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+      ->required();
+  app.add_option("--threshold", threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
+      ->check(CLI::Range(1, 255));
+  app.add_flag("--light-heap", light_heap, "PNG: the heap is the lighter part of the picture");
+  std::string side = "both";
+  bool data_rows = false;
+  app.add_option("--side", side, "the slope a lab measures: left, right or both (their mean; default)")
+      ->check(CLI::IsMember({"left", "right", "both"}));
+  app.add_flag("--measures", data_rows,
+               "print only the diagnosis measures of --side as 'measure,value' lines, for a measured-data CSV "
+               "(repose_angle, heap_height, runout, profile_convexity; bed_height of a sphere CSV: a bed before the lift)");
   app.add_option("--view", view, "camera looks along x or y (image horizontal = the other one)")
       ->check(CLI::IsMember({"x", "y"}));
   app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
@@ -319,17 +450,27 @@ int run_heap_angle(int argc, char** argv) {
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
   app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)")->check(finite_positive());
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)")
+      ->check(finite_positive());
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)")->check(finite_number());
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
+                                     "z from the picture's bottom edge)")
+      ->check(finite_number());
   app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
   app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
-  const std::vector<Sphere> spheres = read_sphere_csv(file);
+  HeapAngleRun r;
+  r.file = file;
+  r.view = view;
+  r.photo = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
+  if (r.photo && !(options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
+  if (r.photo && (views > 1 || axisymmetric))
+    throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  if (!r.photo) r.spheres = read_sphere_csv(file);
   options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
   options.floor_z = floor_z;
   axi.floor_z = floor_z;
@@ -338,71 +479,29 @@ int run_heap_angle(int argc, char** argv) {
     options.band_high = axi.band_high = band[1];
   }
   if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
-
-  const HeapAngle m = measure_heap_angle(spheres, options);
-  const char* horizontal = options.view == ViewAxis::Y ? "x" : "y";
-  std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
-              spheres.size(), view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
-  std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
-              m.heap_height, horizontal, m.crest, m.holes_filled, options.band_low, options.band_high);
-  std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
-  std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
-  std::printf("mean angle   %7.3f deg\n", m.mean_deg);
-
-  std::optional<HeapViewsAngle> around;
-  if (views > 1) {
-    around = measure_heap_angle_views(spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
-    std::printf("%d views     about (%.6g, %.6g) m: %s\n", views, around->centre.x, around->centre.y,
-                describe_views(*around).c_str());
-    for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
-      std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", around->azimuth_deg[k], around->left_deg[k], around->right_deg[k]);
+  r.options = options;
+  if (r.photo) {
+    BinaryImage image = read_silhouette_png(file, options.pixel, threshold, light_heap);
+    double floor = floor_z ? *floor_z : lowest_foreground(image);
+    r.m = measure_heap_image(std::move(image), floor, options);
+  } else {
+    r.m = measure_heap_angle(r.spheres, options);
+    r.bed = uniform_bed_height(r.spheres, floor_z);
   }
-  std::optional<AxisymmetricHeapAngle> a;
-  if (axisymmetric) {
-    a = measure_axisymmetric_heap_angle(spheres, axi);
-    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
-    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
-    std::printf("\n");
-    for (const SectorFit& s : a->sectors)
-      std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
-  }
+  r.profile = measure_heap_profile(r.m);
+  if (views > 1)
+    r.around = measure_heap_angle_views(r.spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
+  if (axisymmetric) r.axisymmetric = measure_axisymmetric_heap_angle(r.spheres, axi);
+
+  if (data_rows) print_measure_rows(r, side);
+  else print_heap_text(r);
   if (!png.empty()) {
-    write_heap_angle_png(png, m, horizontal);
-    std::printf("picture      %s\n", png.c_str());
+    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    if (!data_rows) std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {
-    JsonOut j;
-    j.open().string("file", file).integer("spheres", static_cast<long long>(spheres.size()));
-    j.string("view", view).number("pixel", m.image.pixel).number("floor_z", m.floor_z);
-    j.number("heap_height", m.heap_height).number("crest", m.crest);
-    j.number("band_low", options.band_low).number("band_high", options.band_high);
-    slope_json(j, "left", m.left);
-    slope_json(j, "right", m.right);
-    j.number("mean_deg", m.mean_deg);
-    if (around) {
-      j.open("views").number("centre_x", around->centre.x).number("centre_y", around->centre.y);
-      j.integer("valid_slopes", around->valid_slopes).number("mean_deg", around->mean_deg).number("sd_deg", around->sd_deg);
-      j.open("per_view", '[');
-      for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
-        j.open().number("azimuth_deg", around->azimuth_deg[k]).number("left_deg", around->left_deg[k]).number("right_deg", around->right_deg[k]).close();
-      j.close(']').close();
-    }
-    if (a) {
-      j.open("axisymmetric").number("centre_x", a->centre.x).number("centre_y", a->centre.y);
-      j.integer("valid_sectors", a->valid_sectors).number("mean_deg", a->mean_deg).number("spread_deg", a->spread_deg);
-      j.number("min_deg", a->min_deg).number("max_deg", a->max_deg);
-      j.open("sectors", '[');
-      for (const SectorFit& s : a->sectors) {
-        j.open().number("from_deg", s.from_deg).number("to_deg", s.to_deg);
-        slope_json(j, "fit", s.fit);
-        j.close();
-      }
-      j.close(']').close();
-    }
-    j.open("provenance").string("version", repose_version()).string("input_fnv1a", file_hash(file)).close();
-    j.close();
-    write_text_file(json, j.text() + "\n");
-    std::printf("results      %s\n", json.c_str());
+    write_text_file(json, heap_json(r));
+    if (!data_rows) std::printf("results      %s\n", json.c_str());
   }
   return 0;
 }

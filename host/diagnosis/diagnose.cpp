@@ -31,7 +31,13 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   d.candidates.insert(d.candidates.end(), fits.failed.begin(), fits.failed.end());
   d.tried = fits.tried;
   // 3. The verdict, and what the winner gains on held-out conditions.
-  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted, d.lack_of_fit);
+  std::vector<MimicTest> mimics = mimic_tests(c, d.baseline, fits.fitted);
+  d.pairs = pair_separations(mimics);
+  d.untested_rivals = untested_rivals(obs, fits.failed, d.lack_of_fit);
+  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted, mimics, d.untested_rivals, d.lack_of_fit);
+  Confidence confidence = verdict_confidence(d.baseline, fits.fitted, verdict, d.untested_rivals);
+  d.weights = confidence.weights;
+  d.confidence = confidence.named;
   d.verdict = verdict.verdict;
   d.cause = verdict.cause;
   d.mimics = verdict.mimics;

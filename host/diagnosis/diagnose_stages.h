@@ -73,9 +73,24 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
 // predicts held-out conditions better.
 void compare_with_baseline(ModelResult& candidate, const ModelResult& baseline, int noise_df, bool heldout_available);
 
+// Rivals refitted to the predictions of candidates they might stand in for: among the candidates
+// that beat the baseline, each to each; one that improves on the baseline (lower AIC) without
+// beating it, to the best significant one only (it is no cause of its own). Empty when no
+// candidate beats the baseline.
+std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& baseline,
+                                   const std::vector<ModelResult>& fitted);
+
+// The same as a table of pairs: which these data can tell apart.
+std::vector<PairSeparation> pair_separations(const std::vector<MimicTest>& mimics);
+
+// Untested candidates that might explain the baseline's lack of fit: their simulation failed (or
+// they could not be filled), yet they act on a measured quantity. None without a lack of fit.
+std::vector<std::string> untested_rivals(const Observations& obs, const std::vector<ModelResult>& failed,
+                                         const std::vector<LackOfFit>& lack);
+
 // The verdict: no significant candidate is "adequate", or "unexplained" when the baseline's lack of
-// fit is significant all the same; the significant one with the lowest AIC is the cause, unless a
-// rival can mimic its predictions ("ambiguous", with what would separate them).
+// fit is significant all the same; the significant one with the lowest AIC is the cause, unless a rival can mimic its predictions or an untested candidate might explain the
+// data as well ("ambiguous", with what would separate them).
 struct Verdict {
   std::string verdict;
   std::vector<std::string> cause;
@@ -85,7 +100,17 @@ struct Verdict {
   Separation separation;
 };
 Verdict decide_verdict(DiagnosisContext& c, const ModelResult& baseline, const std::vector<ModelResult>& fitted,
+                       const std::vector<MimicTest>& mimics, const std::vector<std::string>& untested,
                        const std::vector<LackOfFit>& lack_of_fit);
+
+// Akaike weights of the baseline, the fitted candidates and the untested rivals (each given the
+// best AIC), and the weight of what the verdict names (Diagnosis::confidence).
+struct Confidence {
+  std::vector<std::pair<std::string, double>> weights;
+  double named = 0;
+};
+Confidence verdict_confidence(const ModelResult& baseline, const std::vector<ModelResult>& fitted, const Verdict& v,
+                              const std::vector<std::string>& untested);
 
 // Held-out error of the primary measure, baseline and the extended model (the winner, or the
 // baseline again when adequate), and the gain in percent.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "diagnosis/bond_number.h"
 #include "diagnosis/elongated_body.h"
 #include "experiments/registry.h"
 
@@ -33,14 +34,28 @@ const std::vector<ModelExtension>& model_extensions() {
          s.air_drag.air_density = 1.2;
        }},
       {"cohesion",
-       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture), with friction and "
-       "rolling resistance on the contact's repulsion, which the attraction raises (wet contacts grip harder)",
+       "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture); on one body, with "
+       "friction and rolling resistance on the contact's repulsion, which the attraction raises (wet contacts "
+       "grip harder); between a bulk's grains, with the case's own [contact] cohesion_friction",
        {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
-       {"rebound_height", "restitution", "height", "slide_angle", "roll_angle"},
+       {"rebound_height", "restitution", "height", "slide_angle", "roll_angle", "repose_angle", "bed_height",
+        "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          tested_contact(s).cohesion_energy_density = p.at(0);
-         s.contact.cohesion_friction = CohesionFriction::Contact;
+         // Grains of a bulk (a heap filled from [[fill]]s) are held together by the attraction
+         // whatever friction sees, and the case states its engine's convention; a tilted body is
+         // revealed only through the grip.
+         if (s.fills.empty()) s.contact.cohesion_friction = CohesionFriction::Contact;
+       },
+       false,
+       // In a bulk the grains' own stiffness and weight set what matters (bond_number.h): Bond
+       // numbers from 1e-3 (dry as far as a heap can tell) to 3 (clods: at 2.5 slot heaps scatter
+       // by 20 deg between fills, and never settle), not decades of soft-sphere nonsense.
+       [](const CaseSpec& s) -> std::vector<FreeParameter> {
+         if (s.fills.empty()) return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
+         return {{"cohesion_energy_density", "J/m^3", heap_cohesion_for_bond_number(s, 1e-3),
+                  heap_cohesion_for_bond_number(s, 3.0), true}};
        }},
       {"rolling_epsd",
        "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
@@ -48,7 +63,7 @@ const std::vector<ModelExtension>& model_extensions() {
        "critical), instead of the constant torque; with spinning friction equal to each pair's rolling "
        "friction (model C has no twisting resistance: without it a grain spins on the floor forever)",
        {{"rolling_damping", "1", 0.05, 1.0, false}},
-       {"repose_angle", "bed_height"},
+       {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          s.contact.rolling = RollingModel::ElasticPlastic;
@@ -63,7 +78,7 @@ const std::vector<ModelExtension>& model_extensions() {
        "a distribution of grain sizes instead of one size: every sphere [[fill]]'s radius uniform in "
        "[r (1 - s), r (1 + s)] about its mean r",
        {{"size_spread", "1", 0.0, 0.4, false}},
-       {"repose_angle", "bed_height"},
+       {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        "",
        [](CaseSpec& s, const std::vector<double>& p) {
          for (FillSpec& f : s.fills) {

@@ -58,11 +58,25 @@ class Predictor {
   // The value of one group from an outcome.
   double value_of(const ObservationGroup& g, const Outcome& r) const;
 
+  // How a heap model's grains were placed (heap_fill.h), over every heap it simulated.
+  struct FillRecord {
+    int heaps = 0, fallback = 0;  // fallback: the case's own fill failed, placed largest first
+    double most_raised = 0;       // the largest fraction its fill box was raised by
+  };
+  FillRecord fills(const std::string& model_id) const {
+    std::lock_guard<std::mutex> lock(fill_mutex_);
+    auto it = fills_.find(model_id);
+    return it == fills_.end() ? FillRecord{} : it->second;
+  }
+
   const Observations& observations() const { return obs_; }
   size_t simulations() const { return simulations_; }
   int simulated_replicates() const { return replicates_; }
 
  private:
+  // Counts a heap model's fill as placed (heap_fill.h: largest first, or in a raised box, when
+  // the case's own fill found no room), from its fills against the condition's case.
+  void record_fill(size_t condition, const ModelExtension* extension, const CaseSpec& spec) const;
   CaseSpec model_spec(size_t condition, const ModelExtension* extension, const std::vector<double>& params,
                       int replicate) const;
   void check_measures() const;
@@ -75,6 +89,8 @@ class Predictor {
   int replicates_;
   std::mutex mutex_;
   std::map<std::string, Outcome> cache_;
+  mutable std::mutex fill_mutex_;
+  mutable std::map<std::string, FillRecord> fills_;  // by model id
   size_t simulations_ = 0;
 };
 
