@@ -192,7 +192,9 @@ TEST_CASE("cohesion: a cohesive slot heap stands steeper and runs out less, as i
       CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/diagnosis/liggghts_slot_heap.toml",
                                 {{"fill.0.seed", std::to_string(seed)},
                                  {"interaction.grain/grain.cohesion_energy_density", wet ? "8000" : "0"}});
-      ReposeResult r = run_repose(spec);
+      // LIGGGHTS's cdt leaves a grain's spin about its contact normal unresisted, so a rattler can
+      // spin in place for ever: as in the LIGGGHTS runs, a heap still spinning is measured at max_time.
+      ReposeResult r = run_repose(spec, {}, /*measure_unsettled=*/true);
       angle[wet] += r.angle_deg / fills;
       angle2[wet] += r.angle_deg * r.angle_deg / fills;
       runout[wet] += r.profile.right.runout / fills;
