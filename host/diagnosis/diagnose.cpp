@@ -25,7 +25,7 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   // 1. The baseline and what is wrong with it.
   d.baseline = fit_and_hold_out(c, nullptr, nullptr);
   d.lack_of_fit = lack_of_fit(obs, d.baseline, c.noise_df);
-  d.trends = residual_trends(obs, d.baseline.predicted);
+  d.trends = residual_trends(obs, d.baseline.prediction);
   // 2. Every candidate extension, fitted and compared with the baseline.
   CandidateFits fits = fit_candidates(c, selection.testable, d.baseline);
   d.candidates.insert(d.candidates.end(), fits.failed.begin(), fits.failed.end());

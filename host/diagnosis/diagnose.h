@@ -46,7 +46,13 @@ struct ModelResult {
                                        // the model's replicate scatter; empty without a given sigma)
   Prediction prediction;               // the full fit's prediction (means, replicate variances)
   std::vector<double> heldout;         // every group, predicted with its condition left out
+  // The score that decides (F test, AIC, lack of fit). A stochastic model is scored on fresh
+  // replicates its fit never saw (its fit's own score is chosen among redraws: biased low), and a
+  // candidate's change from the baseline is shrunk by the simulations' scatter (model_fit.h).
   double chi2 = 0, aic = 0;
+  double fit_chi2 = 0;                 // the fit's own score, on the replicates it searched
+  double shrinkage = 1;                // of the change from the baseline (1: kept whole)
+  double change_d2 = 0;                // that change's chi^2 against the simulations' scatter
   int k = 0;
   double f = 0, p = 1;                 // against the baseline
   double heldout_rms = 0;              // primary measure, its unit: RMS error of the mean, or with a

@@ -245,14 +245,21 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
   if (c.progress) c.progress->next(r.id + ", all conditions");
   std::vector<double> start;
   if (ext && baseline) start = baseline->params;
-  ModelFit full = fit_model(c.predictor, ext, std::vector<char>(obs.conditions.size(), 1), start);
+  std::vector<char> all(obs.conditions.size(), 1);
+  ModelFit full = fit_model(c.predictor, ext, all, start);
   r.params = full.params;
+  r.fit_chi2 = full.chi2;
   r.prediction = full.predicted;
-  r.predicted = full.predicted.mean;
+  r.chi2 = full.chi2;
+  if (full.predicted.replicates > 1) {  // stochastic: scored on fresh replicates
+    r.prediction = c.predictor.predict(ext, r.params, all, c.predictor.simulated_replicates(),
+                                       c.predictor.confirmation_replicates());
+    r.chi2 = chi_square(obs, r.prediction, all);
+  }
+  r.predicted = r.prediction.mean;
   if (c.scatter_scored)
     for (size_t g = 0; g < obs.groups.size(); ++g)
-      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + full.predicted.var[g]));
-  r.chi2 = full.chi2;
+      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + r.prediction.var[g]));
   r.aic = r.chi2 + 2.0 * r.k;
   if (c.heldout_available) score_held_out(c, hold_out_each_condition(c, ext, r, full.predicted), r);
   return r;
@@ -285,7 +292,7 @@ std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& b
   return out;
 }
 
-std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted) {
+std::vector<Trend> residual_trends(const Observations& obs, const Prediction& predicted) {
   std::vector<Trend> trends;
   for (const std::string& m : obs.measures) {
     std::vector<std::string> variables = obs.variables;
@@ -301,9 +308,10 @@ std::vector<Trend> residual_trends(const Observations& obs, const std::vector<do
         if (v == "t") x.push_back(grp.t);
         else if (vars.count(v)) x.push_back(vars.at(v));
         else continue;
-        r.push_back(grp.mean - predicted[g]);
+        r.push_back(grp.mean - predicted.mean[g]);
         // Correlated frames of a series carry (1 + rho) / (1 - rho) times less information.
-        w.push_back(grp.weight() / (grp.series ? obs.noise.at(m).inflation : 1.0));
+        double measured = 1.0 / grp.weight() * (grp.series ? obs.noise.at(m).inflation : 1.0);
+        w.push_back(1.0 / (measured + predicted.variance_of_mean(g)));
       }
       if (x.size() < 3) continue;
       Trend t = slope_of(x, r, w);
@@ -315,7 +323,15 @@ std::vector<Trend> residual_trends(const Observations& obs, const std::vector<do
   return trends;
 }
 
-void compare_with_baseline(ModelResult& r, const ModelResult& base, int noise_df, bool heldout_available) {
+void compare_with_baseline(const Observations& obs, ModelResult& r, const ModelResult& base, int noise_df,
+                           bool heldout_available) {
+  ShrunkChange change = shrink_change(obs, base.prediction, r.prediction);
+  r.shrinkage = change.shrinkage;
+  r.change_d2 = change.d2;
+  if (change.shrinkage < 1) {
+    r.chi2 = chi_square(obs, change.prediction, std::vector<char>(obs.conditions.size(), 1));
+    r.aic = r.chi2 + 2.0 * r.k;
+  }
   int dk = std::max(1, r.k - base.k);
   r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
   r.p = stats::f_upper_tail(r.f, dk, noise_df);
@@ -329,7 +345,7 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
     out.tried.push_back(ext->id);
     try {
       ModelResult r = fit_and_hold_out(c, ext, &baseline);
-      compare_with_baseline(r, baseline, c.noise_df, c.heldout_available);
+      compare_with_baseline(c.obs, r, baseline, c.noise_df, c.heldout_available);
       Predictor::FillRecord fill = c.predictor.fills(r.id);
       r.heaps = fill.heaps;
       r.refilled = fill.fallback;

@@ -49,14 +49,19 @@ CandidateSelection select_candidates(const Observations& obs, const std::vector<
                                      bool scatter_scored);
 
 // Fits a model (nullptr: the baseline) to every condition, then, with >= 3 conditions, to all
-// but one in turn, predicting the one left out. Extensions start from the baseline's values.
+// but one in turn, predicting the one left out. Extensions start from the baseline's values. A
+// stochastic model is then scored on Predictor::confirmation_replicates() fresh replicates: a heap
+// redraws its fills' outcomes at every parameter change, so the fit's best score is the luckiest
+// of its redraws (a dry heap's chi^2 43.7 fell to 5.2 at a cohesion of Bond number 0.01).
+// Its prediction and chi2 are then the fresh ones.
 ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* extension, const ModelResult* baseline);
 
 // The baseline's lack of fit: overall (first) and per measure, F tests against the noise.
 std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& baseline, int noise_df);
 
-// Weighted regressions of the baseline's residuals on every condition variable (and t in a series).
-std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted);
+// Weighted regressions of the baseline's residuals on every condition variable (and t in a series),
+// each residual weighed by the variance of the measured mean and of the predicted one.
+std::vector<Trend> residual_trends(const Observations& obs, const Prediction& predicted);
 
 // Every testable candidate fitted and compared with the baseline, in order. A candidate whose
 // experiment cannot be simulated to the end (e.g. a heap that never settles under it) comes back
@@ -70,8 +75,11 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
                              const ModelResult& baseline);
 
 // A candidate against the baseline: extra-sum-of-squares F test, and significant when it also
-// predicts held-out conditions better.
-void compare_with_baseline(ModelResult& candidate, const ModelResult& baseline, int noise_df, bool heldout_available);
+// predicts held-out conditions better. A stochastic candidate is scored with its change from the
+// baseline shrunk by the simulations' scatter (model_fit.h shrink_change): chi2 and AIC then are
+// those of the shrunk prediction.
+void compare_with_baseline(const Observations& obs, ModelResult& candidate, const ModelResult& baseline, int noise_df,
+                           bool heldout_available);
 
 // Rivals refitted to the predictions of candidates they might stand in for: among the candidates
 // that beat the baseline, each to each; one that improves on the baseline (lower AIC) without

@@ -34,7 +34,12 @@ json model_json(const ModelResult& r, bool heldout) {
   j["k"] = r.k;
   j["chi2"] = r.chi2;
   j["aic"] = r.aic;
-  j["simulated_replicates"] = r.prediction.replicates;
+  j["simulated_replicates"] = r.prediction.replicates;  // behind the scored prediction
+  j["fit_chi2"] = r.fit_chi2;                            // on the replicates the fit searched
+  if (r.id != "baseline" && r.prediction.replicates > 1) {
+    j["shrinkage"] = r.shrinkage;  // of its change from the baseline (model_fit.h shrink_change)
+    j["change_chi2"] = r.change_d2;
+  }
   if (!r.predicted_sd.empty()) j["predicted_sd"] = r.predicted_sd;  // per group, sigma + replicate scatter
   if (r.id != "baseline") {
     j["f"] = r.f;

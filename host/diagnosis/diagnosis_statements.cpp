@@ -58,7 +58,12 @@ std::string trend_statement(const Trend& t) {
 std::string candidate_statement(const Diagnosis& d, const ModelResult& r) {
   if (!r.simulation_error.empty()) return r.id + ": not tested, its simulation failed (" + r.simulation_error + ").";
   const ModelResult& base = d.baseline;
-  return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + " (F = " + num(r.f, 3) +
+  // A stochastic candidate is scored on fresh replicates, its change from the baseline shrunk.
+  std::string scored = r.prediction.replicates > 1
+                           ? " (fresh replicates; its change from the baseline, chi^2 " + num(r.change_d2, 3) +
+                                 " against the simulations' scatter, kept at " + num(r.shrinkage, 2) + ")"
+                           : std::string();
+  return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + scored + " (F = " + num(r.f, 3) +
          ", p = " + num(r.p, 2) + "), AIC " + num(base.aic) + " -> " + num(r.aic) +
          (d.heldout_available ? ", held-out error " + in_unit(r.heldout_rms, d.primary_unit) + " vs " +
                                     in_unit(base.heldout_rms, d.primary_unit) + " (baseline)"

@@ -159,9 +159,11 @@ double Predictor::value_of(const ObservationGroup& g, const Outcome& r) const {
 }
 
 Prediction Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
-                              const std::vector<char>& use) {
+                              const std::vector<char>& use, int first_replicate, int replicates) {
   size_t nc = obs_.conditions.size();
-  int reps = stochastic(extension, params) ? replicates_ : 1;
+  bool random = stochastic(extension, params);
+  int reps = random ? (replicates > 0 ? replicates : replicates_) : 1;
+  int first = random ? first_replicate : 0;
   std::vector<std::vector<Outcome>> results(nc, std::vector<Outcome>(size_t(reps)));
   std::vector<std::pair<size_t, int>> pending;
   for (size_t c = 0; c < nc; ++c)
@@ -174,7 +176,7 @@ Prediction Predictor::predict(const ModelExtension* extension, const std::vector
     for (size_t k = next++; k < pending.size(); k = next++) {
       try {
         auto [c, r] = pending[k];
-        results[c][size_t(r)] = simulate(c, extension, params, r);
+        results[c][size_t(r)] = simulate(c, extension, params, first + r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();
