@@ -4,17 +4,16 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
-#include "util/hash.h"
-#include "util/version.h"
+#include "io/provenance.h"
+#include "util/atomic_file.h"
 #include "experiments/repose.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
@@ -32,103 +31,58 @@ namespace {
 
 constexpr double kDefaultDensity = 1000.0;
 
-// Minimal JSON emitter: keys in insertion order, numbers with 17 significant digits (read back
-// exactly), NaN as null.
-class JsonOut {
- public:
-  JsonOut& open(const char* key = nullptr, char bracket = '{') {
-    separator(key);
-    text_ += bracket;
-    first_ = true;
-    return *this;
-  }
-  JsonOut& close(char bracket = '}') {
-    text_ += bracket;
-    first_ = false;
-    return *this;
-  }
-  JsonOut& number(const char* key, double v) {
-    separator(key);
-    if (!std::isfinite(v)) {
-      text_ += "null";
-    } else {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.17g", v);
-      text_ += buf;
-    }
-    return *this;
-  }
-  JsonOut& integer(const char* key, long long v) {
-    separator(key);
-    text_ += std::to_string(v);
-    return *this;
-  }
-  JsonOut& boolean(const char* key, bool v) {
-    separator(key);
-    text_ += v ? "true" : "false";
-    return *this;
-  }
-  JsonOut& string(const char* key, const std::string& v) {
-    separator(key);
-    quote(v);
-    return *this;
-  }
-  JsonOut& vec3(const char* key, const glm::dvec3& v) {
-    open(key, '[');
-    for (int k = 0; k < 3; ++k) number(nullptr, v[k]);
-    return close(']');
-  }
-  // Row-major: rows[a][b] = m[b][a] in glm's column-major storage.
-  JsonOut& mat3_rows(const char* key, const glm::dmat3& m) {
-    open(key, '[');
-    for (int row = 0; row < 3; ++row) vec3(nullptr, glm::dvec3(m[0][row], m[1][row], m[2][row]));
-    return close(']');
-  }
-  const std::string& text() const { return text_; }
+using Json = nlohmann::ordered_json;
 
- private:
-  void separator(const char* key) {
-    if (!first_) text_ += ", ";
-    first_ = false;
-    if (key) {
-      quote(key);
-      text_ += ": ";
-    }
-  }
-  void quote(const std::string& v) {
-    text_ += '"';
-    for (char c : v) {
-      if (c == '"' || c == '\\') {
-        text_ += '\\';
-        text_ += c;
-      } else if (static_cast<unsigned char>(c) < 0x20) {
-        char buf[8];
-        std::snprintf(buf, sizeof buf, "\\u%04x", c);
-        text_ += buf;
-      } else {
-        text_ += c;
-      }
-    }
-    text_ += '"';
-  }
-  std::string text_;
-  bool first_ = true;
-};
+Json vec3_json(const glm::dvec3& v) { return Json::array({v.x, v.y, v.z}); }
 
-// FNV-1a of a file's bytes, for the provenance of a result computed from it.
-std::string file_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  return fnv1a_hex(bytes.str());
+// Row-major: rows[a][b] = m[b][a] in glm's column-major storage.
+Json mat3_rows_json(const glm::dmat3& m) {
+  Json rows = Json::array();
+  for (int row = 0; row < 3; ++row) rows.push_back(vec3_json(glm::dvec3(m[0][row], m[1][row], m[2][row])));
+  return rows;
 }
 
-void write_text_file(const std::string& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  out << text;
-  out.flush();
-  if (!out) throw std::runtime_error(path + ": write failed");
+Json clump_json(const std::string& file, const ClumpTemplate& clump, double density, const MassProperties& p) {
+  Json j;
+  j["file"] = file;
+  j["sub_spheres"] = clump.spheres.size();
+  j["explicit"] = p.is_explicit;
+  if (!p.is_explicit) j["density"] = density;
+  j["volume"] = p.volume;
+  j["mass"] = p.mass;
+  j["centre_of_mass"] = vec3_json(p.centre_of_mass);
+  j["inertia"] = mat3_rows_json(p.inertia);
+  j["principal_moments"] = vec3_json(p.principal_moments);
+  j["principal_axes"] = Json::array();
+  for (int k = 0; k < 3; ++k) j["principal_axes"].push_back(vec3_json(p.principal_axes[k]));
+  return j;
+}
+
+Json mesh_json(const std::string& file, const StlFile& stl, const MeshSummary& s) {
+  Json j;
+  j["file"] = file;
+  j["format"] = stl.binary ? "binary" : "ascii";
+  j["solid"] = stl.solid_name;
+  j["triangles_in_file"] = stl.triangles_in_file;
+  j["triangles"] = s.triangle_count;
+  j["vertices"] = s.vertex_count;
+  j["degenerate"] = Json::array();
+  for (const auto& d : stl.degenerate) {
+    Json row;
+    row["triangle"] = d.index;
+    if (d.line) row["line"] = d.line;
+    row["reason"] = d.reason;
+    j["degenerate"].push_back(row);
+  }
+  j["lower"] = vec3_json(s.lower);
+  j["upper"] = vec3_json(s.upper);
+  j["area"] = s.area;
+  j["watertight"] = s.watertight;
+  j["boundary_edges"] = s.boundary_edges;
+  j["non_manifold_edges"] = s.non_manifold_edges;
+  j["misoriented_edges"] = s.misoriented_edges;
+  if (s.watertight) j["volume"] = s.volume;
+  return j;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -199,18 +153,7 @@ int run_clump(int argc, char** argv) {
   if (!principal_out.empty()) write_sphere_csv(principal_out, to_principal_frame(clump, p).clump.spheres);
 
   if (json) {
-    JsonOut j;
-    j.open();
-    j.string("file", file).integer("sub_spheres", static_cast<long long>(clump.spheres.size()));
-    j.boolean("explicit", p.is_explicit);
-    if (!p.is_explicit) j.number("density", density);
-    j.number("volume", p.volume).number("mass", p.mass).vec3("centre_of_mass", p.centre_of_mass);
-    j.mat3_rows("inertia", p.inertia).vec3("principal_moments", p.principal_moments);
-    j.open("principal_axes", '[');
-    for (int k = 0; k < 3; ++k) j.vec3(nullptr, p.principal_axes[k]);
-    j.close(']');
-    j.close();
-    std::printf("%s\n", j.text().c_str());
+    std::printf("%s\n", clump_json(file, clump, density, p).dump(2).c_str());
     return 0;
   }
   std::printf("clump %s: %zu sub-spheres\n", file.c_str(), clump.spheres.size());
@@ -245,24 +188,7 @@ int run_stl(int argc, char** argv) {
   const StlFile stl = read_stl(file);
   const MeshSummary s = summarize_mesh(stl.mesh);
   if (json) {
-    JsonOut j;
-    j.open().string("file", file).string("format", stl.binary ? "binary" : "ascii").string("solid", stl.solid_name);
-    j.integer("triangles_in_file", static_cast<long long>(stl.triangles_in_file));
-    j.integer("triangles", static_cast<long long>(s.triangle_count)).integer("vertices", static_cast<long long>(s.vertex_count));
-    j.open("degenerate", '[');
-    for (const auto& d : stl.degenerate) {
-      j.open().integer("triangle", static_cast<long long>(d.index));
-      if (d.line) j.integer("line", d.line);
-      j.string("reason", d.reason).close();
-    }
-    j.close(']');
-    j.vec3("lower", s.lower).vec3("upper", s.upper).number("area", s.area).boolean("watertight", s.watertight);
-    j.integer("boundary_edges", static_cast<long long>(s.boundary_edges));
-    j.integer("non_manifold_edges", static_cast<long long>(s.non_manifold_edges));
-    j.integer("misoriented_edges", static_cast<long long>(s.misoriented_edges));
-    if (s.watertight) j.number("volume", s.volume);
-    j.close();
-    std::printf("%s\n", j.text().c_str());
+    std::printf("%s\n", mesh_json(file, stl, s).dump(2).c_str());
     return 0;
   }
   std::printf("stl %s: %s, solid '%s'\n", file.c_str(), stl.binary ? "binary" : "ASCII", stl.solid_name.c_str());
@@ -286,16 +212,21 @@ int run_stl(int argc, char** argv) {
 }
 
 // ---------------------------------------------------------------------------------------
-void slope_json(JsonOut& j, const char* key, const SlopeFit& f) {
-  j.open(key).boolean("valid", f.valid);
+Json slope_json(const SlopeFit& f) {
+  Json j;
+  j["valid"] = f.valid;
   if (f.valid) {
-    j.number("angle_deg", f.angle_deg).number("slope", f.line.slope).number("intercept", f.line.intercept);
-    j.number("r_squared", f.line.r_squared).integer("points", static_cast<long long>(f.line.points));
-    j.number("from", f.from).number("to", f.to);
+    j["angle_deg"] = f.angle_deg;
+    j["slope"] = f.line.slope;
+    j["intercept"] = f.line.intercept;
+    j["r_squared"] = f.line.r_squared;
+    j["points"] = f.line.points;
+    j["from"] = f.from;
+    j["to"] = f.to;
   } else {
-    j.string("problem", f.problem);
+    j["problem"] = f.problem;
   }
-  j.close();
+  return j;
 }
 
 std::string slope_text(const SlopeFit& f, const char* coordinate) {
@@ -306,11 +237,47 @@ std::string slope_text(const SlopeFit& f, const char* coordinate) {
   return buf;
 }
 
-void profile_json(JsonOut& j, const char* key, const SlopeProfile& p) {
-  j.open(key).number("runout", p.runout).number("toe", p.toe).boolean("valid", p.valid);
-  if (p.valid) j.number("convexity", p.convexity).integer("points", static_cast<long long>(p.points));
-  else j.string("problem", p.problem);
-  j.close();
+Json views_json(const HeapViewsAngle& around) {
+  Json j;
+  j["centre_x"] = around.centre.x;
+  j["centre_y"] = around.centre.y;
+  j["valid_slopes"] = around.valid_slopes;
+  j["mean_deg"] = around.mean_deg;
+  j["sd_deg"] = around.sd_deg;
+  j["per_view"] = Json::array();
+  for (size_t k = 0; k < around.azimuth_deg.size(); ++k)
+    j["per_view"].push_back(
+        {{"azimuth_deg", around.azimuth_deg[k]}, {"left_deg", around.left_deg[k]}, {"right_deg", around.right_deg[k]}});
+  return j;
+}
+
+Json sectors_json(const AxisymmetricHeapAngle& a) {
+  Json j;
+  j["centre_x"] = a.centre.x;
+  j["centre_y"] = a.centre.y;
+  j["valid_sectors"] = a.valid_sectors;
+  j["mean_deg"] = a.mean_deg;
+  j["spread_deg"] = a.spread_deg;
+  j["min_deg"] = a.min_deg;
+  j["max_deg"] = a.max_deg;
+  j["sectors"] = Json::array();
+  for (const SectorFit& s : a.sectors)
+    j["sectors"].push_back({{"from_deg", s.from_deg}, {"to_deg", s.to_deg}, {"fit", slope_json(s.fit)}});
+  return j;
+}
+
+Json profile_json(const SlopeProfile& p) {
+  Json j;
+  j["runout"] = p.runout;
+  j["toe"] = p.toe;
+  j["valid"] = p.valid;
+  if (p.valid) {
+    j["convexity"] = p.convexity;
+    j["points"] = p.points;
+  } else {
+    j["problem"] = p.problem;
+  }
+  return j;
 }
 
 std::string profile_text(const SlopeProfile& p, const char* coordinate) {
@@ -355,56 +322,46 @@ void print_heap_text(const HeapAngleRun& r) {
     std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
                 "before the lift)\n", *r.bed);
   if (const auto& v = r.around) {
-    std::printf("%zu views     about (%.6g, %.6g) m: mean %.3f deg, sd %.3f deg over %d slopes\n", v->azimuth_deg.size(),
-                v->centre.x, v->centre.y, v->mean_deg, v->sd_deg, v->valid_slopes);
+    std::printf("%zu views     about (%.6g, %.6g) m: %s\n", v->azimuth_deg.size(), v->centre.x, v->centre.y,
+                describe_views(*v).c_str());
     for (size_t k = 0; k < v->azimuth_deg.size(); ++k)
       std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", v->azimuth_deg[k], v->left_deg[k], v->right_deg[k]);
   }
   if (const auto& a = r.axisymmetric) {
-    std::printf("3D fit       %d of %zu sectors, centre (%.6g, %.6g) m: mean %.3f deg, spread %.3f deg, range %.3f-%.3f deg\n",
-                a->valid_sectors, a->sectors.size(), a->centre.x, a->centre.y, a->mean_deg, a->spread_deg, a->min_deg,
-                a->max_deg);
+    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
+    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
+    std::printf("\n");
     for (const SectorFit& s : a->sectors)
       std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
   }
 }
 
-std::string heap_json(const HeapAngleRun& r) {
+// Heap-angle results as JSON: the front view and its profile, then the bed, the other views and
+// the 3D sectors when measured.
+Json heap_angle_json(const HeapAngleRun& r) {
   const HeapAngle& m = r.m;
-  JsonOut j;
-  j.open().string("file", r.file).integer("spheres", static_cast<long long>(r.spheres.size())).boolean("photograph", r.photo);
-  j.string("view", r.view).number("pixel", m.image.pixel).number("floor_z", m.floor_z);
-  j.number("heap_height", m.heap_height).number("crest", m.crest);
-  j.number("band_low", r.options.band_low).number("band_high", r.options.band_high);
-  slope_json(j, "left", m.left);
-  slope_json(j, "right", m.right);
-  j.number("mean_deg", m.mean_deg);
-  profile_json(j, "left_profile", r.profile.left);
-  profile_json(j, "right_profile", r.profile.right);
-  if (r.bed) j.number("bed_height", *r.bed);
-  if (const auto& v = r.around) {
-    j.open("views").number("centre_x", v->centre.x).number("centre_y", v->centre.y);
-    j.integer("valid_slopes", v->valid_slopes).number("mean_deg", v->mean_deg).number("sd_deg", v->sd_deg);
-    j.open("per_view", '[');
-    for (size_t k = 0; k < v->azimuth_deg.size(); ++k)
-      j.open().number("azimuth_deg", v->azimuth_deg[k]).number("left_deg", v->left_deg[k]).number("right_deg", v->right_deg[k]).close();
-    j.close(']').close();
-  }
-  if (const auto& a = r.axisymmetric) {
-    j.open("axisymmetric").number("centre_x", a->centre.x).number("centre_y", a->centre.y);
-    j.integer("valid_sectors", a->valid_sectors).number("mean_deg", a->mean_deg).number("spread_deg", a->spread_deg);
-    j.number("min_deg", a->min_deg).number("max_deg", a->max_deg);
-    j.open("sectors", '[');
-    for (const SectorFit& s : a->sectors) {
-      j.open().number("from_deg", s.from_deg).number("to_deg", s.to_deg);
-      slope_json(j, "fit", s.fit);
-      j.close();
-    }
-    j.close(']').close();
-  }
-  j.open("provenance").string("version", repose_version()).string("input_fnv1a", file_hash(r.file)).close();
-  j.close();
-  return j.text() + "\n";
+  Json j;
+  j["file"] = r.file;
+  j["spheres"] = r.spheres.size();
+  j["photograph"] = r.photo;
+  j["view"] = r.view;
+  j["pixel"] = m.image.pixel;
+  j["floor_z"] = m.floor_z;
+  j["heap_height"] = m.heap_height;
+  j["crest"] = m.crest;
+  j["band_low"] = r.options.band_low;
+  j["band_high"] = r.options.band_high;
+  j["left"] = slope_json(m.left);
+  j["right"] = slope_json(m.right);
+  j["mean_deg"] = m.mean_deg;
+  j["left_profile"] = profile_json(r.profile.left);
+  j["right_profile"] = profile_json(r.profile.right);
+  if (r.bed) j["bed_height"] = *r.bed;
+  if (r.around) j["views"] = views_json(*r.around);
+  if (r.axisymmetric) j["axisymmetric"] = sectors_json(*r.axisymmetric);
+  j["provenance"] = version_json();
+  j["provenance"]["input_fnv1a"] = file_fnv1a(r.file);
+  return j;
 }
 
 // The diagnosis measures of one side as measured-data rows (measure,value): what a user copies
@@ -500,7 +457,7 @@ int run_heap_angle(int argc, char** argv) {
     if (!data_rows) std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {
-    write_text_file(json, heap_json(r));
+    write_file_atomically(json, heap_angle_json(r).dump(2) + "\n");
     if (!data_rows) std::printf("results      %s\n", json.c_str());
   }
   return 0;

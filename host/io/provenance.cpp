@@ -32,13 +32,15 @@ nlohmann::ordered_json provenance_json(const Provenance& p) {
 nlohmann::ordered_json input_provenance(const std::vector<std::string>& files) {
   nlohmann::ordered_json j = version_json();
   j["inputs"] = nlohmann::ordered_json::array();
-  for (const auto& file : files) {
-    std::ifstream in(file, std::ios::binary);
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    j["inputs"].push_back({{"file", file}, {"fnv1a", fnv1a_hex(bytes.str())}});
-  }
+  for (const auto& file : files) j["inputs"].push_back({{"file", file}, {"fnv1a", file_fnv1a(file)}});
   return j;
+}
+
+std::string file_fnv1a(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return fnv1a_hex(bytes.str());
 }
 
 nlohmann::ordered_json version_json() {

@@ -29,5 +29,7 @@ nlohmann::ordered_json version_json();
 // from a sphere CSV, a diagnosis from measured data): the version and each input file with the
 // FNV-1a hash of its bytes.
 nlohmann::ordered_json input_provenance(const std::vector<std::string>& files);
+// The FNV-1a hash (16 hex digits) of a file's bytes.
+std::string file_fnv1a(const std::string& path);
 
 }  // namespace repose
