@@ -328,10 +328,12 @@ void compare_with_baseline(const Observations& obs, ModelResult& r, const ModelR
   ShrunkChange change = shrink_change(obs, base.prediction, r.prediction);
   r.shrinkage = change.shrinkage;
   r.change_d2 = change.d2;
-  if (change.shrinkage < 1) {
-    r.chi2 = chi_square(obs, change.prediction, std::vector<char>(obs.conditions.size(), 1));
-    r.aic = r.chi2 + 2.0 * r.k;
-  }
+  // Fresh replicates and shrinking only take away: a candidate scores no better than on the
+  // replicates it was fitted to, on fresh ones, or with its change shrunk, whichever is worst.
+  r.chi2 = std::max(r.chi2, r.fit_chi2);
+  if (change.shrinkage < 1)
+    r.chi2 = std::max(r.chi2, chi_square(obs, change.prediction, std::vector<char>(obs.conditions.size(), 1)));
+  r.aic = r.chi2 + 2.0 * r.k;
   int dk = std::max(1, r.k - base.k);
   r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
   r.p = stats::f_upper_tail(r.f, dk, noise_df);

@@ -76,8 +76,10 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
 
 // A candidate against the baseline: extra-sum-of-squares F test, and significant when it also
 // predicts held-out conditions better. A stochastic candidate is scored with its change from the
-// baseline shrunk by the simulations' scatter (model_fit.h shrink_change): chi2 and AIC then are
-// those of the shrunk prediction.
+// baseline shrunk by the simulations' scatter (model_fit.h shrink_change). Its chi2 and AIC are
+// the worst of its fit's own, its fresh replicates' and its shrunk change's: a fresh draw that
+// happens to suit it better than its fit's (a clump's orientations), like the shrinking, only
+// takes away.
 void compare_with_baseline(const Observations& obs, ModelResult& candidate, const ModelResult& baseline, int noise_df,
                            bool heldout_available);
 

@@ -64,9 +64,7 @@ ShrunkChange shrink_change(const Observations& obs, const Prediction& baseline, 
   Prediction& p = out.prediction;
   p.mean_var.assign(groups, 0.0);
   for (size_t g = 0; g < groups; ++g) {
-    double vb = baseline.var.empty() ? 0.0 : baseline.var[g], vc = candidate.var.empty() ? 0.0 : candidate.var[g];
     p.mean[g] = baseline.mean[g] + s * (candidate.mean[g] - baseline.mean[g]);
-    p.var[g] = (1 - s) * vb + s * vc;
     p.mean_var[g] = (1 - s) * (1 - s) * baseline.variance_of_mean(g) + s * s * candidate.variance_of_mean(g);
   }
   return out;

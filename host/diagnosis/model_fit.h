@@ -41,8 +41,8 @@ double chi_square(const Observations& obs, const Prediction& predicted, const st
 // James-Stein factor s = max(0, 1 - (G - 2) / D), D = sum d^2 / var_d over the G groups (James &
 // Stein 1961: for G >= 3 it estimates the vector of changes better than d itself): a change no
 // larger than the simulations' scatter (D ~ G) becomes none, a real one (D >> G) stays. The
-// shrunk model predicts baseline + s d, with replicate variance (1 - s) vb + s vc and variance
-// of its means (1 - s)^2 vb/Rb + s^2 vc/Rc. G counts the groups whose means scatter; a
+// shrunk model predicts the means baseline + s d, with variance (1 - s)^2 vb/Rb + s^2 vc/Rc, and
+// the candidate's own replicate scatter vc (a scatter between the two models' is no model's). G counts the groups whose means scatter; a
 // deterministic pair (var_d = 0 everywhere) or fewer than 3 such groups are left as they are (s = 1).
 struct ShrunkChange {
   Prediction prediction;
