@@ -1,85 +1,45 @@
 // Compiles the shared kernel bodies as C++. Must stay at -ffp-contract=off (see CMakeLists.txt).
 #include "cpu_kernels.h"
 
+#include "twin_kernels.h"
+
 namespace repose::gpu {
 
-#define B_pos buf.pos
-#define B_vel buf.vel
-#define B_omega buf.omega
-#define B_force buf.force
-#define B_torque buf.torque
-#define B_pos_at_build buf.pos_at_build
-#define B_material buf.material
-#define B_pairs buf.pairs
-#define B_walls buf.walls
-#define B_control buf.control
-#define B_cell_of buf.cell_of
-#define B_cell_start buf.cell_start
-#define B_cell_fill buf.cell_fill
-#define B_sorted buf.sorted
-#define B_row_start buf.row_start
-#define B_partner buf.partner
-#define B_owner buf.owner
-#define B_history buf.history
-#define B_old_row_start buf.old_row_start
-#define B_old_partner buf.old_partner
-#define B_old_history buf.old_history
-#define B_contact_force buf.contact_force
-#define B_torque_i buf.torque_i
-#define B_torque_j buf.torque_j
-#define B_trans_start buf.trans_start
-#define B_trans_fill buf.trans_fill
-#define B_trans_list buf.trans_list
-#define B_wall_force buf.wall_force
-#define B_bodies buf.bodies
-#define B_subs buf.subs
-#define B_rolling_spring buf.rolling_spring
-#define B_candidates buf.candidates
-#define PC buf.push
-#define KERNEL(name) inline void name(Buffers& buf,
-#define KFN(ret, name) inline ret name(Buffers& buf,
-#define KB buf,
-
-#include "kernels/all.h"
-
-using KernelBody = void (*)(Buffers&, uint);
-
-// Runs invocations [0, n) of Body over the pool; a template so that the body inlines into the
-// loop (no indirect call per invocation, which costs ~0.1 ms per 50k-particle kernel).
-template <KernelBody Body>
-static void run_parallel(Buffers& buf, uint64_t n, ThreadPool& pool) {
+// Runs invocations [0, n) of kernel Body over the pool; a template so that the body inlines into
+// the loop (no indirect call per invocation, which costs ~0.1 ms per 50k-particle kernel).
+template <void (Kernels::*Body)(uint)>
+static void run_parallel(Kernels& k, uint64_t n, ThreadPool& pool) {
   pool.parallel_for(n, [&](uint64_t begin, uint64_t end) {
-    for (uint64_t i = begin; i < end; ++i) Body(buf, static_cast<uint>(i));
+    for (uint64_t i = begin; i < end; ++i) (k.*Body)(static_cast<uint>(i));
   });
 }
 
-void run_kernel(KernelId k, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
-  // Single-invocation control kernels must not run on several threads at once.
-  if (k == KernelId::RebuildArgs || k == KernelId::RowsScanned) {
-    if (invocations > 0) (k == KernelId::RebuildArgs ? k_rebuild_args : k_rows_scanned)(buf, 0u);
-    return;
-  }
+void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
   if (invocations == 0) return;
-  switch (k) {
-    case KernelId::KickDrift: return run_parallel<k_kick_drift>(buf, invocations, pool);
-    case KernelId::GatherKick: return run_parallel<k_gather_kick>(buf, invocations, pool);
-    case KernelId::GatherLean: return run_parallel<k_gather_lean>(buf, invocations, pool);
-    case KernelId::SaveOldRows: return run_parallel<k_save_old_rows>(buf, invocations, pool);
-    case KernelId::SaveOldContacts: return run_parallel<k_save_old_contacts>(buf, invocations, pool);
-    case KernelId::ClearBuckets: return run_parallel<k_clear_buckets>(buf, invocations, pool);
-    case KernelId::BucketCount: return run_parallel<k_bucket_count>(buf, invocations, pool);
-    case KernelId::BucketScatter: return run_parallel<k_bucket_scatter>(buf, invocations, pool);
-    case KernelId::BucketSort: return run_parallel<k_bucket_sort>(buf, invocations, pool);
-    case KernelId::ContactCount: return run_parallel<k_contact_count>(buf, invocations, pool);
-    case KernelId::ContactFill: return run_parallel<k_contact_fill>(buf, invocations, pool);
-    case KernelId::TransposeCount: return run_parallel<k_transpose_count>(buf, invocations, pool);
-    case KernelId::TransposeFill: return run_parallel<k_transpose_fill>(buf, invocations, pool);
-    case KernelId::TransposeSort: return run_parallel<k_transpose_sort>(buf, invocations, pool);
-    case KernelId::ContactForces: return run_parallel<k_contact_forces>(buf, invocations, pool);
-    case KernelId::ContactRows: return run_parallel<k_contact_rows>(buf, invocations, pool);
-    case KernelId::BodyKickDrift: return run_parallel<k_body_kick_drift>(buf, invocations, pool);
-    case KernelId::BodyPlace: return run_parallel<k_body_place>(buf, invocations, pool);
-    case KernelId::BodyGatherKick: return run_parallel<k_body_gather_kick>(buf, invocations, pool);
+  Kernels k(buf);
+  // Single-invocation control kernels must not run on several threads at once.
+  if (id == KernelId::RebuildArgs) return k.k_rebuild_args(0u);
+  if (id == KernelId::RowsScanned) return k.k_rows_scanned(0u);
+  switch (id) {
+    case KernelId::KickDrift: return run_parallel<&Kernels::k_kick_drift>(k, invocations, pool);
+    case KernelId::GatherKick: return run_parallel<&Kernels::k_gather_kick>(k, invocations, pool);
+    case KernelId::GatherLean: return run_parallel<&Kernels::k_gather_lean>(k, invocations, pool);
+    case KernelId::SaveOldRows: return run_parallel<&Kernels::k_save_old_rows>(k, invocations, pool);
+    case KernelId::SaveOldContacts: return run_parallel<&Kernels::k_save_old_contacts>(k, invocations, pool);
+    case KernelId::ClearBuckets: return run_parallel<&Kernels::k_clear_buckets>(k, invocations, pool);
+    case KernelId::BucketCount: return run_parallel<&Kernels::k_bucket_count>(k, invocations, pool);
+    case KernelId::BucketScatter: return run_parallel<&Kernels::k_bucket_scatter>(k, invocations, pool);
+    case KernelId::BucketSort: return run_parallel<&Kernels::k_bucket_sort>(k, invocations, pool);
+    case KernelId::ContactCount: return run_parallel<&Kernels::k_contact_count>(k, invocations, pool);
+    case KernelId::ContactFill: return run_parallel<&Kernels::k_contact_fill>(k, invocations, pool);
+    case KernelId::TransposeCount: return run_parallel<&Kernels::k_transpose_count>(k, invocations, pool);
+    case KernelId::TransposeFill: return run_parallel<&Kernels::k_transpose_fill>(k, invocations, pool);
+    case KernelId::TransposeSort: return run_parallel<&Kernels::k_transpose_sort>(k, invocations, pool);
+    case KernelId::ContactForces: return run_parallel<&Kernels::k_contact_forces>(k, invocations, pool);
+    case KernelId::ContactRows: return run_parallel<&Kernels::k_contact_rows>(k, invocations, pool);
+    case KernelId::BodyKickDrift: return run_parallel<&Kernels::k_body_kick_drift>(k, invocations, pool);
+    case KernelId::BodyPlace: return run_parallel<&Kernels::k_body_place>(k, invocations, pool);
+    case KernelId::BodyGatherKick: return run_parallel<&Kernels::k_body_gather_kick>(k, invocations, pool);
     default: return;
   }
 }
@@ -99,6 +59,7 @@ void run_scan(Buffers& buf, const ScanPush& push) {
 
 void run_wall_reduce(Buffers& buf, uint n_walls) {
   constexpr uint W = kWallReduceWorkgroup;
+  Kernels k(buf);
   uint limit = buf.control[kCtlContacts];
   for (uint w = 0; w < n_walls; ++w) {
     uint partner = buf.push.n_particles + w;
@@ -108,7 +69,7 @@ void run_wall_reduce(Buffers& buf, uint n_walls) {
       for (uint i = t; i < buf.push.n_particles; i += W) {
         uint end = min(buf.row_start[i + 1u], limit);
         for (uint c = min(buf.row_start[i], limit); c < end; ++c)
-          if (buf.partner[c] == partner) acc = acc - xyz(buf.contact_force[c]);
+          if (buf.partner[c] == partner) acc = acc - k.xyz(buf.contact_force[c]);
       }
       sx[t] = acc.x;
       sy[t] = acc.y;

@@ -9,7 +9,8 @@
 
 namespace repose::gpu {
 
-// Pointers to every buffer of the table in repose_shared.h, in the shaders' names (B_pos -> pos).
+// Pointers to every buffer of the table in repose_shared.h (the shaders' B_pos is pos here; the
+// kernel bodies see them under the shaders' names as members of Kernels, twin_kernels.h).
 struct Buffers {
 #define REPOSE_BUFFER_POINTER(binding, Name, name, type, count, need, keep) type* name = nullptr;
   REPOSE_BUFFERS(REPOSE_BUFFER_POINTER)

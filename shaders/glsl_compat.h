@@ -1,5 +1,6 @@
 // Lets the kernel bodies in shaders/kernels/*.h compile as C++ for the CPU twin (kernels_ref/).
-// GLM gives GLSL's vector types; the macros below map GLSL's qualifiers and buffer access.
+// GLM gives GLSL's vector types, the functions below its integer atomics, the macros its parameter
+// qualifiers; buffer names resolve as members of the twin's kernel struct (kernels_ref/twin_kernels.h).
 // Bit-exactness with lavapipe rests on: no FMA contraction (-ffp-contract=off), float literals
 // written with an f suffix in shared code (a double literal would promote the expression), and
 // scalar math from <cmath> (sqrt, floor are correctly rounded / exact).
@@ -40,4 +41,3 @@ inline uint atomicMax(uint& target, uint value) {
 #define precise
 #define INOUT(T) T&
 #define OUT(T) T&
-#define FN inline

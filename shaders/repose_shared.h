@@ -14,7 +14,8 @@ namespace repose::gpu {
 
 // ---- Device buffers: one table, one row per storage buffer (descriptor set 0). ----
 // Everything about a buffer follows from its row: the kBind* index below, its GLSL declaration
-// (B_name in kernels/glsl_prelude.glsl), the CPU twin's pointer (kernels_ref/cpu_kernels.h),
+// (B_name in kernels/glsl_prelude.glsl), the CPU twin's pointers (Buffers::name in
+// kernels_ref/cpu_kernels.h, and B_name for the kernel bodies in kernels_ref/twin_kernels.h),
 // its size on both backends, whether the host keeps a copy (HostState) and writes it to state
 // files (host/engine/buffer_table.h). Adding per-contact state is a row here plus the kernel
 // that uses it. Columns:

@@ -137,60 +137,48 @@ LoopDecision decide(const CampaignPlan& plan, const Eigen::MatrixXd& x, const Ei
   return d;
 }
 
-AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet) {
+namespace {
+
+// The loop's runs 1..count from the store: coded factors x, responses y, and the records.
+void gather_loop_runs(const CampaignPlan& plan, RunStore& store, int count, Eigen::MatrixXd& x, Eigen::VectorXd& y,
+                      std::vector<RunRecord>& runs) {
+  x.resize(count, int(plan.factors.size()));
+  y.resize(count);
+  runs.clear();
+  for (int i = 1; i <= count; ++i) {
+    const RunRecord* r = store.find(loop_id(i));
+    if (!r) throw std::runtime_error(loop_id(i) + " is missing from " + store.path());
+    runs.push_back(*r);
+    x.row(i - 1) = to_coded(plan, r->spec.x).transpose();
+    y[i - 1] = r->responses.at(plan.response);
+  }
+}
+
+// The surrogate in words for the report: its kernel, what it expects at the chosen point, and
+// how many runs the noise would take to pin the mean down.
+std::string surrogate_text(const CampaignPlan& plan, const GaussianProcess& gp, const CalibrationResult& res, int count) {
+  const double tol = plan.absolute_tolerance();
+  std::ostringstream text;
+  text << "Gaussian process on " << count << " runs: squared-exponential kernel, length scales (coded units)";
+  for (size_t j = 0; j < plan.factors.size(); ++j) text << " " << plan.factors[j].name << " = " << gp.length_scale[j];
+  text << ", nugget/signal variance = " << gp.noise_ratio << ", signal sd = " << gp.y_scale * std::sqrt(gp.signal_variance)
+       << ", log marginal likelihood = " << gp.log_likelihood << "\n";
+  text << "At the chosen point the surrogate's mean " << plan.response << " is " << res.predicted << " +- " << res.predicted_sd
+       << " (sd of the mean); run-to-run noise sd " << res.run_noise_sd << " (the nugget). Tolerance " << tol << ".\n";
+  if (res.run_noise_sd > tol)
+    text << "At this noise, knowing the mean to within the tolerance takes about (" << res.run_noise_sd << " / " << tol
+         << ")^2 = " << std::ceil(std::pow(res.run_noise_sd / tol, 2)) << " runs at the point.\n";
+  return text.str();
+}
+
+// The calibration the loop's last decision gives: the chosen point, the surrogate's prediction
+// there, each factor's slope and the box of sampled points the surrogate puts on target.
+CalibrationResult loop_result(const CampaignPlan& plan, const LoopDecision& d, int count) {
   const int k = int(plan.factors.size());
   const double target = plan.measured, tol = plan.absolute_tolerance();
-  auto seed_of = [&](int index) { return loop_seed(plan, index); };
-  AdaptiveOutcome out;
-  out.initial = plan.adaptive.initial;
-  std::vector<RunSpec> start = adaptive_start_runs(plan);
-  executor.run(start, "loop start");
-  std::vector<double> proposal_ei(start.size(), 0.0);
-
-  auto gather = [&](int count, Eigen::MatrixXd& x, Eigen::VectorXd& y, std::vector<RunRecord>& runs) {
-    x.resize(count, k);
-    y.resize(count);
-    runs.clear();
-    for (int i = 1; i <= count; ++i) {
-      const RunRecord* r = store.find(loop_id(i));
-      if (!r) throw std::runtime_error(loop_id(i) + " is missing from " + store.path());
-      runs.push_back(*r);
-      x.row(i - 1) = to_coded(plan, r->spec.x).transpose();
-      y[i - 1] = r->responses.at(plan.response);
-    }
-  };
-  Eigen::MatrixXd x;
-  Eigen::VectorXd y;
-  std::vector<RunRecord> runs;
-  int count = int(start.size());
-  LoopDecision d;
-  for (;;) {
-    gather(count, x, y, runs);
-    d = decide(plan, x, y);
-    if (d.met && out.simulations_to_target < 0) out.simulations_to_target = count;
-    if (d.met || count >= plan.adaptive.budget) break;
-    const Eigen::VectorXd& next = d.next;
-    const double ei = d.expected_improvement;
-    RunSpec spec{loop_id(count + 1), "loop", count + 1, 0, seed_of(count + 1), to_actual(plan, next)};
-    if (const RunRecord* stored = store.find(spec.id); stored && stored->spec.x != spec.x)
-      throw std::runtime_error(store.path() + " holds a " + spec.id + " at other parameters than the loop proposes now; "
-                               "start again with --new");
-    if (!quiet) {
-      std::fprintf(stderr,
-                   "loop: surrogate %s = %.6g +- %.3g at its best estimate (target %.6g, tolerance %.3g, run noise sd %.3g); "
-                   "next: mean %.6g +- %.3g, EI %.3g\n",
-                   plan.response.c_str(), d.mean, d.sd, target, tol, d.noise_sd, d.gp->mean(next), d.gp->sd(next), ei);
-    }
-    executor.run({spec}, "loop");
-    proposal_ei.push_back(ei);
-    ++count;
-  }
-  for (int i = 0; i < count; ++i)
-    out.steps.push_back({runs[i], (y[i] - target) / target, i < int(proposal_ei.size()) ? proposal_ei[i] : 0.0});
-
   const std::shared_ptr<GaussianProcess> gp = d.gp;
   const Eigen::VectorXd chosen = d.chosen;
-  CalibrationResult& res = out.result;
+  CalibrationResult res;
   res.method = "adaptive (Gaussian process + expected improvement)";
   res.chosen_coded = chosen;
   res.chosen = to_actual(plan, chosen);
@@ -212,17 +200,49 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor
     const auto& f = plan.factors[j];
     res.parameters.push_back({f.name, res.chosen[j], grad[j] / (0.5 * (f.high - f.low)), 0, lo_a[j], hi_a[j]});
   }
-  std::ostringstream text;
-  text << "Gaussian process on " << count << " runs: squared-exponential kernel, length scales (coded units)";
-  for (int j = 0; j < k; ++j) text << " " << plan.factors[j].name << " = " << gp->length_scale[j];
-  text << ", nugget/signal variance = " << gp->noise_ratio << ", signal sd = " << gp->y_scale * std::sqrt(gp->signal_variance)
-       << ", log marginal likelihood = " << gp->log_likelihood << "\n";
-  text << "At the chosen point the surrogate's mean " << plan.response << " is " << res.predicted << " +- " << res.predicted_sd
-       << " (sd of the mean); run-to-run noise sd " << res.run_noise_sd << " (the nugget). Tolerance " << tol << ".\n";
-  if (res.run_noise_sd > tol)
-    text << "At this noise, knowing the mean to within the tolerance takes about (" << res.run_noise_sd << " / " << tol
-         << ")^2 = " << std::ceil(std::pow(res.run_noise_sd / tol, 2)) << " runs at the point.\n";
-  res.model_text = text.str();
+  res.model_text = surrogate_text(plan, *gp, res, count);
+  return res;
+}
+
+}  // namespace
+
+AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet) {
+  const double target = plan.measured, tol = plan.absolute_tolerance();
+  AdaptiveOutcome out;
+  out.initial = plan.adaptive.initial;
+  std::vector<RunSpec> start = adaptive_start_runs(plan);
+  executor.run(start, "loop start");
+  std::vector<double> proposal_ei(start.size(), 0.0);
+
+  Eigen::MatrixXd x;
+  Eigen::VectorXd y;
+  std::vector<RunRecord> runs;
+  int count = int(start.size());
+  LoopDecision d;
+  for (;;) {
+    gather_loop_runs(plan, store, count, x, y, runs);
+    d = decide(plan, x, y);
+    if (d.met && out.simulations_to_target < 0) out.simulations_to_target = count;
+    if (d.met || count >= plan.adaptive.budget) break;
+    const Eigen::VectorXd& next = d.next;
+    const double ei = d.expected_improvement;
+    RunSpec spec{loop_id(count + 1), "loop", count + 1, 0, loop_seed(plan, count + 1), to_actual(plan, next)};
+    if (const RunRecord* stored = store.find(spec.id); stored && stored->spec.x != spec.x)
+      throw std::runtime_error(store.path() + " holds a " + spec.id + " at other parameters than the loop proposes now; "
+                               "start again with --new");
+    if (!quiet) {
+      std::fprintf(stderr,
+                   "loop: surrogate %s = %.6g +- %.3g at its best estimate (target %.6g, tolerance %.3g, run noise sd %.3g); "
+                   "next: mean %.6g +- %.3g, EI %.3g\n",
+                   plan.response.c_str(), d.mean, d.sd, target, tol, d.noise_sd, d.gp->mean(next), d.gp->sd(next), ei);
+    }
+    executor.run({spec}, "loop");
+    proposal_ei.push_back(ei);
+    ++count;
+  }
+  for (int i = 0; i < count; ++i)
+    out.steps.push_back({runs[i], (y[i] - target) / target, i < int(proposal_ei.size()) ? proposal_ei[i] : 0.0});
+  out.result = loop_result(plan, d, count);
   return out;
 }
 

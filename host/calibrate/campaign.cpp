@@ -26,55 +26,46 @@ std::vector<RunRecord> stored(const RunStore& store, const std::vector<RunSpec>&
   return out;
 }
 
-}  // namespace
+// A designed campaign: the design runs, the fit, then verification runs at the chosen point.
+void calibrate_by_design(const CampaignPlan& plan, RunStore& store, Executor& executor, CampaignRecord& record,
+                         std::vector<RunSpec>& verify) {
+  std::vector<RunSpec> design = design_runs(plan);
+  executor.run(design, "design");
+  record.result = analyse_design(plan, store);
+  record.model_runs = stored(store, design);
+  verify = replicate_runs(plan, "verify", record.result.chosen, 0, plan.verification_runs);
+  executor.run(verify, "verify");
+  add_verification(plan, stored(store, verify), design_replicate_groups(plan, store), record.result);
+}
 
-CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi) {
-  namespace fs = std::filesystem;
-  const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
-  const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
-  fs::create_directories(out_dir);
-  RunStore store(db_path, plan, options.fresh);
-  Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
-  executor.set_picture_dir(out_dir);
-
-  CampaignRecord record;
-  record.plan = &plan;
-  record.db_path = db_path;
-  AdaptiveOutcome loop;
-  std::vector<RunSpec> verify;
-  if (plan.mode == CampaignMode::design) {
-    std::vector<RunSpec> design = design_runs(plan);
-    executor.run(design, "design");
-    record.result = analyse_design(plan, store);
-    record.model_runs = stored(store, design);
-    verify = replicate_runs(plan, "verify", record.result.chosen, 0, plan.verification_runs);
-    executor.run(verify, "verify");
-    add_verification(plan, stored(store, verify), design_replicate_groups(plan, store), record.result);
-  } else {
-    loop = run_adaptive(plan, store, executor, options.quiet);
-    record.result = loop.result;
-    record.loop = &loop;
-    for (const auto& s : loop.steps) record.model_runs.push_back(s.run);
-    verify = replicate_runs(plan, "verify", record.result.chosen, 1, plan.verification_runs);
-    executor.run(verify, "verify");
-    // The loop's run at the chosen point is replicate 0 of the verification.
-    std::vector<RunRecord> at_chosen;
-    for (const auto& s : loop.steps)
-      if (s.run.spec.x == record.result.chosen) {
-        at_chosen.push_back(s.run);
-        break;
-      }
-    for (const auto& r : stored(store, verify)) at_chosen.push_back(r);
-    add_verification(plan, at_chosen, {}, record.result);
-    // The calibrated value is where the mean response meets the target; its uncertainty comes
-    // from how well the surrogate knows that mean (the runs' noise averaged) and the lab's sd.
-    for (auto& p : record.result.parameters) {
-      const double s = std::hypot(record.result.predicted_sd, plan.measured_sd);
-      p.uncertainty = std::abs(p.slope) > 0 ? s / std::abs(p.slope) : std::numeric_limits<double>::infinity();
+// An adaptive campaign: the loop (record.loop points at `loop`), then verification runs at its choice.
+void calibrate_adaptively(const CampaignPlan& plan, RunStore& store, Executor& executor, bool quiet,
+                          CampaignRecord& record, AdaptiveOutcome& loop, std::vector<RunSpec>& verify) {
+  loop = run_adaptive(plan, store, executor, quiet);
+  record.result = loop.result;
+  record.loop = &loop;
+  for (const auto& s : loop.steps) record.model_runs.push_back(s.run);
+  verify = replicate_runs(plan, "verify", record.result.chosen, 1, plan.verification_runs);
+  executor.run(verify, "verify");
+  // The loop's run at the chosen point is replicate 0 of the verification.
+  std::vector<RunRecord> at_chosen;
+  for (const auto& s : loop.steps)
+    if (s.run.spec.x == record.result.chosen) {
+      at_chosen.push_back(s.run);
+      break;
     }
+  for (const auto& r : stored(store, verify)) at_chosen.push_back(r);
+  add_verification(plan, at_chosen, {}, record.result);
+  // The calibrated value is where the mean response meets the target; its uncertainty comes
+  // from how well the surrogate knows that mean (the runs' noise averaged) and the lab's sd.
+  for (auto& p : record.result.parameters) {
+    const double s = std::hypot(record.result.predicted_sd, plan.measured_sd);
+    p.uncertainty = std::abs(p.slope) > 0 ? s / std::abs(p.slope) : std::numeric_limits<double>::infinity();
   }
-  mpi.stop_workers();
+}
 
+// How many simulations the campaign holds, their time and the host:rank pairs that ran them.
+void count_simulations(CampaignRecord& record, RunStore& store, const std::vector<RunSpec>& verify) {
   std::set<std::string> hosts;
   auto count = [&](const RunRecord& r) {
     ++record.simulations;
@@ -84,23 +75,25 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   for (const auto& r : record.model_runs) count(r);
   for (const auto& r : stored(store, verify)) count(r);
   record.hosts.assign(hosts.begin(), hosts.end());
+}
+
+// The fit's figures, the loop's convergence and each verification run's own picture.
+void add_figures(const CampaignPlan& plan, const std::vector<RunSpec>& verify, const std::string& out_dir,
+                 CampaignRecord& record) {
   record.figures = write_figures(plan, record.result, record.model_runs, out_dir);
-  if (record.loop) record.figures.push_back(write_convergence_figure(plan, loop, out_dir));
+  if (record.loop) record.figures.push_back(write_convergence_figure(plan, *record.loop, out_dir));
   for (const auto& s : verify)
-    if (fs::exists(out_dir + "/" + s.id + ".png"))
+    if (std::filesystem::exists(out_dir + "/" + s.id + ".png"))
       record.figures.push_back({s.id + ".png", "Verification run " + s.id + " (seed " + std::to_string(s.seed) +
                                                    "): the experiment's own picture."});
-  write_campaign_report(record, out_dir);
+}
 
-  CampaignSummary summary;
-  summary.target_reached = record.result.target_reached;
-  summary.verification_error = record.result.verification_error;
-  summary.simulations = record.simulations;
-  summary.simulated_now = executor.simulated();
-  summary.report_path = out_dir + "/report.md";
+// The calibrated parameters, the loop's state and the verification, in a few lines on stdout.
+void print_summary(const CampaignPlan& plan, const CampaignRecord& record, int simulated_now,
+                   const std::string& report_path, const std::string& db_path) {
   const auto& res = record.result;
   std::printf("calibrate %s: %s, %d simulations (%d run now)\n", plan.name.c_str(), res.method.c_str(), record.simulations,
-              executor.simulated());
+              simulated_now);
   for (const auto& p : res.parameters)
     if (res.target_reached)
       std::printf("  %s = %.6g +- %.3g  (target met for %.6g .. %.6g)\n", p.name.c_str(), p.value, p.uncertainty, p.set_low, p.set_high);
@@ -112,8 +105,9 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   if (record.loop) {
     std::printf("  surrogate at the chosen point: %s = %.6g +- %.3g (run noise sd %.3g)\n", plan.response.c_str(),
                 res.predicted, res.predicted_sd, res.run_noise_sd);
-    if (loop.simulations_to_target > 0)
-      std::printf("  target met after simulation %d of the loop (budget %d)\n", loop.simulations_to_target, plan.adaptive.budget);
+    if (record.loop->simulations_to_target > 0)
+      std::printf("  target met after simulation %d of the loop (budget %d)\n", record.loop->simulations_to_target,
+                  plan.adaptive.budget);
     else
       std::printf("  target not met within the loop's budget of %d\n", plan.adaptive.budget);
   }
@@ -123,7 +117,41 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
     std::printf("  verification: %s = %.6g +- %.3g over %zu runs, measured %.6g, error %+.2f %%%s\n", plan.response.c_str(),
                 res.verification_mean, res.verification_sd, res.verification.size(), plan.measured, 100 * res.verification_error,
                 res.target_reached ? "" : " (target NOT reached)");
-  std::printf("  report: %s, database: %s\n", summary.report_path.c_str(), db_path.c_str());
+  std::printf("  report: %s, database: %s\n", report_path.c_str(), db_path.c_str());
+}
+
+}  // namespace
+
+CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi) {
+  const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
+  const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
+  std::filesystem::create_directories(out_dir);
+  RunStore store(db_path, plan, options.fresh);
+  Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
+  executor.set_picture_dir(out_dir);
+
+  CampaignRecord record;
+  record.plan = &plan;
+  record.db_path = db_path;
+  AdaptiveOutcome loop;
+  std::vector<RunSpec> verify;
+  if (plan.mode == CampaignMode::design)
+    calibrate_by_design(plan, store, executor, record, verify);
+  else
+    calibrate_adaptively(plan, store, executor, options.quiet, record, loop, verify);
+  mpi.stop_workers();
+
+  count_simulations(record, store, verify);
+  add_figures(plan, verify, out_dir, record);
+  write_campaign_report(record, out_dir);
+
+  CampaignSummary summary;
+  summary.target_reached = record.result.target_reached;
+  summary.verification_error = record.result.verification_error;
+  summary.simulations = record.simulations;
+  summary.simulated_now = executor.simulated();
+  summary.report_path = out_dir + "/report.md";
+  print_summary(plan, record, executor.simulated(), summary.report_path, db_path);
   return summary;
 }
 

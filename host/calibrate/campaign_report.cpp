@@ -50,13 +50,11 @@ nlohmann::ordered_json runs_json(const CampaignPlan& plan, const std::vector<Run
   return a;
 }
 
-}  // namespace
-
-void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
+// The plan, the experiment and what the campaign cost.
+void header_section(std::ostringstream& md, const CampaignRecord& rec) {
   const CampaignPlan& plan = *rec.plan;
   const CalibrationResult& res = rec.result;
   const double tol = plan.absolute_tolerance();
-  std::ostringstream md;
   md << "# Calibration campaign `" << plan.name << "`\n\n";
   md << "- plan: `" << plan.path << "` (hash " << plan_hash(canonical_plan_text(plan)) << "), database `" << rec.db_path << "`\n";
   md << "- experiment `" << plan.experiment << "` on the base case `" << plan.case_path << "`, backend " << plan.backend << "\n";
@@ -73,7 +71,9 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
     for (const auto& s : plan.settings) md << " `" << s.key << " = " << s.value << "`";
     md << "\n";
   }
+}
 
+void calibrated_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res) {
   md << "\n## Calibrated parameters\n\n";
   md << (res.target_reached ? "The target is reached" : "**The target is not reached** within the tolerance")
      << "; model prediction at the chosen point: " << num(res.predicted) << ".\n\n";
@@ -90,7 +90,9 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
   if (res.sigma_response == 0) md << " With no noise and no measured sd the uncertainty is zero; the range column is what the tolerance allows.";
   md << " The range column lists every sampled parameter set whose predicted response is within the tolerance: one measured value is "
         "met by a whole curve or surface of parameter sets.\n";
+}
 
+void verification_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res) {
   md << "\n## Verification\n\n";
   if (res.verification.empty()) md << "No verification runs (verification.runs = 0).\n";
   else {
@@ -99,37 +101,67 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
        << (std::abs(res.verification_error) <= plan.tolerance ? " (within" : " (outside") << " the tolerance).\n\n";
     runs_table(md, plan, res.verification);
   }
+}
 
+// The adaptive loop's runs in order, with the expected improvement that proposed each.
+void loop_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res,
+                  const AdaptiveOutcome& loop) {
+  md << "\n## Adaptive loop\n\n" << loop.initial << " space-filling runs (Halton), then one proposal at a time.";
+  md << (plan.adaptive.seed_per_run ? " Each run packs with its own seed." : " Every run packs with the same seed.");
+  if (loop.simulations_to_target > 0)
+    md << " The target was met after simulation " << loop.simulations_to_target
+       << " (the surrogate's mean within the tolerance and known to within it).";
+  else md << " The target was not met within the budget of " << plan.adaptive.budget << ".";
+  md << " At the chosen point the surrogate expects " << plan.response << " = " << num(res.predicted) << " +- "
+     << num(res.predicted_sd, 3) << "; run-to-run noise sd " << num(res.run_noise_sd, 3) << ".";
+  md << "\n\n| # | ";
+  for (const auto& f : plan.factors) md << f.name << " | ";
+  md << plan.response << " | error | expected improvement |\n|---|";
+  for (size_t i = 0; i <= plan.factors.size(); ++i) md << "---|";
+  md << "---|---|\n";
+  for (size_t i = 0; i < loop.steps.size(); ++i) {
+    const auto& s = loop.steps[i];
+    md << "| " << i + 1 << " | ";
+    for (double x : s.run.spec.x) md << num(x) << " | ";
+    md << num(s.run.responses.at(plan.response)) << " | " << percent(s.relative_error) << " | "
+       << (int(i) < loop.initial ? "(start)" : num(s.expected_improvement, 3)) << " |\n";
+  }
+}
+
+std::string report_markdown(const CampaignRecord& rec) {
+  const CampaignPlan& plan = *rec.plan;
+  const CalibrationResult& res = rec.result;
+  std::ostringstream md;
+  header_section(md, rec);
+  calibrated_section(md, plan, res);
+  verification_section(md, plan, res);
   if (rec.loop) {
-    const AdaptiveOutcome& loop = *rec.loop;
-    md << "\n## Adaptive loop\n\n" << loop.initial << " space-filling runs (Halton), then one proposal at a time.";
-    md << (plan.adaptive.seed_per_run ? " Each run packs with its own seed." : " Every run packs with the same seed.");
-    if (loop.simulations_to_target > 0)
-      md << " The target was met after simulation " << loop.simulations_to_target
-         << " (the surrogate's mean within the tolerance and known to within it).";
-    else md << " The target was not met within the budget of " << plan.adaptive.budget << ".";
-    md << " At the chosen point the surrogate expects " << plan.response << " = " << num(res.predicted) << " +- "
-       << num(res.predicted_sd, 3) << "; run-to-run noise sd " << num(res.run_noise_sd, 3) << ".";
-    md << "\n\n| # | ";
-    for (const auto& f : plan.factors) md << f.name << " | ";
-    md << plan.response << " | error | expected improvement |\n|---|";
-    for (size_t i = 0; i <= plan.factors.size(); ++i) md << "---|";
-    md << "---|---|\n";
-    for (size_t i = 0; i < loop.steps.size(); ++i) {
-      const auto& s = loop.steps[i];
-      md << "| " << i + 1 << " | ";
-      for (double x : s.run.spec.x) md << num(x) << " | ";
-      md << num(s.run.responses.at(plan.response)) << " | " << percent(s.relative_error) << " | "
-         << (int(i) < loop.initial ? "(start)" : num(s.expected_improvement, 3)) << " |\n";
-    }
+    loop_section(md, plan, res, *rec.loop);
   } else {
     md << "\n## Design runs\n\n";
     runs_table(md, plan, rec.model_runs);
   }
   md << "\n## Model\n\n```\n" << res.model_text << "```\n\n## Figures\n\n";
   for (const auto& f : rec.figures) md << "![" << f.file << "](" << f.file << ")\n\n" << f.caption << "\n\n";
-  write_file_atomically(dir + "/report.md", md.str());
+  return md.str();
+}
 
+// What produced the campaign: the base case, the plan's fixed settings as overrides, the hosts.
+Provenance campaign_provenance(const CampaignRecord& rec) {
+  const CampaignPlan& plan = *rec.plan;
+  Provenance prov;
+  prov.case_path = plan.case_path;
+  prov.case_hash = fnv1a_hex(plan.case_identity);
+  for (const auto& setting : plan.settings) prov.overrides.push_back(setting.key + "=" + setting.value);
+  prov.seed = plan.base_seed;
+  prov.backend = plan.backend;
+  for (const auto& h : rec.hosts) prov.device += (prov.device.empty() ? "" : ", ") + h;  // host:rank of the runs
+  return prov;
+}
+
+nlohmann::ordered_json summary_json(const CampaignRecord& rec) {
+  const CampaignPlan& plan = *rec.plan;
+  const CalibrationResult& res = rec.result;
   nlohmann::ordered_json j;
   j["campaign"] = plan.name;
   j["plan"] = plan.path;
@@ -162,16 +194,16 @@ void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
   j["verification"] = {{"mean", verified(res.verification_mean)}, {"sd", verified(res.verification_sd)},
                        {"relative_error", verified(res.verification_error)}, {"runs", runs_json(plan, res.verification)}};
   j["model_runs"] = runs_json(plan, rec.model_runs);
-  Provenance prov;
-  prov.case_path = plan.case_path;
-  prov.case_hash = fnv1a_hex(plan.case_identity);
-  for (const auto& setting : plan.settings) prov.overrides.push_back(setting.key + "=" + setting.value);
-  prov.seed = plan.base_seed;
-  prov.backend = plan.backend;
-  for (const auto& h : rec.hosts) prov.device += (prov.device.empty() ? "" : ", ") + h;  // host:rank of the runs
-  j["provenance"] = provenance_json(prov);
+  j["provenance"] = provenance_json(campaign_provenance(rec));
   for (const auto& f : rec.figures) j["figures"].push_back(f.file);
-  write_file_atomically(dir + "/summary.json", j.dump(2) + "\n");
+  return j;
+}
+
+}  // namespace
+
+void write_campaign_report(const CampaignRecord& rec, const std::string& dir) {
+  write_file_atomically(dir + "/report.md", report_markdown(rec));
+  write_file_atomically(dir + "/summary.json", summary_json(rec).dump(2) + "\n");
 }
 
 }  // namespace repose::calibrate

@@ -8,6 +8,7 @@
 
 #include "calibrate/mpi_session.h"
 #include "calibrate/plan.h"
+#include "calibrate/run_job.h"
 #include "calibrate/run_store.h"
 
 namespace repose::calibrate {
@@ -28,6 +29,16 @@ class Executor {
   void set_picture_dir(const std::string& dir) { picture_dir_ = dir; }
 
  private:
+  struct Batch;  // one run()'s jobs, shared by the local threads and the coordinating loop
+
+  // The specs' jobs that the database does not hold yet; throws when it holds one at other
+  // parameters.
+  std::vector<RunJob> pending_jobs(const std::vector<RunSpec>& specs, const std::string& label) const;
+  // Hands jobs to idle ranks and stores the outcomes of ranks and local threads as they come,
+  // until every job handed out is back (after a failure no more are handed out).
+  void coordinate(Batch& batch);
+  void store_outcome(Batch& batch, JobOutcome& out);
+
   const CampaignPlan& plan_;
   RunStore& store_;
   MpiSession& mpi_;

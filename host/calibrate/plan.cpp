@@ -151,6 +151,63 @@ void read_factors(const toml::node& node, const std::string& file, CampaignPlan&
   if (plan.factors.empty()) throw CaseError({file, "factor", int(node.source().begin.line)}, "no factor");
 }
 
+// type = "table": the runs are the rows of a CSV (path relative to the plan), one column per factor.
+void read_design_table(const PlanTable& t, CampaignPlan& plan) {
+  DesignPlan& d = plan.design;
+  std::string rel = t.required_text("table");
+  fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(plan.path).parent_path() / rel;
+  d.table = p.lexically_normal().string();
+  try {
+    stats::Table table = stats::read_csv(d.table);
+    std::vector<std::vector<double>> columns;
+    for (const auto& f : plan.factors) columns.push_back(table.numeric_column(f.name));
+    for (int r = 0; r < table.rows(); ++r) {
+      std::vector<double> row;
+      for (const auto& c : columns) row.push_back(c[size_t(r)]);
+      d.table_rows.push_back(row);
+    }
+    if (d.table_rows.empty()) throw stats::TableError(d.table, 0, 0, "no runs in the table");
+  } catch (const InputError& e) {
+    t.fail("table", std::string("design table: ") + e.what());
+  }
+}
+
+// The design's model can be fitted from its runs: a known model, enough distinct points, and a
+// model matrix of full rank.
+void check_model_estimable(const PlanTable& t, const CampaignPlan& plan) {
+  const DesignPlan& d = plan.design;
+  const int k = int(plan.factors.size());
+  stats::ModelKind kind;
+  try {
+    kind = stats::parse_model_kind(d.model);
+  } catch (const std::exception& e) {
+    t.fail("model", e.what());
+  }
+  std::vector<stats::Term> terms = stats::build_model(kind, k);
+  stats::Design design;
+  try {
+    design = build_design(plan);
+  } catch (const std::exception& e) {
+    t.fail(std::string(e.what()));
+  }
+  // The model must be estimable from the design's distinct points (replicates add no rank).
+  std::vector<int> first = first_identical_rows(design, k);
+  int distinct = 0;
+  for (int i = 0; i < design.runs(); ++i) distinct += first[i] == i;
+  if (distinct < int(terms.size()))
+    t.fail("model", "fewer runs than model terms: a " + d.model + " model in " + std::to_string(k) + " factors has " +
+                        std::to_string(terms.size()) + " terms, the " + d.type + " design gives " +
+                        std::to_string(distinct) + " distinct points");
+  try {
+    Eigen::MatrixXd x = design.coded.leftCols(k);
+    std::vector<std::string> term_names;
+    for (const auto& term : terms) term_names.push_back(stats::term_name(term));
+    stats::least_squares(stats::model_matrix(terms, x), Eigen::VectorXd::Zero(x.rows()), term_names);
+  } catch (const stats::StatsError& e) {
+    t.fail("model", std::string("the ") + d.type + " design cannot estimate this model: " + e.what());
+  }
+}
+
 void read_design(const PlanTable& t, CampaignPlan& plan) {
   t.allow_only({"type", "alpha", "centre", "replicates", "model", "reduce", "generators", "levels", "degree", "order_seed", "table"});
   DesignPlan& d = plan.design;
@@ -158,22 +215,7 @@ void read_design(const PlanTable& t, CampaignPlan& plan) {
   const std::set<std::string> types = {"ccd", "bbd", "factorial", "fractional", "sweep", "table"};
   if (!types.count(d.type)) t.fail("type", "unknown design '" + d.type + "' (ccd, bbd, factorial, fractional, sweep, table)");
   if (d.type == "table") {
-    std::string rel = t.required_text("table");
-    fs::path p = fs::path(rel).is_absolute() ? fs::path(rel) : fs::path(plan.path).parent_path() / rel;
-    d.table = p.lexically_normal().string();
-    try {
-      stats::Table table = stats::read_csv(d.table);
-      std::vector<std::vector<double>> columns;
-      for (const auto& f : plan.factors) columns.push_back(table.numeric_column(f.name));
-      for (int r = 0; r < table.rows(); ++r) {
-        std::vector<double> row;
-        for (const auto& c : columns) row.push_back(c[size_t(r)]);
-        d.table_rows.push_back(row);
-      }
-      if (d.table_rows.empty()) throw stats::TableError(d.table, 0, 0, "no runs in the table");
-    } catch (const InputError& e) {
-      t.fail("table", std::string("design table: ") + e.what());
-    }
+    read_design_table(t, plan);
   } else if (t.table().get("table")) {
     t.fail("table", "a design table needs type = \"table\"");
   }
@@ -206,35 +248,7 @@ void read_design(const PlanTable& t, CampaignPlan& plan) {
   }
   if (d.type == "ccd" && k < 2) t.fail("type", "a central composite design needs at least 2 factors (use type = \"sweep\" for one)");
   if (d.type == "bbd" && (k < 3 || k > 7)) t.fail("type", "a Box-Behnken design takes 3 to 7 factors");
-  stats::ModelKind kind;
-  try {
-    kind = stats::parse_model_kind(d.model);
-  } catch (const std::exception& e) {
-    t.fail("model", e.what());
-  }
-  std::vector<stats::Term> terms = stats::build_model(kind, k);
-  stats::Design design;
-  try {
-    design = build_design(plan);
-  } catch (const std::exception& e) {
-    t.fail(std::string(e.what()));
-  }
-  // The model must be estimable from the design's distinct points (replicates add no rank).
-  std::vector<int> first = first_identical_rows(design, k);
-  int distinct = 0;
-  for (int i = 0; i < design.runs(); ++i) distinct += first[i] == i;
-  if (distinct < int(terms.size()))
-    t.fail("model", "fewer runs than model terms: a " + d.model + " model in " + std::to_string(k) + " factors has " +
-                        std::to_string(terms.size()) + " terms, the " + d.type + " design gives " +
-                        std::to_string(distinct) + " distinct points");
-  try {
-    Eigen::MatrixXd x = design.coded.leftCols(k);
-    std::vector<std::string> term_names;
-    for (const auto& term : terms) term_names.push_back(stats::term_name(term));
-    stats::least_squares(stats::model_matrix(terms, x), Eigen::VectorXd::Zero(x.rows()), term_names);
-  } catch (const stats::StatsError& e) {
-    t.fail("model", std::string("the ") + d.type + " design cannot estimate this model: " + e.what());
-  }
+  check_model_estimable(t, plan);
 }
 
 void read_adaptive(const PlanTable& t, CampaignPlan& plan) {

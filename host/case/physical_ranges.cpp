@@ -6,16 +6,13 @@
 
 #include "case/case_error.h"
 #include "case/time_step.h"
+#include "util/number_text.h"
 
 namespace repose {
 
 namespace {
 
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
+std::string number(double v) { return format_g(v, 4); }
 
 void warn(std::vector<std::string>& warnings, const SourceRef& where, const std::string& what) {
   warnings.push_back(CaseError::format(where, "warning: " + what));

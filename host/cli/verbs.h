@@ -19,6 +19,6 @@ std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, optimize, 
 std::vector<Verb> geometry_verbs();  // verbs_geometry.cpp: clump, stl, heap-angle
 std::vector<Verb> experiment_verbs();  // verbs_experiments.cpp: experiment
 std::vector<Verb> calibrate_verbs();   // verbs_calibrate.cpp: calibrate
-std::vector<Verb> diagnose_verbs();    // verbs_diagnose.cpp: diagnose, synth-data
+std::vector<Verb> diagnose_verbs();    // verbs_diagnose.cpp: diagnose, synth-data, extensions
 
 }  // namespace repose::cli

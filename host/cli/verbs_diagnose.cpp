@@ -13,7 +13,9 @@
 #include "cli/verbs.h"
 #include "diagnosis/diagnose.h"
 #include "diagnosis/diagnosis_report.h"
+#include "diagnosis/extensions.h"
 #include "diagnosis/synthetic_data.h"
+#include "util/number_text.h"
 
 namespace repose::cli {
 
@@ -35,10 +37,8 @@ std::vector<CaseOverride> read_params(const std::string& path) {
       if (node.is_table()) {
         walk(*node.as_table(), key);
       } else if (node.is_number()) {
-        std::ostringstream v;
-        v.precision(17);
-        v << (node.is_integer() ? double(node.as_integer()->get()) : node.as_floating_point()->get());
-        out.push_back({key, v.str()});
+        out.push_back({key, exact_number(node.is_integer() ? double(node.as_integer()->get())
+                                                           : node.as_floating_point()->get())});
       } else if (node.is_string()) {
         out.push_back({key, "\"" + node.as_string()->get() + "\""});
       } else {
@@ -164,11 +164,31 @@ int run_synth_data(int argc, char** argv) {
   return 0;
 }
 
+// The candidate extensions as their rows declare them (diagnosis/extensions.cpp).
+int run_extensions(int argc, char** argv) {
+  CLI::App app{"List the candidate model extensions diagnose tests: parameters, ranges, revealing measures, "
+               "case keys and where their physics lives."};
+  CLI11_PARSE(app, argc, argv);
+  for (const ModelExtension& e : model_extensions()) {
+    std::printf("%s\n  %s\n", e.id.c_str(), e.description.c_str());
+    for (const FreeParameter& p : e.parameters)
+      std::printf("  parameter   %s (%s) %s to %s%s\n", p.name.c_str(), p.unit.c_str(), format_g(p.lo).c_str(),
+                  format_g(p.hi).c_str(), p.log_scale ? ", searched in log" : "");
+    std::string measures;
+    for (const auto& m : e.revealed_by) measures += (measures.empty() ? "" : ", ") + m;
+    std::printf("  revealed by %s%s\n", measures.empty() ? e.pending_reason.c_str() : measures.c_str(),
+                e.needs_sigma ? " (replicate scatter: data with sigma)" : "");
+    std::printf("  case keys   %s\n  physics     %s\n", e.case_keys.c_str(), e.physics.c_str());
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::vector<Verb> diagnose_verbs() {
   return {{"diagnose", "what a calibrated model gets wrong against measured data, and why", run_diagnose},
-          {"synth-data", "measured-data CSV simulated with a hidden model extension", run_synth_data}};
+          {"synth-data", "measured-data CSV simulated with a hidden model extension", run_synth_data},
+          {"extensions", "the candidate model extensions: parameters, ranges, revealing measures, case keys", run_extensions}};
 }
 
 }  // namespace repose::cli

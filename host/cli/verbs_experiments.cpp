@@ -2,6 +2,7 @@
 // The experiment the case names (experiments/registry.h) runs it, prints what it measured and
 // writes TYPE.json with the files it declares (time series as CSV, wall forces, a heap's picture).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "util/number_text.h"
 #include "engine/backend_factory.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
@@ -24,16 +26,16 @@ std::string listed(const std::vector<std::string>& words) {
   return text;
 }
 
-// The shortest text that reads back as exactly `value`.
-std::string exact_text(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", value);
-  for (int digits = 1; digits <= 17; ++digits) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", digits, value);
-    if (std::strtod(shorter, nullptr) == value) return shorter;
+// The experiment types whose cases take `key` in their [experiment] table.
+std::vector<std::string> types_with_key(const std::string& key) {
+  std::vector<std::string> types;
+  for (const Experiment* e : experiments()) {
+    const std::vector<std::string> keys = e->keys();
+    if (std::find(keys.begin(), keys.end(), key) != keys.end() &&
+        std::find(types.begin(), types.end(), e->type()) == types.end())
+      types.push_back(e->type());
   }
-  return text;
+  return types;
 }
 
 // What produced an experiment's result (io/provenance.h); creating the backend names its device.
@@ -77,11 +79,13 @@ int run_experiment(int argc, char** argv) {
       ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
   if (replicates > 1 && type != "drop") return usage_error("--replicates applies to the drop experiment");
-  if (height_opt->count() && type != "drop") return usage_error("--height applies to the drop experiment");
+  const std::vector<std::string> with_height = types_with_key("drop_height");
+  if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
+    return usage_error("--height applies to the " + listed(with_height) + " experiment");
 
   std::vector<CaseOverride> extra;
   if (height_opt->count()) {
-    extra.push_back({"experiment.drop_height", exact_text(height)});
+    extra.push_back({"experiment.drop_height", exact_number(height)});
     sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
   }
   auto loaded = load_case_or_report(case_path, sets, extra);

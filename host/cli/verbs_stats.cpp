@@ -64,6 +64,58 @@ std::pair<std::string, double> parse_assignment(const std::string& s, const char
   return {s.substr(0, eq), v};
 }
 
+// --type path: steps along the steepest ascent (or descent) of a first-order fit's coded slopes.
+Design path_design(const std::string& fit_path, double step, int steps, bool descent) {
+  if (fit_path.empty()) throw StatsError("--type path needs --fit FIT.json (a first-order fit)");
+  SavedFit fit = read_fit_file(fit_path);
+  if (fit.ranges.empty())
+    throw StatsError(fit_path + ": the fit has no factor ranges (fit with --coded or --ranges)");
+  const int k = static_cast<int>(fit.factor_names.size());
+  Eigen::VectorXd slopes(k);
+  for (int i = 0; i < k; ++i) {
+    Term t{std::vector<int>(k, 0)};
+    t.powers[i] = 1;
+    slopes[i] = fit.coded.coefficient(t);
+  }
+  return steepest_path(fit.ranges, slopes, step, steps, !descent);
+}
+
+// The screening and response-surface designs of --factors NAME:LOW:HIGH,...
+Design factor_design(const std::string& type, const std::string& factor_list, int centre, const std::string& alpha,
+                     std::vector<std::string> generators, int fraction) {
+  if (factor_list.empty()) throw StatsError("--factors NAME:LOW:HIGH,... is required");
+  std::vector<Factor> factors = parse_factors(factor_list);
+  int centres = centre >= 0 ? centre : type == "ccd" ? 6 : type == "bbd" ? 5 : 0;
+  if (type == "pb12") return plackett_burman(12, factors, centres);
+  if (type == "pb20") return plackett_burman(20, factors, centres);
+  if (type == "factorial") return full_factorial(factors, centres);
+  if (type == "fractional") {
+    if (generators.empty() && fraction <= 0)
+      throw StatsError("--type fractional needs --generators D=ABC,... or --fraction P");
+    if (generators.empty()) generators = default_generators(static_cast<int>(factors.size()), fraction);
+    return fractional_factorial(factors, generators, centres);
+  }
+  if (type == "ccd") return central_composite(factors, parse_alpha(alpha), centres);
+  return box_behnken(factors, centres);
+}
+
+// The design's line in the CSV's comments: runs by point type, alpha, generators, run order.
+std::string design_summary(const Design& d, const std::optional<std::uint64_t>& seed) {
+  std::string summary = std::to_string(d.runs()) + " runs";
+  int counts[5] = {0, 0, 0, 0, 0};
+  for (auto p : d.points) ++counts[static_cast<int>(p)];
+  for (int t = 0; t < 5; ++t)
+    if (counts[t]) summary += ", " + std::to_string(counts[t]) + " " + point_type_name(static_cast<PointType>(t));
+  if (d.type == "ccd") summary += "; alpha = " + num(d.alpha, 10);
+  if (!d.generators.empty()) {
+    summary += "; generators";
+    for (const auto& g : d.generators) summary += " " + g;
+  }
+  if (!d.dummies.empty()) summary += "; " + std::to_string(d.dummies.size()) + " dummy columns";
+  summary += seed ? "; run order randomised with seed " + std::to_string(*seed) : "; standard order";
+  return summary;
+}
+
 // ---------------------------------------------------------------------------------------
 int run_design(int argc, char** argv) {
   CLI::App app{"Write an experimental design (coded and actual values) as CSV."};
@@ -90,50 +142,12 @@ int run_design(int argc, char** argv) {
   app.add_option("--out", out, "output CSV (default: standard output)");
   CLI11_PARSE(app, argc, argv);
 
-  Design d;
-  if (type == "path") {
-    if (fit_path.empty()) throw StatsError("--type path needs --fit FIT.json (a first-order fit)");
-    SavedFit fit = read_fit_file(fit_path);
-    if (fit.ranges.empty())
-      throw StatsError(fit_path + ": the fit has no factor ranges (fit with --coded or --ranges)");
-    const int k = static_cast<int>(fit.factor_names.size());
-    Eigen::VectorXd slopes(k);
-    for (int i = 0; i < k; ++i) {
-      Term t{std::vector<int>(k, 0)};
-      t.powers[i] = 1;
-      slopes[i] = fit.coded.coefficient(t);
-    }
-    d = steepest_path(fit.ranges, slopes, step, steps, !descent);
-  } else {
-    if (factor_list.empty()) throw StatsError("--factors NAME:LOW:HIGH,... is required");
-    std::vector<Factor> factors = parse_factors(factor_list);
-    int centres = centre >= 0 ? centre : type == "ccd" ? 6 : type == "bbd" ? 5 : 0;
-    if (type == "pb12") d = plackett_burman(12, factors, centres);
-    else if (type == "pb20") d = plackett_burman(20, factors, centres);
-    else if (type == "factorial") d = full_factorial(factors, centres);
-    else if (type == "fractional") {
-      if (generators.empty() && fraction <= 0)
-        throw StatsError("--type fractional needs --generators D=ABC,... or --fraction P");
-      if (generators.empty()) generators = default_generators(static_cast<int>(factors.size()), fraction);
-      d = fractional_factorial(factors, generators, centres);
-    } else if (type == "ccd") d = central_composite(factors, parse_alpha(alpha), centres);
-    else d = box_behnken(factors, centres);
-  }
+  Design d = type == "path" ? path_design(fit_path, step, steps, descent)
+                            : factor_design(type, factor_list, centre, alpha, generators, fraction);
   if (seed) randomise_run_order(d, *seed);
 
   std::vector<std::string> comments = {"repose design: " + join_args(argc - 1, argv + 1)};
-  std::string summary = std::to_string(d.runs()) + " runs";
-  int counts[5] = {0, 0, 0, 0, 0};
-  for (auto p : d.points) ++counts[static_cast<int>(p)];
-  for (int t = 0; t < 5; ++t)
-    if (counts[t]) summary += ", " + std::to_string(counts[t]) + " " + point_type_name(static_cast<PointType>(t));
-  if (d.type == "ccd") summary += "; alpha = " + num(d.alpha, 10);
-  if (!d.generators.empty()) {
-    summary += "; generators";
-    for (const auto& g : d.generators) summary += " " + g;
-  }
-  if (!d.dummies.empty()) summary += "; " + std::to_string(d.dummies.size()) + " dummy columns";
-  summary += seed ? "; run order randomised with seed " + std::to_string(*seed) : "; standard order";
+  const std::string summary = design_summary(d, seed);
   comments.push_back(summary);
   std::string csv = format_csv(design_table(d), comments);
   if (out.empty()) {
@@ -146,6 +160,63 @@ int run_design(int argc, char** argv) {
 }
 
 // ---------------------------------------------------------------------------------------
+// The table's rows as coded factors and the response: --coded codes actual columns with its
+// ranges, --ranges gives coded columns their actual ranges, --snap-alpha puts axial levels
+// printed rounded at the exact alpha.
+DataSet fit_data(const Table& table, const std::vector<std::string>& factors, const std::string& response,
+                 const std::vector<std::string>& coded, const std::vector<std::string>& ranges, const std::string& snap) {
+  auto parse_ranges = [&](const std::vector<std::string>& specs, const char* option) {
+    if (specs.size() != factors.size())
+      throw StatsError(std::string(option) + " needs one LOW:HIGH per factor: " + std::to_string(factors.size()) +
+                       " factors, " + std::to_string(specs.size()) + " ranges");
+    std::vector<Factor> out;
+    for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
+    return out;
+  };
+  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
+  DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
+  if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
+  const int k = static_cast<int>(factors.size());
+  if (!snap.empty()) {
+    double alpha = snap == "rotatable" ? std::pow(std::ldexp(1.0, k), 0.25) : 0;
+    if (snap != "rotatable" && (!parse_number(snap, alpha) || !(alpha > 0)))
+      throw StatsError("--snap-alpha '" + snap + "' is not rotatable or a positive number");
+    int n = snap_to_alpha(data.coded, alpha);
+    std::printf("axial levels: %d coded values set to +-%.6f\n", n, alpha);
+  }
+  return data;
+}
+
+struct ChosenFit {
+  std::optional<Reduction> result;
+  std::string model;  // its kind's name
+};
+
+// --model, or for "auto" the largest of quadratic, interaction, linear that the design can
+// estimate; reduced backward when --reduce is given.
+ChosenFit fit_largest_model(const DataSet& data, const std::string& model, std::optional<double> reduce, bool hierarchy,
+                            SumOfSquaresType ss_type, const std::string& table_path) {
+  const int k = static_cast<int>(data.coded.cols());
+  std::vector<std::string> candidates = model == "auto" ? std::vector<std::string>{"quadratic", "interaction", "linear"}
+                                                        : std::vector<std::string>{model};
+  ChosenFit out;
+  for (size_t c = 0; c < candidates.size() && !out.result; ++c) {
+    auto terms = build_model(parse_model_kind(candidates[c]), k);
+    try {
+      if (reduce) {
+        out.result = reduce_backward(data.coded, data.y, terms, *reduce, hierarchy, ss_type);
+      } else {
+        out.result = Reduction{analyse(data.coded, data.y, terms, ss_type), {}};
+      }
+      out.model = model_kind_name(parse_model_kind(candidates[c]));
+    } catch (const ModelError& e) {
+      if (c + 1 == candidates.size()) throw ModelError(table_path + ": " + e.what());
+      std::printf("%s model not estimable (%s); trying a smaller one\n", candidates[c].c_str(), e.what());
+    }
+  }
+  return out;
+}
+
 int run_fit(int argc, char** argv) {
   CLI::App app{"Fit a polynomial model to a CSV table and print its ANOVA like Design-Expert."};
   std::string table_path, response, model = "auto", json_out, snap, ss = "partial";
@@ -174,46 +245,12 @@ int run_fit(int argc, char** argv) {
   if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
 
   Table table = read_csv(table_path);
-  auto parse_ranges = [&](const std::vector<std::string>& specs, const char* option) {
-    if (specs.size() != factors.size())
-      throw StatsError(std::string(option) + " needs one LOW:HIGH per factor: " + std::to_string(factors.size()) +
-                       " factors, " + std::to_string(specs.size()) + " ranges");
-    std::vector<Factor> out;
-    for (size_t i = 0; i < specs.size(); ++i) out.push_back(parse_range(factors[i], specs[i]));
-    return out;
-  };
-  if (coded.empty() && ranges.empty()) require_coded_columns(table, factors);
-  DataSet data = dataset_from_table(table, factors, response, coded.empty() ? std::vector<Factor>{} : parse_ranges(coded, "--coded"));
-  if (!ranges.empty()) data.ranges = parse_ranges(ranges, "--ranges");
-  const int k = static_cast<int>(factors.size());
-  if (!snap.empty()) {
-    double alpha = snap == "rotatable" ? std::pow(std::ldexp(1.0, k), 0.25) : 0;
-    if (snap != "rotatable" && (!parse_number(snap, alpha) || !(alpha > 0)))
-      throw StatsError("--snap-alpha '" + snap + "' is not rotatable or a positive number");
-    int n = snap_to_alpha(data.coded, alpha);
-    std::printf("axial levels: %d coded values set to +-%.6f\n", n, alpha);
-  }
+  DataSet data = fit_data(table, factors, response, coded, ranges, snap);
   SumOfSquaresType ss_type = ss == "partial" ? SumOfSquaresType::partial : SumOfSquaresType::sequential;
 
-  // "auto": the largest of quadratic, interaction, linear that the design can estimate.
-  std::vector<std::string> candidates = model == "auto" ? std::vector<std::string>{"quadratic", "interaction", "linear"}
-                                                        : std::vector<std::string>{model};
-  std::optional<Reduction> result;
-  std::string chosen;
-  for (size_t c = 0; c < candidates.size() && !result; ++c) {
-    auto terms = build_model(parse_model_kind(candidates[c]), k);
-    try {
-      if (reduce) {
-        result = reduce_backward(data.coded, data.y, terms, *reduce, !no_hierarchy, ss_type);
-      } else {
-        result = Reduction{analyse(data.coded, data.y, terms, ss_type), {}};
-      }
-      chosen = model_kind_name(parse_model_kind(candidates[c]));
-    } catch (const ModelError& e) {
-      if (c + 1 == candidates.size()) throw ModelError(table_path + ": " + e.what());
-      std::printf("%s model not estimable (%s); trying a smaller one\n", candidates[c].c_str(), e.what());
-    }
-  }
+  const ChosenFit chosen_fit = fit_largest_model(data, model, reduce, !no_hierarchy, ss_type, table_path);
+  const std::optional<Reduction>& result = chosen_fit.result;
+  const std::string& chosen = chosen_fit.model;
   const ResponseSurface& fit = result->model;
   std::printf("%s: %d runs, response %s\n\n", table_path.c_str(), table.rows(), response.c_str());
   std::fputs(format_anova(fit, factors, chosen).c_str(), stdout);

@@ -1,8 +1,8 @@
-// The candidate model extensions of `repose diagnose` (docs/diagnosis.md): what each adds to the
-// baseline Hertz-Mindlin model, its parameters with their search ranges, and how it is switched
-// on in a case. This table is the one place to add another candidate: give it an id, its
-// parameters and an `apply` that writes them into a CaseSpec (and the physics, off by default,
-// in the kernels), and diagnose fits and compares it with the rest.
+// The candidate model extensions of `repose diagnose` (docs/diagnosis.md). Each is one row of
+// model_extensions() (extensions.cpp) that says everything about it except its kernel code: what
+// it adds to the baseline Hertz-Mindlin model, where that physics lives, its parameters with their
+// search ranges, the measures that reveal it, the case keys it sets and the `apply` that sets them.
+// Diagnose, synth-data and `repose diagnose --extensions` read only this table.
 #pragma once
 #include <functional>
 #include <string>
@@ -16,10 +16,14 @@ namespace repose {
 struct ModelExtension {
   std::string id;           // "air_drag"
   std::string description;  // one line for reports
+  std::string physics;      // where its physics lives: "air_drag_acceleration() in shaders/kernels/integrate.h"
+  std::string case_keys;    // the case keys `apply` sets: "[air_drag] drag_coefficient, air_density"
   std::vector<FreeParameter> parameters;
-  // Which measures can reveal it; empty: none of the experiments diagnose runs yet (pending).
+  // Which measures can reveal it (names of experiments' MeasureInfo); empty: none of the
+  // experiments diagnose runs yet (pending).
   std::vector<std::string> revealed_by;
-  std::string pending_reason;  // why it cannot be tested yet, when revealed_by is empty
+  std::string pending_reason = "";  // why it cannot be tested yet, when revealed_by is empty
+  // Writes the parameters (in `parameters` order) into a case.
   std::function<void(CaseSpec&, const std::vector<double>&)> apply;
   // Its signature is the replicate scatter (a stochastic model): tested only when the data give
   // sigma, since otherwise the scatter is taken as the measurement noise.

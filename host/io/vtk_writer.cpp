@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "util/atomic_file.h"
+#include "util/math.h"
 
 namespace repose {
 
@@ -120,7 +121,7 @@ void wall_polygons(Surface& s, const gpu::WallState& w, const Bounds& b, int32_t
       tangents(axis, u, v);
       constexpr int kSides = 48;
       for (int k = 0; k < kSides; ++k) {
-        double a0 = 2 * M_PI * k / kSides, a1 = 2 * M_PI * (k + 1) / kSides;
+        double a0 = 2 * kPi * k / kSides, a1 = 2 * kPi * (k + 1) / kSides;
         glm::dvec3 e0 = r * (std::cos(a0) * u + std::sin(a0) * v), e1 = r * (std::cos(a1) * u + std::sin(a1) * v);
         s.polygon({base + e0, base + e1, base + e1 + h * axis, base + e0 + h * axis}, wall);
       }

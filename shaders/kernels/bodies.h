@@ -9,17 +9,17 @@
 #define REPOSE_KERNELS_BODIES_H
 
 // v rotated by the unit quaternion q = (u, w): v + 2 w (u x v) + 2 u x (u x v).
-FN vec3 quat_rotate(vec4 q, vec3 v) {
+vec3 quat_rotate(vec4 q, vec3 v) {
   vec3 u = xyz(q);
   precise vec3 t = scale3(cross3(u, v), 2.0f);
   precise vec3 r = v + scale3(t, q.w) + cross3(u, t);
   return r;
 }
 
-FN vec3 quat_rotate_inverse(vec4 q, vec3 v) { return quat_rotate(vec4(-q.x, -q.y, -q.z, q.w), v); }
+vec3 quat_rotate_inverse(vec4 q, vec3 v) { return quat_rotate(vec4(-q.x, -q.y, -q.z, q.w), v); }
 
 // Hamilton product a b.
-FN vec4 quat_mul(vec4 a, vec4 b) {
+vec4 quat_mul(vec4 a, vec4 b) {
   vec3 u = xyz(a);
   vec3 v = xyz(b);
   precise float w = a.w * b.w - dot3(u, v);
@@ -27,14 +27,14 @@ FN vec4 quat_mul(vec4 a, vec4 b) {
   return vec4(r, w);
 }
 
-FN vec4 quat_normalize(vec4 q) {
+vec4 quat_normalize(vec4 q) {
   precise float len = sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
   return vec4(q.x / len, q.y / len, q.z / len, q.w / len);
 }
 
 // Rotates q by the angular velocity w over time h: (w h/2, 1) q, normalised, is a rotation by
 // 2 atan(|w| h / 2) = |w| h (1 - (|w| h)^2 / 12 + ...) about w.
-FN vec4 quat_advance(vec4 q, vec3 w, float h) {
+vec4 quat_advance(vec4 q, vec3 w, float h) {
   precise float half_h = 0.5f * h;
   vec4 dq = vec4(scale3(w, half_h), 1.0f);
   return quat_normalize(quat_mul(dq, q));
@@ -42,7 +42,7 @@ FN vec4 quat_advance(vec4 q, vec3 w, float h) {
 
 // Angular velocity (world) of a body with orientation q, angular momentum L and inverse
 // principal moments inv_i.
-FN vec3 body_omega(vec4 q, vec3 L, vec3 inv_i) {
+vec3 body_omega(vec4 q, vec3 L, vec3 inv_i) {
   vec3 lb = quat_rotate_inverse(q, L);
   precise vec3 wb = vec3(lb.x * inv_i.x, lb.y * inv_i.y, lb.z * inv_i.z);
   return quat_rotate(q, wb);
@@ -50,7 +50,7 @@ FN vec3 body_omega(vec4 q, vec3 L, vec3 inv_i) {
 
 // v += kick dt (F/m + g); L += kick dt T; with kFlagDrift also x += dt v and the orientation
 // advances over dt with the midpoint angular velocity (L is constant during the drift).
-KFN(void, body_kick_and_drift) uint b, vec3 force, vec3 torque) {
+void body_kick_and_drift(uint b, vec3 force, vec3 torque) {
   vec4 p4 = B_bodies[b].pos;
   if (p4.w == 0.0f) return;  // a fixed body (1/mass = 0) never moves
   vec4 q = B_bodies[b].quat;
@@ -86,15 +86,15 @@ KFN(void, body_kick_and_drift) uint b, vec3 force, vec3 torque) {
 }
 
 // First half of a velocity Verlet step for bodies, with the forces of the previous step.
-KERNEL(k_body_kick_drift) uint b) {
+void k_body_kick_drift(uint b) {
   if (b >= PC.n_bodies) return;
-  body_kick_and_drift(KB b, xyz(B_bodies[b].force), xyz(B_bodies[b].torque));
+  body_kick_and_drift(b, xyz(B_bodies[b].force), xyz(B_bodies[b].torque));
 }
 
 // Sub-sphere i from its body: position, velocity of the body at that point (w: the body's
 // 1/mass, so the contact law's effective mass is the body's), spin. With kFlagDrift, the skin
 // check of the neighbour list.
-KERNEL(k_body_place) uint i) {
+void k_body_place(uint i) {
   if (i >= PC.n_particles) return;
   vec4 local = B_subs[i].local;
   uint b = B_subs[i].info.x;
@@ -114,7 +114,7 @@ KERNEL(k_body_place) uint i) {
 
 // Sums body b's sub-sphere forces and their torques about the centre of mass in sub-sphere
 // order, stores them, and applies the kick (and drift) of the step.
-KERNEL(k_body_gather_kick) uint b) {
+void k_body_gather_kick(uint b) {
   if (b >= PC.n_bodies) return;
   uvec4 range = B_bodies[b].spheres;
   vec4 q = B_bodies[b].quat;
@@ -129,7 +129,7 @@ KERNEL(k_body_gather_kick) uint b) {
   }
   B_bodies[b].force = vec4(f, 0.0f);
   B_bodies[b].torque = vec4(t, 0.0f);
-  if (PC.kick > 0.0f) body_kick_and_drift(KB b, f, t);
+  if (PC.kick > 0.0f) body_kick_and_drift(b, f, t);
 }
 
 #endif

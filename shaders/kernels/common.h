@@ -3,40 +3,40 @@
 #ifndef REPOSE_KERNELS_COMMON_H
 #define REPOSE_KERNELS_COMMON_H
 
-FN vec3 xyz(vec4 v) { return vec3(v.x, v.y, v.z); }
+vec3 xyz(vec4 v) { return vec3(v.x, v.y, v.z); }
 
-FN float dot3(vec3 a, vec3 b) {
+float dot3(vec3 a, vec3 b) {
   precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
   return r;
 }
 
-FN vec3 cross3(vec3 a, vec3 b) {
+vec3 cross3(vec3 a, vec3 b) {
   precise float x = a.y * b.z - a.z * b.y;
   precise float y = a.z * b.x - a.x * b.z;
   precise float z = a.x * b.y - a.y * b.x;
   return vec3(x, y, z);
 }
 
-FN float length3(vec3 a) {
+float length3(vec3 a) {
   precise float r = sqrt(dot3(a, a));
   return r;
 }
 
-FN vec3 scale3(vec3 a, float s) {
+vec3 scale3(vec3 a, float s) {
   precise vec3 r = vec3(a.x * s, a.y * s, a.z * s);
   return r;
 }
 
 // Groups of `workgroup` invocations needed to cover `count` items.
-FN uint groups_for(uint count, uint workgroup) { return (count + workgroup - 1u) / workgroup; }
+uint groups_for(uint count, uint workgroup) { return (count + workgroup - 1u) / workgroup; }
 
 // Integer cell of a coordinate on the hash grid, clamped so far-flung particles stay finite.
-FN int cell_coord(float x, float inv_cell) {
+int cell_coord(float x, float inv_cell) {
   precise float c = floor(x * inv_cell);
   return int(max(-1048576.0f, min(1048576.0f, c)));
 }
 
-FN uint cell_hash(int cx, int cy, int cz, uint table_size) {
+uint cell_hash(int cx, int cy, int cz, uint table_size) {
   uint h = uint(cx) * 73856093u ^ uint(cy) * 19349663u ^ uint(cz) * 83492791u;
   return h & (table_size - 1u);
 }

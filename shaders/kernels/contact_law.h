@@ -37,7 +37,7 @@ struct ContactGeometry {
 // per body). The lever is r for a sphere; for a clump, |contact point - centre of mass| (EDEM) or
 // r (rolling_lever = "sphere"; rolling_lever() in contacts.h). The lean gather calls it again on
 // stored (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
-FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, float lw) {
+vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, float lw) {
   precise vec3 t = scale3(n_x_ft, -r);
   if (roll_arm >= 0.0f) {
     if (lw > 0.0f) {
@@ -49,14 +49,14 @@ FN vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, f
 }
 
 // The contact point: i's surface point along -n (ri = its radius less half the overlap).
-FN vec3 contact_point(vec3 xi, vec3 n, float ri) {
+vec3 contact_point(vec3 xi, vec3 n, float ri) {
   precise vec3 cp = xi - scale3(n, ri);
   return cp;
 }
 
 // Whether a rolling torque's lever must be measured from a clump's centre of mass: EDEM's
 // constant torque against each body's own spin (the relative torque of LIGGGHTS uses R*).
-FN bool centre_lever(uint flags) {
+bool centre_lever(uint flags) {
   uint need = kFlagRollingConstTorque | kFlagBodies;
   uint never = kFlagRollingRelativeOmega | kFlagRollingLeverSphere;
   return (flags & need) == need && (flags & never) == 0u;
@@ -67,7 +67,7 @@ FN bool centre_lever(uint flags) {
 // counted), then its component along n removed (the torque has no twist part, but |w| keeps
 // the twist spin). roll_arm = mu_r Fn_el, the elastic normal force kn dn; lever = R* for two
 // spheres, r_i - dn/2 for a wall. False (and nothing to add) when the two spins are equal.
-FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float lever, vec3 n, OUT(vec3) tr) {
+bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float lever, vec3 n, OUT(vec3) tr) {
   precise vec3 w = w_i - w_j;
   precise float lw = length3(w);
   tr = vec3(0.0f);
@@ -82,7 +82,7 @@ FN bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float lever, vec3 n
 // al. / Kuwabara-Kono, F = -A Sn vn with A a material time (s), added to EDEM's damping. Its
 // damping grows with the overlap faster than EDEM's, so restitution falls with impact speed
 // (1 - e ~ v^(1/5)). Returns 0 when off, leaving EDEM's bytes unchanged.
-FN float viscoelastic_damping(float time_a, float sn, float vn) {
+float viscoelastic_damping(float time_a, float sn, float vn) {
   if (!(time_a > 0.0f)) return 0.0f;
   precise float f = (time_a * sn) * vn;
   return f;
@@ -91,7 +91,7 @@ FN float viscoelastic_damping(float time_a, float sn, float vn) {
 // Extension cohesion: EDEM's linear cohesion F = k A on the Hertz contact area A = pi R* dn,
 // attractive; pi_k = pi k with k the cohesion energy density (J/m^3). With lens >= 0 the area is
 // pi lens instead (LIGGGHTS sjkr, cohesion_intersection_area()). 0 when off.
-FN float linear_cohesion(float pi_k, float radius_star, float overlap, float lens) {
+float linear_cohesion(float pi_k, float radius_star, float overlap, float lens) {
   if (!(pi_k > 0.0f)) return 0.0f;
   if (lens >= 0.0f) {
     precise float f_lens = pi_k * lens;
@@ -105,7 +105,7 @@ FN float linear_cohesion(float pi_k, float radius_star, float overlap, float len
 // surfaces intersect, a^2 = -(d-r1-r2)(d+r1-r2)(d-r1+r2)(d+r1+r2) / (4 d^2) at centre distance
 // d = r1 + r2 - dn, written with r1 + r2 - d = dn; against a wall r^2 - (r - dn)^2 = dn (2r - dn).
 // About 2 R* dn for small overlaps: twice EDEM's Hertz area R* dn.
-FN float cohesion_intersection_area(float r1, float r2, float dist, float overlap, bool wall) {
+float cohesion_intersection_area(float r1, float r2, float dist, float overlap, bool wall) {
   if (wall) {
     precise float a_wall = overlap * (2.0f * r1 - overlap);
     return a_wall;
@@ -116,7 +116,7 @@ FN float cohesion_intersection_area(float r1, float r2, float dist, float overla
 }
 
 // A stored spring (tangential or rolling) turned into the current tangent plane, its length kept.
-FN vec3 turn_into_tangent_plane(vec3 s, vec3 n) {
+vec3 turn_into_tangent_plane(vec3 s, vec3 n) {
   precise float old_sq = dot3(s, s);
   precise vec3 p = s - scale3(n, dot3(s, n));
   precise float new_sq = dot3(p, p);
@@ -134,9 +134,9 @@ FN vec3 turn_into_tangent_plane(vec3 s, vec3 n) {
 // spring is below the cap. `spring` is the contact's stored torque, turned into the current
 // tangent plane with its length kept (as the tangential spring). Returns the torque on i (j
 // receives minus it).
-FN vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float normal_force,
-                            float normal_stiffness, float mu_r, float inertia_r, float eta_r, float dt,
-                            INOUT(vec3) spring) {
+vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float normal_force,
+                         float normal_stiffness, float mu_r, float inertia_r, float eta_r, float dt,
+                         INOUT(vec3) spring) {
   precise vec3 w = w_i - w_j;
   precise vec3 w_roll = w - scale3(n, dot3(w, n));
   precise vec3 m = turn_into_tangent_plane(spring, n);
@@ -168,8 +168,8 @@ FN vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float
 // `stop_share`, 0 for a wall). Each of a body's contacts then takes at most half its share of
 // the stopping torque, so even all of them together cannot turn the spin over. Returns the
 // torque on i (j receives minus it); zero without spin.
-FN vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, float radius_star,
-                                 float normal_force, float stop_share, float dt) {
+vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, float radius_star,
+                              float normal_force, float stop_share, float dt) {
   precise vec3 w = w_i - w_j;
   precise float s = dot3(w, n);
   if (!(s > 0.0f || s < 0.0f)) return vec3(0.0f);
@@ -184,7 +184,7 @@ FN vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, floa
 // the tangential force's moment about each sphere's centre, and the rolling torque, EDEM's
 // against each body's own spin (lever lever_i, lever_j) or LIGGGHTS cdt's against the relative
 // spin (relative_rolling()).
-FN void contact_torques(ContactGeometry g, vec3 w_i, vec3 w_j, bool j_is_wall, uint flags, INOUT(ContactOut) o) {
+void contact_torques(ContactGeometry g, vec3 w_i, vec3 w_j, bool j_is_wall, uint flags, INOUT(ContactOut) o) {
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   float arm = o.roll_arm;
   float own_arm = relative ? -1.0f : arm;
@@ -203,8 +203,8 @@ FN void contact_torques(ContactGeometry g, vec3 w_i, vec3 w_j, bool j_is_wall, u
   }
 }
 
-FN ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall, PairParams pp,
-                            float dt, uint flags, INOUT(vec3) shear) {
+ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool j_is_wall, PairParams pp,
+                         float dt, uint flags, INOUT(vec3) shear) {
   ContactOut o;
   vec3 n = g.n;
   float e_star = pp.a.x;

@@ -11,7 +11,7 @@
 // lists times 1 / its moment of inertia about n. A sphere's 1/I is omega.w; a clump's is
 // n . (R I^-1 R^T n) from its principal moments, and its entries those of all its sub-spheres
 // (contiguous, so two differences of the scanned row starts).
-KFN(float, spin_stop_share) uint i, vec3 n) {
+float spin_stop_share(uint i, vec3 n) {
   uint first = i;
   uint count = 1u;
   precise float inv_i = B_omega[i].w;
@@ -41,7 +41,7 @@ struct ContactState {
 
 // The area cohesion pulls on, over pi, when it is LIGGGHTS sjkr's intersection disc; -1 (EDEM's
 // Hertz area R* dn, in linear_cohesion()) otherwise.
-KFN(float, cohesion_lens) float r1, float r2, float dist, float overlap, bool wall) {
+float cohesion_lens(float r1, float r2, float dist, float overlap, bool wall) {
   if ((PC.flags & kFlagCohesionIntersection) == 0u) return -1.0f;
   return cohesion_intersection_area(r1, r2, dist, overlap, wall);
 }
@@ -49,17 +49,17 @@ KFN(float, cohesion_lens) float r1, float r2, float dist, float overlap, bool wa
 // The rolling levers of i and (unless a wall) p at the contact: the sphere's own ri, rj, or
 // for EDEM's torque on a clump the distance to its centre of mass (full entries; the lean
 // gather measures them itself).
-KFN(void, set_rolling_levers) uint i, uint p, vec3 xi, bool is_wall, INOUT(ContactGeometry) g) {
+void set_rolling_levers(uint i, uint p, vec3 xi, bool is_wall, INOUT(ContactGeometry) g) {
   g.lever_i = g.ri;
   g.lever_j = g.rj;
   if (!centre_lever(PC.flags) || (PC.flags & kFlagLeanContacts) != 0u) return;
   vec3 cp = contact_point(xi, g.n, g.ri);
-  g.lever_i = rolling_lever(KB i, cp, g.ri);
-  if (!is_wall) g.lever_j = rolling_lever(KB p, cp, g.rj);
+  g.lever_i = rolling_lever(i, cp, g.ri);
+  if (!is_wall) g.lever_j = rolling_lever(p, cp, g.rj);
 }
 
 // Contact of particles i and p: false when they do not touch.
-KFN(bool, touch_particle) uint i, uint p, OUT(ContactState) s) {
+bool touch_particle(uint i, uint p, OUT(ContactState) s) {
   vec4 pi = B_pos[i];
   vec4 vi = B_vel[i];
   vec4 pj = B_pos[p];
@@ -88,15 +88,15 @@ KFN(bool, touch_particle) uint i, uint p, OUT(ContactState) s) {
   s.g.mass_star = mass_star;
   s.g.ri = ri;
   s.g.rj = rj;
-  s.g.cohesion_lens = cohesion_lens(KB rad_i, rad_j, dist, overlap, false);
+  s.g.cohesion_lens = cohesion_lens(rad_i, rad_j, dist, overlap, false);
   s.v_rel = v_rel;
   s.inv_inertia_r = inv_inertia_r;
-  set_rolling_levers(KB i, p, xyz(pi), false, s.g);
+  set_rolling_levers(i, p, xyz(pi), false, s.g);
   return true;
 }
 
 // Contact of particle i with wall row p - n_particles (contact c): false when not touching.
-KFN(bool, touch_wall) uint i, uint c, uint p, OUT(ContactState) s) {
+bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   vec4 pi = B_pos[i];
   vec4 vi = B_vel[i];
   vec3 xi = xyz(pi);
@@ -110,7 +110,7 @@ KFN(bool, touch_wall) uint i, uint c, uint p, OUT(ContactState) s) {
   float overlap;
   bool touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
   if (touching && ws.info.x == kWallTriangle)
-    touching = !mesh_contact_shadowed(KB i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
+    touching = !mesh_contact_shadowed(i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
   if (!touching) return false;
   vec3 wi = xyz(B_omega[i]);
   precise float ri = rad_i - 0.5f * overlap;
@@ -124,14 +124,14 @@ KFN(bool, touch_wall) uint i, uint c, uint p, OUT(ContactState) s) {
   s.g.mass_star = mass_star;
   s.g.ri = ri;
   s.g.rj = 0.0f;
-  s.g.cohesion_lens = cohesion_lens(KB rad_i, 0.0f, 0.0f, overlap, true);
+  s.g.cohesion_lens = cohesion_lens(rad_i, 0.0f, 0.0f, overlap, true);
   s.v_rel = v_rel;
   s.inv_inertia_r = inv_inertia_r;
-  set_rolling_levers(KB i, p, xi, true, s.g);
+  set_rolling_levers(i, p, xi, true, s.g);
   return true;
 }
 
-KFN(void, process_contact) uint i, uint c) {
+void process_contact(uint i, uint c) {
   uint p = B_partner[c];
   vec3 wi = xyz(B_omega[i]);
   vec4 hist = B_history[c];
@@ -139,7 +139,7 @@ KFN(void, process_contact) uint i, uint c) {
   uint mi = B_material[i];
   bool is_wall = p >= PC.n_particles;
   ContactState st;
-  bool touching = is_wall ? touch_wall(KB i, c, p, st) : touch_particle(KB i, p, st);
+  bool touching = is_wall ? touch_wall(i, c, p, st) : touch_particle(i, p, st);
 
   bool lean = (PC.flags & kFlagLeanContacts) != 0u;
   bool rolling_spring = (PC.flags & kFlagRollingSpring) != 0u;
@@ -168,8 +168,8 @@ KFN(void, process_contact) uint i, uint c) {
   }
   if ((PC.flags & kFlagSpinningFriction) != 0u && pp.c.x > 0.0f) {
     // Full entries only (the host refuses lean ones), like the rolling spring.
-    precise float share = spin_stop_share(KB i, n);
-    if (!is_wall) share = share + spin_stop_share(KB p, n);
+    precise float share = spin_stop_share(i, n);
+    if (!is_wall) share = share + spin_stop_share(p, n);
     vec3 ts = spinning_friction_torque(n, wi, st.w_other, pp.c.x, st.g.radius_star, o.grip_force, share, PC.dt);
     o.torque_i = o.torque_i + ts;
     if (!is_wall) o.torque_j = o.torque_j - ts;
@@ -185,17 +185,17 @@ KFN(void, process_contact) uint i, uint c) {
 }
 
 // Variant "contact": one invocation per contact of the list.
-KERNEL(k_contact_forces) uint c) {
+void k_contact_forces(uint c) {
   if (c >= B_control[kCtlContacts]) return;
-  process_contact(KB B_owner[c], c);
+  process_contact(B_owner[c], c);
 }
 
 // Variant "rows": one invocation per owner walks its own row in order.
-KERNEL(k_contact_rows) uint i) {
+void k_contact_rows(uint i) {
   if (i >= PC.n_particles) return;
   uint limit = B_control[kCtlContacts];
   uint end = min(B_row_start[i + 1u], limit);
-  for (uint c = min(B_row_start[i], limit); c < end; ++c) process_contact(KB i, c);
+  for (uint c = min(B_row_start[i], limit); c < end; ++c) process_contact(i, c);
 }
 
 #endif

@@ -1,16 +1,13 @@
-// GLSL side of the shared kernel code: buffer declarations named as the kernels use them, and
-// the macros that the C++ twin defines differently (kernels_ref/cpu_kernels.cpp).
+// GLSL side of the shared kernel code: buffer declarations named as the kernels use them (the
+// C++ twin has the same names as members of the struct the bodies are compiled in,
+// kernels_ref/twin_kernels.h), and the parameter qualifiers that the twin maps to references.
 #extension GL_GOOGLE_include_directive : require
 #include "repose_shared.h"
 
 layout(local_size_x_id = 0) in;
 
-#define FN
 #define INOUT(T) inout T
 #define OUT(T) out T
-#define KERNEL(name) void name(
-#define KFN(ret, name) ret name(
-#define KB
 
 // Every buffer of the table in repose_shared.h as B_name[].
 #define REPOSE_DECLARE_BUFFER(index, Name, name, type, count, need, keep) \

@@ -7,14 +7,14 @@
 // Extension air_drag (docs/diagnosis.md): quadratic drag -(0.5 rho C_d A) |v| v / m, with
 // drag_area = 0.5 rho C_d A for the body (a sphere: PC.air_drag r^2) and inv_mass = 1/m. Clump
 // bodies call it with their own projected area.
-FN vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
+vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
   precise float speed = length3(v);
   precise float k = -((drag_area * inv_mass) * speed);
   return scale3(v, k);
 }
 
 // v += kick dt (F/m + g [+ drag]); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
-KFN(void, kick_and_drift) uint i, vec3 force, vec3 torque) {
+void kick_and_drift(uint i, vec3 force, vec3 torque) {
   vec4 v4 = B_vel[i];
   if (v4.w == 0.0f) return;  // fixed (neighbour.h): never moves
   vec4 w4 = B_omega[i];
@@ -39,14 +39,14 @@ KFN(void, kick_and_drift) uint i, vec3 force, vec3 torque) {
 }
 
 // First half of a velocity Verlet step, with the forces of the previous step.
-KERNEL(k_kick_drift) uint i) {
+void k_kick_drift(uint i) {
   if (i >= PC.n_particles) return;
-  kick_and_drift(KB i, xyz(B_force[i]), xyz(B_torque[i]));
+  kick_and_drift(i, xyz(B_force[i]), xyz(B_torque[i]));
 }
 
 // Sum each particle's contact forces in a fixed order (its own row, then the contacts in which it
 // is the partner, by contact index), store them, and finish the step.
-KERNEL(k_gather_kick) uint i) {
+void k_gather_kick(uint i) {
   if (i >= PC.n_particles) return;
   uint limit = B_control[kCtlContacts];
   precise vec3 f = vec3(0.0f);
@@ -64,13 +64,13 @@ KERNEL(k_gather_kick) uint i) {
   }
   B_force[i] = vec4(f, 0.0f);
   B_torque[i] = vec4(t, 0.0f);
-  if (PC.kick > 0.0f) kick_and_drift(KB i, f, t);
+  if (PC.kick > 0.0f) kick_and_drift(i, f, t);
 }
 
 // The rolling lever of particle k at contact point cp (centre_lever() in contact_law.h): the
 // distance from cp to the centre of mass of k's body when it has more than one sphere, else r
 // (k's centre to cp: a lone sphere keeps its bytes).
-KFN(float, rolling_lever) uint k, vec3 cp, float r) {
+float rolling_lever(uint k, vec3 cp, float r) {
   uint b = B_subs[k].info.x;
   if (B_bodies[b].spheres.y < 2u) return r;
   precise vec3 d = cp - xyz(B_bodies[b].pos);
@@ -80,7 +80,7 @@ KFN(float, rolling_lever) uint k, vec3 cp, float r) {
 
 // The unit normal of stored contact c, recomputed from the positions exactly as process_contact
 // computed it (positions do not move between the contact kernel and a gather that calls this).
-KFN(vec3, stored_contact_normal) uint c) {
+vec3 stored_contact_normal(uint c) {
   uint i = B_owner[c];
   uint p = B_partner[c];
   vec4 pi = B_pos[i];
@@ -100,11 +100,11 @@ KFN(vec3, stored_contact_normal) uint c) {
 
 // A lean entry's rolling lever for particle `self` (the owner when owner_side) with sphere lever
 // r: the centre-of-mass distance from the contact point process_contact used.
-KFN(float, lean_rolling_lever) uint c, uint self, float r, float overlap) {
+float lean_rolling_lever(uint c, uint self, float r, float overlap) {
   vec4 pi = B_pos[B_owner[c]];
-  vec3 n = stored_contact_normal(KB c);
+  vec3 n = stored_contact_normal(c);
   precise float ri = pi.w - 0.5f * overlap;
-  return rolling_lever(KB self, contact_point(xyz(pi), n, ri), r);
+  return rolling_lever(self, contact_point(xyz(pi), n, ri), r);
 }
 
 // The torque a lean contact entry (contacts.h) puts on one of its bodies, with exactly the
@@ -112,12 +112,12 @@ KFN(float, lean_rolling_lever) uint c, uint self, float r, float overlap) {
 // spin, `owner_side` tells i (+tr) from j (-tr). The relative rolling torque needs both spins
 // and radii (only with kFlagRollingRelativeOmega; the step program then kicks in a separate
 // pass so no spin changes while gathers read it).
-KFN(vec3, lean_torque) uint c, uint self, bool owner_side, float rad, vec3 w, float lw, vec4 a, vec4 b) {
+vec3 lean_torque(uint c, uint self, bool owner_side, float rad, vec3 w, float lw, vec4 a, vec4 b) {
   if (!(b.w > 0.0f)) return vec3(0.0f);  // separated: the full entry stores zeros
   bool relative = (PC.flags & kFlagRollingRelativeOmega) != 0u;
   precise float r = rad - 0.5f * b.w;
   float lever = r;
-  if (a.w >= 0.0f && centre_lever(PC.flags)) lever = lean_rolling_lever(KB c, self, r, b.w);
+  if (a.w >= 0.0f && centre_lever(PC.flags)) lever = lean_rolling_lever(c, self, r, b.w);
   vec3 t = body_torque(xyz(b), r, relative ? -1.0f : a.w, lever, w, lw);
   if (relative && a.w >= 0.0f) {
     uint i = B_owner[c];
@@ -132,7 +132,7 @@ KFN(vec3, lean_torque) uint c, uint self, bool owner_side, float rad, vec3 w, fl
       lever = (pi.w * rad_j) / (pi.w + rad_j);  // R*
     }
     vec3 tr;
-    if (relative_rolling(wi, wj, a.w, lever, stored_contact_normal(KB c), tr)) t = owner_side ? t + tr : t - tr;
+    if (relative_rolling(wi, wj, a.w, lever, stored_contact_normal(c), tr)) t = owner_side ? t + tr : t - tr;
   }
   return t;
 }
@@ -140,7 +140,7 @@ KFN(vec3, lean_torque) uint c, uint self, bool owner_side, float rad, vec3 w, fl
 // Variant "lean": the gather of gather_kick (same order, same sums) from lean contact entries.
 // Both lists go through one loop, so an invocation with a long own row and a short transposed
 // row (or the reverse) keeps its SIMD lanes busy on lavapipe.
-KERNEL(k_gather_lean) uint i) {
+void k_gather_lean(uint i) {
   if (i >= PC.n_particles) return;
   uint limit = B_control[kCtlContacts];
   vec4 pi = B_pos[i];
@@ -158,11 +158,11 @@ KERNEL(k_gather_lean) uint i) {
     vec4 a = B_contact_force[c];
     vec4 b = B_torque_i[c];
     f = owner_side ? f + xyz(a) : f - xyz(a);
-    t = t + lean_torque(KB c, i, owner_side, pi.w, wi, lwi, a, b);
+    t = t + lean_torque(c, i, owner_side, pi.w, wi, lwi, a, b);
   }
   B_force[i] = vec4(f, 0.0f);
   B_torque[i] = vec4(t, 0.0f);
-  if (PC.kick > 0.0f) kick_and_drift(KB i, f, t);
+  if (PC.kick > 0.0f) kick_and_drift(i, f, t);
 }
 
 #endif

@@ -11,14 +11,14 @@
 #ifndef REPOSE_KERNELS_NEIGHBOUR_H
 #define REPOSE_KERNELS_NEIGHBOUR_H
 
-KFN(void, set_groups) uint word, uint groups) {
+void set_groups(uint word, uint groups) {
   B_control[word] = groups;
   B_control[word + 1u] = 1u;
   B_control[word + 2u] = 1u;
 }
 
 // One invocation: decide whether this step rebuilds the list.
-KERNEL(k_rebuild_args) uint unused) {
+void k_rebuild_args(uint unused) {
   bool due = PC.max_interval > 0u && B_control[kCtlStepsSinceBuild] + 1u >= PC.max_interval;
   bool rebuild = B_control[kCtlNeedRebuild] != 0u || due || B_control[kCtlRebuildCount] == 0u;
   B_control[kCtlNeedRebuild] = 0u;
@@ -28,43 +28,43 @@ KERNEL(k_rebuild_args) uint unused) {
     B_control[kCtlStepsSinceBuild] = 0u;
     B_control[kCtlRebuildCount] = B_control[kCtlRebuildCount] + 1u;
     B_control[kCtlOldContacts] = B_control[kCtlContacts];
-    set_groups(KB kCtlArgsParticles, groups_for(PC.n_particles + 1u, wg));
-    set_groups(KB kCtlArgsBuckets, groups_for(PC.table_size + 2u, wg));
-    set_groups(KB kCtlArgsOne, 1u);
-    set_groups(KB kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
+    set_groups(kCtlArgsParticles, groups_for(PC.n_particles + 1u, wg));
+    set_groups(kCtlArgsBuckets, groups_for(PC.table_size + 2u, wg));
+    set_groups(kCtlArgsOne, 1u);
+    set_groups(kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
   } else {
     B_control[kCtlStepsSinceBuild] = B_control[kCtlStepsSinceBuild] + 1u;
-    set_groups(KB kCtlArgsParticles, 0u);
-    set_groups(KB kCtlArgsBuckets, 0u);
-    set_groups(KB kCtlArgsOne, 0u);
-    set_groups(KB kCtlArgsOldContacts, 0u);
-    set_groups(KB kCtlArgsNewContacts, 0u);
+    set_groups(kCtlArgsParticles, 0u);
+    set_groups(kCtlArgsBuckets, 0u);
+    set_groups(kCtlArgsOne, 0u);
+    set_groups(kCtlArgsOldContacts, 0u);
+    set_groups(kCtlArgsNewContacts, 0u);
   }
 }
 
 // Keep the list being replaced (with its up-to-date histories) to carry histories over.
-KERNEL(k_save_old_rows) uint i) {
+void k_save_old_rows(uint i) {
   if (i > PC.n_particles) return;
   B_old_row_start[i] = B_row_start[i];
 }
-KERNEL(k_save_old_contacts) uint c) {
+void k_save_old_contacts(uint c) {
   if (c >= B_control[kCtlOldContacts]) return;
   B_old_partner[c] = B_partner[c];
   B_old_history[c] = B_history[c];
   if ((PC.flags & kFlagRollingSpring) != 0u) B_rolling_spring[PC.capacity + c] = B_rolling_spring[c];
 }
 
-KERNEL(k_clear_buckets) uint b) {
+void k_clear_buckets(uint b) {
   if (b > PC.table_size + 1u) return;
   B_cell_start[b] = 0u;
   if (b <= PC.table_size) B_cell_fill[b] = 0u;
 }
 
-FN ivec3 cell_of_position(vec3 x, float inv_cell) {
+ivec3 cell_of_position(vec3 x, float inv_cell) {
   return ivec3(cell_coord(x.x, inv_cell), cell_coord(x.y, inv_cell), cell_coord(x.z, inv_cell));
 }
 
-KERNEL(k_bucket_count) uint i) {
+void k_bucket_count(uint i) {
   if (i >= PC.n_particles) return;
   vec4 p = B_pos[i];
   B_pos_at_build[i] = p;
@@ -74,7 +74,7 @@ KERNEL(k_bucket_count) uint i) {
   atomicAdd(B_cell_start[h], 1u);
 }
 
-KERNEL(k_bucket_scatter) uint i) {
+void k_bucket_scatter(uint i) {
   if (i >= PC.n_particles) return;
   uint h = B_cell_of[i];
   uint slot = B_cell_start[h] + atomicAdd(B_cell_fill[h], 1u);
@@ -82,7 +82,7 @@ KERNEL(k_bucket_scatter) uint i) {
 }
 
 // Insertion sort of one bucket by particle id: the scatter's order depends on thread timing.
-KERNEL(k_bucket_sort) uint b) {
+void k_bucket_sort(uint b) {
   if (b > PC.table_size) return;
   uint begin = B_cell_start[b];
   uint end = B_cell_start[b + 1u];
@@ -98,7 +98,7 @@ KERNEL(k_bucket_sort) uint b) {
 }
 
 // True when j is a neighbour candidate of i: within the skin of touching.
-FN bool near_pair(vec4 pi, vec4 pj, float skin) {
+bool near_pair(vec4 pi, vec4 pj, float skin) {
   precise vec3 d = xyz(pi) - xyz(pj);
   precise float reach = pi.w + pj.w + skin;
   return dot3(d, d) < reach * reach;
@@ -109,7 +109,7 @@ FN bool near_pair(vec4 pi, vec4 pj, float skin) {
 // results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
 // pair's history over from i's old row (zero for a new pair). Entries beyond the capacity are
 // counted but not written (overflow: the batch is redone with a larger list).
-KFN(void, write_candidate) uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
+void write_candidate(uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
   uint slot = base + k;
   if (slot >= PC.capacity) return;
   bool springs = (PC.flags & kFlagRollingSpring) != 0u;
@@ -134,25 +134,25 @@ KFN(void, write_candidate) uint base, uint k, uint i, uint partner, uint old_beg
 
 // Candidate k of i found by a walk: written to i's row in a fill walk; in the count walk kept in
 // i's candidate slots (the first kCandidateSlots), so contact_fill need not walk again.
-KFN(void, emit_candidate) bool fill, uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
-  if (fill) write_candidate(KB base, k, i, partner, old_begin, old_end);
+void emit_candidate(bool fill, uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
+  if (fill) write_candidate(base, k, i, partner, old_begin, old_end);
   else if (k < kCandidateSlots) B_candidates[i * kCandidateSlots + k] = partner;
 }
 
 // A fixed particle (a fixed sphere, or a sub-sphere of a fixed body) has 1/mass = 0: it takes
 // part in contacts with moving particles as an infinite mass, and never moves.
-KFN(bool, is_fixed) uint i) { return B_vel[i].w == 0.0f; }
+bool is_fixed(uint i) { return B_vel[i].w == 0.0f; }
 
 // True when particles i and j never form a contact: sub-spheres of one body (none inside a
 // clump), or two fixed particles (neither can move; their m* would be infinite).
-KFN(bool, no_contact) uint i, uint j) {
+bool no_contact(uint i, uint j) {
   if ((PC.flags & kFlagBodies) != 0u && B_subs[i].info.x == B_subs[j].info.x) return true;
-  return is_fixed(KB i) && is_fixed(KB j);
+  return is_fixed(i) && is_fixed(j);
 }
 
 // The lowest particle id a small particle i pairs with on the grid: the pair belongs to the lower
 // id, and a clump's sub-spheres (contiguous ids) never pair with each other.
-KFN(uint, first_partner_id) uint i) {
+uint first_partner_id(uint i) {
   if ((PC.flags & kFlagBodies) == 0u) return i + 1u;
   uvec4 range = B_bodies[B_subs[i].info.x].spheres;
   return range.x + range.y;
@@ -160,7 +160,7 @@ KFN(uint, first_partner_id) uint i) {
 
 // The first slot of bucket [begin, end) (sorted by id) holding an id >= lowest: a binary search,
 // so a walk skips the ids it would reject (half of them; in a clump, its own sub-spheres).
-KFN(uint, first_slot_from) uint begin, uint end, uint lowest) {
+uint first_slot_from(uint begin, uint end, uint lowest) {
   uint lo = begin;
   uint hi = end;
   while (lo < hi) {
@@ -174,7 +174,7 @@ KFN(uint, first_slot_from) uint begin, uint end, uint lowest) {
 // Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
 // then the walls. With `fill`, writes partners, owners and carried histories from `base`;
 // returns the number of candidates.
-KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
+uint walk_neighbours(uint i, bool fill, uint base) {
   vec4 pi = B_pos[i];
   bool large = pi.w > PC.large_radius;
   ivec3 ci = cell_of_position(xyz(pi), PC.inv_cell);
@@ -185,22 +185,22 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     old_begin = B_old_row_start[i];
     old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
   }
-  uint lowest = large ? 0u : first_partner_id(KB i);
-  bool i_fixed = is_fixed(KB i);
+  uint lowest = large ? 0u : first_partner_id(i);
+  bool i_fixed = is_fixed(i);
   for (int dz = large ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         ivec3 cc = ivec3(ci.x + dx, ci.y + dy, ci.z + dz);
         uint h = cell_hash(cc.x, cc.y, cc.z, PC.table_size);
         uint end = B_cell_start[h + 1u];
-        for (uint s = first_slot_from(KB B_cell_start[h], end, lowest); s < end; ++s) {
+        for (uint s = first_slot_from(B_cell_start[h], end, lowest); s < end; ++s) {
           uint j = B_sorted[s];
-          if (i_fixed && is_fixed(KB j)) continue;  // lower ids and i's own clump are skipped above
+          if (i_fixed && is_fixed(j)) continue;  // lower ids and i's own clump are skipped above
           vec4 pj = B_pos[j];
           ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
           if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
           if (!near_pair(pi, pj, PC.skin)) continue;
-          emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
+          emit_candidate(fill, base, k, i, j, old_begin, old_end);
           k = k + 1u;
         }
       }
@@ -210,8 +210,8 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
   for (uint s = B_cell_start[PC.table_size]; s < large_end; ++s) {
     uint j = B_sorted[s];
     if (j == i || (large && j < i)) continue;
-    if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(KB i, j)) continue;
-    emit_candidate(KB fill, base, k, i, j, old_begin, old_end);
+    if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;
+    emit_candidate(fill, base, k, i, j, old_begin, old_end);
     k = k + 1u;
   }
   uint n_walls = i_fixed ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
@@ -220,7 +220,7 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
     vec3 n;
     float overlap;
     if (!wall_contact(ws, xyz(pi), pi.w, PC.skin, n, overlap)) continue;
-    emit_candidate(KB fill, base, k, i, PC.n_particles + w, old_begin, old_end);
+    emit_candidate(fill, base, k, i, PC.n_particles + w, old_begin, old_end);
     k = k + 1u;
   }
   return k;
@@ -228,35 +228,35 @@ KFN(uint, walk_neighbours) uint i, bool fill, uint base) {
 
 // Counts contacts per owner into row_start (scanned in place next) and resets the transposed
 // counters, which the same rebuild fills later.
-KERNEL(k_contact_count) uint i) {
+void k_contact_count(uint i) {
   if (i > PC.n_particles) return;
-  B_row_start[i] = i < PC.n_particles ? walk_neighbours(KB i, false, 0u) : 0u;
+  B_row_start[i] = i < PC.n_particles ? walk_neighbours(i, false, 0u) : 0u;
   B_trans_start[i] = 0u;
   if (i < PC.n_particles) B_trans_fill[i] = 0u;
 }
 
 // Writes i's row from the candidates contact_count kept, or walks again when it found more.
-KERNEL(k_contact_fill) uint i) {
+void k_contact_fill(uint i) {
   if (i >= PC.n_particles) return;
   uint base = B_row_start[i];
   uint count = B_row_start[i + 1u] - base;
   if (count > kCandidateSlots) {
-    walk_neighbours(KB i, true, base);
+    walk_neighbours(i, true, base);
     return;
   }
   uint old_begin = B_old_row_start[i];
   uint old_end = min(B_old_row_start[i + 1u], B_control[kCtlOldContacts]);
   for (uint k = 0u; k < count; ++k)
-    write_candidate(KB base, k, i, B_candidates[i * kCandidateSlots + k], old_begin, old_end);
+    write_candidate(base, k, i, B_candidates[i * kCandidateSlots + k], old_begin, old_end);
 }
 
-KERNEL(k_transpose_count) uint c) {
+void k_transpose_count(uint c) {
   if (c >= B_control[kCtlContacts]) return;
   uint p = B_partner[c];
   if (p < PC.n_particles) atomicAdd(B_trans_start[p], 1u);
 }
 
-KERNEL(k_transpose_fill) uint c) {
+void k_transpose_fill(uint c) {
   if (c >= B_control[kCtlContacts]) return;
   uint p = B_partner[c];
   if (p >= PC.n_particles) return;
@@ -264,7 +264,7 @@ KERNEL(k_transpose_fill) uint c) {
   B_trans_list[slot] = c;
 }
 
-KERNEL(k_transpose_sort) uint i) {
+void k_transpose_sort(uint i) {
   if (i >= PC.n_particles) return;
   uint begin = B_trans_start[i];
   uint end = B_trans_start[i + 1u];
@@ -281,14 +281,14 @@ KERNEL(k_transpose_sort) uint i) {
 
 // Called by the scan of the rows (one invocation, after the scan): the list's size and the
 // indirect sizes of the per-contact kernels.
-KERNEL(k_rows_scanned) uint unused) {
+void k_rows_scanned(uint unused) {
   uint total = B_row_start[PC.n_particles];
   if (total > PC.capacity) B_control[kCtlOverflow] = 1u;
   if (total > B_control[kCtlMaxContacts]) B_control[kCtlMaxContacts] = total;
   uint used = min(total, PC.capacity);
   B_control[kCtlContacts] = used;
-  set_groups(KB kCtlArgsContacts, groups_for(used, PC.workgroup));
-  set_groups(KB kCtlArgsNewContacts, groups_for(used, PC.workgroup));
+  set_groups(kCtlArgsContacts, groups_for(used, PC.workgroup));
+  set_groups(kCtlArgsNewContacts, groups_for(used, PC.workgroup));
 }
 
 #endif

@@ -5,7 +5,7 @@
 
 // Closest point to p on triangle (a, b, c) and its feature (kFeatureFace/Edge/Vertex): Ericson,
 // Real-Time Collision Detection 5.1.5, the float twin of host/geometry/closest_point.cpp.
-FN vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
+vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
   precise vec3 ab = b - a;
   precise vec3 ac = c - a;
   precise vec3 ap = p - a;
@@ -53,7 +53,7 @@ FN vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
 }
 
 // Contact with a point q of a wall's edge or corner: normal from q to the centre.
-FN bool point_contact(vec3 x, vec3 q, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
+bool point_contact(vec3 x, vec3 q, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
   precise vec3 d = x - q;
   precise float dist = length3(d);
   if (!(dist > 0.0f)) return false;
@@ -65,8 +65,8 @@ FN bool point_contact(vec3 x, vec3 q, float r, float margin, OUT(vec3) n, OUT(fl
 // True when the sphere (x, r) is within `margin` of touching the wall. `n` is the unit normal
 // from the wall towards the sphere centre, `overlap` > 0 when touching, `feature` which part of a
 // rectangle or triangle is closest (kFeatureFace for planes and cylinders).
-FN bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(float) overlap,
-                             OUT(uint) feature) {
+bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(float) overlap,
+                          OUT(uint) feature) {
   n = vec3(0.0f, 0.0f, 1.0f);
   overlap = -1.0f;
   feature = kFeatureFace;
@@ -122,12 +122,12 @@ FN bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(ve
   return overlap > -margin;
 }
 
-FN bool wall_contact(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
+bool wall_contact(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
   uint feature = kFeatureFace;
   return wall_contact_feature(ws, x, r, margin, n, overlap, feature);
 }
 
-FN bool shares_vertex(uvec4 a, uvec4 b) {
+bool shares_vertex(uvec4 a, uvec4 b) {
   return a.x == b.x || a.x == b.y || a.x == b.z || a.y == b.x || a.y == b.y || a.y == b.z ||
          a.z == b.x || a.z == b.y || a.z == b.z;
 }
@@ -140,8 +140,8 @@ FN bool shares_vertex(uvec4 a, uvec4 b) {
 //   - w2 overlaps more, or as much with a lower index.
 // So a flat patch keeps exactly its deepest triangle (the union's closest point), and a fold
 // keeps both face contacts but no edge or corner contact next to a neighbour's face.
-KFN(bool, mesh_contact_shadowed) uint i, uint c, WallState ws, uint w, vec3 x, float r, float overlap,
-                                 uint feature) {
+bool mesh_contact_shadowed(uint i, uint c, WallState ws, uint w, vec3 x, float r, float overlap,
+                           uint feature) {
   uint limit = B_control[kCtlContacts];
   uint end = min(B_row_start[i + 1u], limit);
   for (uint c2 = min(B_row_start[i], limit); c2 < end; ++c2) {
@@ -163,7 +163,7 @@ KFN(bool, mesh_contact_shadowed) uint i, uint c, WallState ws, uint w, vec3 x, f
 }
 
 // Velocity of the wall's surface at point p (prescribed translation and rotation).
-FN vec3 wall_point_velocity(WallState ws, vec3 p) {
+vec3 wall_point_velocity(WallState ws, vec3 p) {
   precise vec3 arm = p - xyz(ws.centre);
   precise vec3 v = xyz(ws.vel) + cross3(xyz(ws.omega), arm);
   return v;

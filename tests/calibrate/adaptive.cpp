@@ -7,6 +7,7 @@
 #include "calibrate/adaptive_loop.h"
 #include "calibrate/gaussian_process.h"
 #include "calibrate_support.h"
+#include "util/math.h"
 
 using namespace repose;
 using namespace repose::calibrate;
@@ -23,7 +24,7 @@ TEST_CASE("expected improvement towards a target matches numerical integration")
         const double lo = t - b, hi = t + b, h = (hi - lo) / (n - 1);
         for (int i = 0; i < n; ++i) {
           double y = lo + i * h;
-          double f = (b - std::abs(y - t)) * std::exp(-0.5 * std::pow((y - m) / s, 2)) / (s * std::sqrt(2 * M_PI));
+          double f = (b - std::abs(y - t)) * std::exp(-0.5 * std::pow((y - m) / s, 2)) / (s * std::sqrt(2 * repose::kPi));
           sum += (i == 0 || i == n - 1 ? 0.5 : 1.0) * f * h;
         }
         CHECK(expected_improvement_to_target(m, s, t, b) == Approx(sum).margin(1e-8));

@@ -1,16 +1,12 @@
 // The LIGGGHTS conventions Repose offers, checked against LIGGGHTS-PUBLIC's own formulas written
 // out here in double: the cdt rolling torque (rolling_model_cdt.h) and the sjkr cohesion area
-// (cohesion_model_sjkr.h). The kernel functions are called directly (they are stateless), then
-// a sphere spinning about the contact normal shows the twist left out in a simulation.
+// (cohesion_model_sjkr.h). The kernel functions are called directly on the CPU twin's kernel struct
+// (they are stateless: it needs no buffers), then a sphere spinning about the contact normal shows
+// the twist left out in a simulation.
 #include <catch2/catch.hpp>
 
 #include "engine_test_support.h"
-#include "repose_shared.h"
-
-namespace repose::gpu {
-#include "kernels/common.h"
-#include "kernels/contact_law.h"
-}  // namespace repose::gpu
+#include "twin_kernels.h"
 
 using namespace repose;
 using namespace repose::test;
@@ -18,12 +14,15 @@ using namespace repose::test;
 namespace {
 
 using D3 = std::array<double, 3>;
+using ContactOut = gpu::Kernels::ContactOut;
+using ContactGeometry = gpu::Kernels::ContactGeometry;
+gpu::Kernels kernels;
 
 D3 d3(const gpu::vec3& v) { return {v.x, v.y, v.z}; }
 
 // A sphere pair (or a sphere on a wall) pressed together, spinning: the full contact entry.
-gpu::ContactOut contact(bool wall, uint32_t flags, gpu::vec3 w_i, gpu::vec3 w_j, gpu::ContactGeometry& g,
-                        gpu::PairParams& pp) {
+ContactOut contact(bool wall, uint32_t flags, gpu::vec3 w_i, gpu::vec3 w_j, ContactGeometry& g,
+                   gpu::PairParams& pp) {
   CaseBuilder b;
   int m = b.material(1000, 1e7, 0.3);
   pp = pair_params(b.spec.materials[0], b.spec.materials[0], {0, 0, 0.3, 0.5, 0.05});
@@ -41,7 +40,7 @@ gpu::ContactOut contact(bool wall, uint32_t flags, gpu::vec3 w_i, gpu::vec3 w_j,
   (void)m;
   // process_contact passes a wall's spin as zero: LIGGGHTS's torques ignore it.
   gpu::vec3 w_other = wall ? gpu::vec3(0.0f) : w_j;
-  return gpu::hertz_mindlin(g, gpu::vec3(0.1f, -0.05f, -0.3f), w_i, w_other, wall, pp, 1e-6f, flags, shear);
+  return kernels.hertz_mindlin(g, gpu::vec3(0.1f, -0.05f, -0.3f), w_i, w_other, wall, pp, 1e-6f, flags, shear);
 }
 
 }  // namespace
@@ -51,9 +50,9 @@ TEST_CASE("rolling_omega relative is LIGGGHTS cdt: mu_r kn dn R* (w - (w.n) n) /
   const uint32_t flags = gpu::kFlagRollingConstTorque | gpu::kFlagRollingRelativeOmega;
   gpu::vec3 w_i(30.0f, -12.0f, 25.0f), w_j(-4.0f, 8.0f, 2.0f);
   for (bool wall : {false, true}) {
-    gpu::ContactGeometry g;
+    ContactGeometry g;
     gpu::PairParams pp;
-    gpu::ContactOut o = contact(wall, flags, w_i, w_j, g, pp);
+    ContactOut o = contact(wall, flags, w_i, w_j, g, pp);
     // LIGGGHTS: kn dn is the Hertz elastic force 4/3 E* sqrt(R* dn) dn; the lever R* for two
     // spheres, the contact radius r - dn/2 against a wall, whose spin is not counted.
     double dn = g.overlap, e_star = pp.a.x, mu_r = pp.b.x;
@@ -88,16 +87,16 @@ TEST_CASE("cohesion_area intersection is LIGGGHTS sjkr's disc, about twice EDEM'
     // sjkr: A = -pi/4 (d-r1-r2)(d+r1-r2)(d-r1+r2)(d+r1+r2) / d^2; a wall: pi (r^2 - (r - dn)^2).
     double a_pair = -kPi / 4 * (d - r1 - r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2) / (d * d);
     double a_wall = kPi * (r1 * r1 - (r1 - dn) * (r1 - dn));
-    float lens_pair = gpu::cohesion_intersection_area(float(r1), float(r2), float(d), float(dn), false);
-    float lens_wall = gpu::cohesion_intersection_area(float(r1), 0.0f, 0.0f, float(dn), true);
-    double f_pair = gpu::linear_cohesion(float(pi_k), 0.0f, float(dn), lens_pair);
-    double f_wall = gpu::linear_cohesion(float(pi_k), 0.0f, float(dn), lens_wall);
+    float lens_pair = kernels.cohesion_intersection_area(float(r1), float(r2), float(d), float(dn), false);
+    float lens_wall = kernels.cohesion_intersection_area(float(r1), 0.0f, 0.0f, float(dn), true);
+    double f_pair = kernels.linear_cohesion(float(pi_k), 0.0f, float(dn), lens_pair);
+    double f_wall = kernels.linear_cohesion(float(pi_k), 0.0f, float(dn), lens_wall);
     INFO("dn = " << dn);
     // Float inputs: d carries ~1e-7 relative error, and (d+r1-r2) etc. no cancellation.
     CHECK(f_pair == Approx(pi_k / kPi * a_pair).epsilon(1e-5));
     CHECK(f_wall == Approx(pi_k / kPi * a_wall).epsilon(1e-5));
     double r_star = r1 * r2 / (r1 + r2);
-    double edem = gpu::linear_cohesion(float(pi_k), float(r_star), float(dn), -1.0f);
+    double edem = kernels.linear_cohesion(float(pi_k), float(r_star), float(dn), -1.0f);
     CHECK(edem == Approx(pi_k * r_star * dn).epsilon(1e-6));
     if (dn <= 1e-4) CHECK(f_pair / edem == Approx(2.0).epsilon(0.01));  // 2 R* dn - O(dn^2)
   }

@@ -8,6 +8,7 @@
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/templates.h"
+#include "util/math.h"
 
 using namespace repose;
 
@@ -40,7 +41,7 @@ TEST_CASE("cotton stalk: 40 layers x 18 spheres of 1 mm, 10 mm x 80 mm", "[templ
   for (int k = 0; k < 18; ++k) {
     const glm::dvec3 a = stalk.spheres[k].centre, b = stalk.spheres[18 + k].centre;
     const double turn = std::atan2(a.x * b.y - a.y * b.x, a.x * b.x + a.y * b.y);
-    CHECK(turn == Approx(30.0 * 3.14159265358979323846 / 180.0).epsilon(1e-12));
+    CHECK(turn == Approx(30.0 * repose::kPi / 180.0).epsilon(1e-12));
     CHECK(b.z - a.z == Approx(2e-3).epsilon(1e-12));
   }
 }

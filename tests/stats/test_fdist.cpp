@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "stats/fdist.h"
+#include "util/math.h"
 
 using namespace repose::stats;
 
@@ -21,7 +22,7 @@ TEST_CASE("incomplete beta: closed forms and symmetry", "[stats][fdist]") {
   CHECK(regularized_incomplete_beta(4.2, 4.2, 0.5) == Approx(0.5).margin(1e-14));
   // I_x(1/2, 1/2) = (2/pi) asin(sqrt(x)).
   CHECK(regularized_incomplete_beta(0.5, 0.5, 0.3) ==
-        Approx(2 / M_PI * std::asin(std::sqrt(0.3))).margin(1e-13));
+        Approx(2 / repose::kPi * std::asin(std::sqrt(0.3))).margin(1e-13));
   CHECK_THROWS(regularized_incomplete_beta(0, 1, 0.5));
   CHECK_THROWS(regularized_incomplete_beta(1, 1, 1.5));
 }

@@ -1,0 +1,26 @@
+// The shared kernel bodies (shaders/kernels/*.h) compiled as C++: included inside a struct whose
+// members carry the shaders' global names, so the same text is valid GLSL and C++. In GLSL,
+// B_name[] is a storage buffer and PC the push constants (kernels/glsl_prelude.glsl); here they
+// are the struct's pointers into the CPU twin's buffers and its copy of the push constants, and
+// every kernel function is a member (implicitly inline, so the bodies inline into run_kernel's
+// loops). Compile with -ffp-contract=off (CMakeLists.txt).
+#pragma once
+#include "cpu_kernels.h"
+
+namespace repose::gpu {
+
+struct Kernels {
+#define REPOSE_KERNEL_BUFFER(binding, Name, name, type, count, need, keep) type* B_##name = nullptr;
+  REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER)
+#undef REPOSE_KERNEL_BUFFER
+  SimPush PC{};
+
+  Kernels() = default;
+#define REPOSE_KERNEL_BUFFER_FROM(binding, Name, name, type, count, need, keep) B_##name(b.name),
+  explicit Kernels(const Buffers& b) : REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER_FROM) PC(b.push) {}
+#undef REPOSE_KERNEL_BUFFER_FROM
+
+#include "kernels/all.h"
+};
+
+}  // namespace repose::gpu
