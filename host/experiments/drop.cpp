@@ -32,6 +32,26 @@ std::string no_rebound(const CaseSpec& spec) {
   return spec.path + ": the body did not rebound within max_time = " + std::to_string(spec.experiment.max_time) + " s";
 }
 
+// The centre of mass's rise from its lowest frame to its highest frame after it, each refined by
+// a parabola through its neighbours (the camera's sub-frame estimate).
+double centre_rise(const std::vector<double>& z) {
+  auto refined = [&](size_t k, double sign) {
+    if (k == 0 || k + 1 >= z.size()) return z[k];
+    return sign * parabola_peak(sign * z[k - 1], sign * z[k], sign * z[k + 1]);
+  };
+  size_t bottom = size_t(std::min_element(z.begin(), z.end()) - z.begin());
+  size_t top = size_t(std::max_element(z.begin() + std::ptrdiff_t(bottom), z.end()) - z.begin());
+  return refined(top, 1.0) - refined(bottom, -1.0);
+}
+
+// Mean and sample standard deviation (0 for fewer than two values).
+std::pair<double, double> mean_sd(const std::vector<double>& x) {
+  double mean = 0, var = 0;
+  for (double v : x) mean += v / double(x.size());
+  for (double v : x) var += (v - mean) * (v - mean) / double(std::max<size_t>(1, x.size() - 1));
+  return {mean, std::sqrt(var)};
+}
+
 }  // namespace
 
 namespace {
@@ -85,10 +105,18 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
     const gpu::vec4& v = s.bodies.empty() ? s.vel[first_moving_sphere(s)] : s.bodies[first_moving_body(s)].vel;
     return double(v.x) * up[0] + double(v.y) * up[1] + double(v.z) * up[2];
   };
+  auto centre_height = [&](const HostState& s) { return dot(body_centre(s), up) - surface.level; };
+  auto touching = [&](const HostState& s) {  // moving spheres below the surface
+    int n = 0;
+    for (size_t i = 0; i < s.pos.size(); ++i)
+      if (s.vel[i].w != 0.0f && dot({s.pos[i].x, s.pos[i].y, s.pos[i].z}, up) - s.pos[i].w < surface.level) ++n;
+    return n;
+  };
 
   DropResult r;
   r.drop_height = ex.drop_height;
   r.trajectory.push_back({0.0, height(sim.state())});
+  r.centre_trajectory.push_back(centre_height(sim.state()));
   r.wall_forces.sample(sim);
   bool touched = false, left = false;
   double touch_time = 0, prev_speed = 0;
@@ -97,6 +125,8 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
     sim.advance(frame_steps);
     double h = height(sim.state()), v = normal_speed(sim.state());
     r.trajectory.push_back({sim.time(), h});
+    r.centre_trajectory.push_back(centre_height(sim.state()));
+    if (!left) r.peak_touching = std::max(r.peak_touching, touching(sim.state()));
     r.wall_forces.sample(sim);
     // A frame below the surface, or (a contact shorter than a frame) the fall turned into a rise.
     if (!touched && (h < 0 || (prev_speed < 0 && v > 0))) {
@@ -127,6 +157,7 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
   else r.rebound_height = parabola_peak(r.trajectory[best - 1].second, r.trajectory[best].second,
                                         r.trajectory[best + 1].second);
   r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / ex.drop_height);
+  r.centre_rise = centre_rise(r.centre_trajectory);
   return r;
 }
 
@@ -194,14 +225,14 @@ void DropExperiment::read_keys(const Section& s, ExperimentSpec& ex) const {
 }
 
 std::vector<std::string> DropExperiment::responses() const {
-  return {"restitution", "rebound_height", "rebound_height_exact", "contact_time", "impact_speed"};
+  return {"restitution", "rebound_height", "rebound_height_exact", "contact_time", "impact_speed", "centre_rise"};
 }
 
 ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult& r) const {
   ExperimentOutcome o;
   o.values = {{"restitution", r.restitution},   {"rebound_height", r.rebound_height},
               {"rebound_height_exact", r.rebound_height_exact}, {"contact_time", r.contact_time},
-              {"impact_speed", r.impact_speed}};
+              {"impact_speed", r.impact_speed}, {"centre_rise", r.centre_rise}};
   o.trajectory = r.trajectory;
   OrderedJson& j = o.json;
   j["experiment"] = "drop";
@@ -209,14 +240,18 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   j["drop_height"] = r.drop_height;
   j["rebound_height"] = r.rebound_height;
   j["rebound_height_exact"] = r.rebound_height_exact;
+  j["centre_rise"] = r.centre_rise;
+  j["peak_touching"] = r.peak_touching;
   j["restitution"] = r.restitution;
   j["impact_speed"] = r.impact_speed;
   j["contact_time"] = r.contact_time;
   j["camera_fps"] = spec.experiment.camera_fps;
-  auto track = std::make_shared<std::vector<std::pair<double, double>>>(r.trajectory);
+  auto track = std::make_shared<DropResult>(r);
   o.files.push_back(text_file("trajectory.csv", [track](std::ostream& out) {
-    out << "t,height\n";
-    for (const auto& [t, h] : *track) out << t << "," << h << "\n";
+    out << "t,height,centre\n";
+    for (size_t k = 0; k < track->trajectory.size(); ++k)
+      out << track->trajectory[k].first << "," << track->trajectory[k].second << "," << track->centre_trajectory[k]
+          << "\n";
   }));
   o.lines.push_back(printf_text("drop %s: H = %.4g m, rebound h = %.5g m, e = sqrt(h/H) = %.4f (impact %.3g m/s, contact %.3g ms)",
                                 spec.name.c_str(), r.drop_height, r.rebound_height, r.restitution, r.impact_speed,
@@ -235,7 +270,7 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
 void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, const ExperimentRun& run,
                                     const DropResult& first) const {
   OrderedJson list = OrderedJson::array();
-  std::vector<double> e;
+  std::vector<double> e, h, rise;
   for (int k = 0; k < run.replicates; ++k) {
     CaseSpec replicate = spec;
     replicate.seed = spec.seed + uint64_t(k);
@@ -249,16 +284,27 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
       continue;
     }
     e.push_back(r.restitution);
-    list.push_back({{"seed", replicate.seed}, {"rebound_height", r.rebound_height}, {"restitution", r.restitution}});
-    o.lines.push_back(printf_text("  replicate %d (seed %llu): h = %.5g m, e = %.4f", k + 1,
-                                  (unsigned long long)replicate.seed, r.rebound_height, r.restitution));
+    h.push_back(r.rebound_height);
+    rise.push_back(r.centre_rise);
+    list.push_back({{"seed", replicate.seed}, {"rebound_height", r.rebound_height}, {"restitution", r.restitution},
+                    {"centre_rise", r.centre_rise}, {"peak_touching", r.peak_touching}});
+    o.lines.push_back(printf_text("  replicate %d (seed %llu): h = %.5g m, e = %.4f, centre rise %.5g m", k + 1,
+                                  (unsigned long long)replicate.seed, r.rebound_height, r.restitution, r.centre_rise));
   }
-  double mean = 0, var = 0;
-  for (double x : e) mean += x / double(e.size());
-  for (double x : e) var += (x - mean) * (x - mean) / double(std::max<size_t>(1, e.size() - 1));
-  o.lines.push_back(printf_text("  e over %zu of %d replicates: mean %.4f, sd %.4f", e.size(), run.replicates, mean,
-                                std::sqrt(var)));
-  o.json["replicates"] = {{"runs", list}, {"counted", e.size()}, {"restitution_mean", mean}, {"restitution_sd", std::sqrt(var)}};
+  auto [e_mean, e_sd] = mean_sd(e);
+  auto [h_mean, h_sd] = mean_sd(h);
+  auto [rise_mean, rise_sd] = mean_sd(rise);
+  o.lines.push_back(printf_text("  e over %zu of %d replicates: mean %.4f, sd %.4f; h mean %.5g m, sd %.3g; centre rise "
+                                "mean %.5g m, sd %.3g",
+                                e.size(), run.replicates, e_mean, e_sd, h_mean, h_sd, rise_mean, rise_sd));
+  o.json["replicates"] = {{"runs", list},
+                          {"counted", e.size()},
+                          {"restitution_mean", e_mean},
+                          {"restitution_sd", e_sd},
+                          {"rebound_height_mean", h_mean},
+                          {"rebound_height_sd", h_sd},
+                          {"centre_rise_mean", rise_mean},
+                          {"centre_rise_sd", rise_sd}};
 }
 
 ExperimentOutcome DropExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {

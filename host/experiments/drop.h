@@ -29,7 +29,13 @@ struct DropResult {
   double impact_speed = 0;          // m/s, normal to the plate, just before contact
   double contact_time = 0;          // s, first impact
   bool rebounded = true;            // false: still on the plate at max_time (require_rebound off)
+  // Another reading of the rebound: how far the centre of mass rises from its lowest point
+  // (deepest in the plate) to its apex after the first impact. For a sphere that is h plus the
+  // largest overlap: a soft body sinks into the plate ~1/10 of its rebound.
+  double centre_rise = 0;           // m
+  int peak_touching = 0;            // most spheres of the body in the plate at one frame (first impact)
   std::vector<std::pair<double, double>> trajectory;  // (t, height of the lowest point)
+  std::vector<double> centre_trajectory;              // height of the centre of mass, same frames
   WallForceSeries wall_forces;                         // the plate's force at every camera frame
 };
 
@@ -73,6 +79,7 @@ class DropExperiment : public Experiment {
   Interaction& tested_contact(CaseSpec& spec) const override;
   std::string diagnosis_problem(const CaseSpec& spec) const override;
   bool stochastic(const CaseSpec& spec) const override { return !spec.bodies.empty(); }
+  bool takes_replicates() const override { return true; }
   DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
                                            bool strict) const override;
   std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;
