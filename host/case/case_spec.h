@@ -90,6 +90,9 @@ struct FillSpec {
   uint64_t seed = 0;
   Vec3d velocity{};
   bool fixed = false;                     // every sphere or body of the fill is fixed
+  // Not a case key: a caller that must place a tight fill (the diagnosis refilling a heap whose
+  // grains a candidate made larger) draws every radius first and places the largest first.
+  bool largest_first = false;
   SourceRef where;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <random>
 
 #include "case/body_pose.h"
@@ -246,10 +247,19 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
   std::vector<int> ids;
   SphereGrid grid = grid_near(spheres, region.lo, region.hi, fill.radius_max, ids);
 
-  for (int placed = 0; placed < fill.count; ++placed) {
+  auto draw_radius = [&] {
     double radius = fill.radius_min;
-    if (fill.radius_max > fill.radius_min)
-      radius = fill.radius_min + (fill.radius_max - fill.radius_min) * uniform();
+    if (fill.radius_max > fill.radius_min) radius = fill.radius_min + (fill.radius_max - fill.radius_min) * uniform();
+    return radius;
+  };
+  // Largest first: the big grains find room while the region is empty, the small ones fill gaps.
+  std::vector<double> largest_first;
+  if (fill.largest_first) {
+    for (int k = 0; k < fill.count; ++k) largest_first.push_back(draw_radius());
+    std::sort(largest_first.begin(), largest_first.end(), std::greater<double>());
+  }
+  for (int placed = 0; placed < fill.count; ++placed) {
+    double radius = fill.largest_first ? largest_first[size_t(placed)] : draw_radius();
     bool found = false;
     Vec3d centre{};
     for (int attempt = 0; attempt < kFillTriesPerSphere && !found; ++attempt) {

@@ -123,6 +123,13 @@ int run_synth_data(int argc, char** argv) {
                  "slide case: the body-plate sliding friction of the truth; roll case: its rolling friction")->check(finite_between(0, 10));
   app.add_option("--angle-noise", truth.angle_noise, "heap, slide, tilt-roll case: SD of one measured angle, deg (default 0.5)")->check(finite_between(0, 45));
   app.add_flag("--bed-only", truth.bed_height_only, "heap case: bed heights only (the bed alone is simulated, no lift)");
+  app.add_option("--measures", truth.measures,
+                 "the scalar measures written, comma-separated (a heap's: repose_angle, bed_height, heap_height, "
+                 "runout, profile_convexity; default the experiment's usual ones: a heap's repose_angle,bed_height)")
+      ->delimiter(',');
+  app.add_option("--unitless-noise", truth.unitless_noise,
+                 "SD of one measured dimensionless value such as profile_convexity (default 0.01)")
+      ->check(finite_between(0, 10));
   app.add_option("--replicates", truth.replicates, "replicates per height (default 5)")->check(whole_number(1, 10000));
   app.add_option("--noise", truth.noise, "SD of one measured length (rebound height, bed height, roll distance), m (default 0.001)")->check(finite_between(0, 10));
   app.add_option("--series-dt", truth.series_dt, "also the trajectory every DT s (default: none)")->check(finite_positive());

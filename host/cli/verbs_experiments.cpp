@@ -26,16 +26,21 @@ std::string listed(const std::vector<std::string>& words) {
   return text;
 }
 
+// The experiment types (each once) of the experiments for which `has` holds.
+template <class Predicate>
+std::vector<std::string> types_where(Predicate has) {
+  std::vector<std::string> types;
+  for (const Experiment* e : experiments())
+    if (has(*e) && std::find(types.begin(), types.end(), e->type()) == types.end()) types.push_back(e->type());
+  return types;
+}
+
 // The experiment types whose cases take `key` in their [experiment] table.
 std::vector<std::string> types_with_key(const std::string& key) {
-  std::vector<std::string> types;
-  for (const Experiment* e : experiments()) {
-    const std::vector<std::string> keys = e->keys();
-    if (std::find(keys.begin(), keys.end(), key) != keys.end() &&
-        std::find(types.begin(), types.end(), e->type()) == types.end())
-      types.push_back(e->type());
-  }
-  return types;
+  return types_where([&](const Experiment& e) {
+    const std::vector<std::string> keys = e.keys();
+    return std::find(keys.begin(), keys.end(), key) != keys.end();
+  });
 }
 
 // What produced an experiment's result (io/provenance.h); creating the backend names its device.
@@ -78,7 +83,9 @@ int run_experiment(int argc, char** argv) {
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
       ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
-  if (replicates > 1 && type != "drop") return usage_error("--replicates applies to the drop experiment");
+  const std::vector<std::string> with_replicates = types_where([](const Experiment& e) { return e.takes_replicates(); });
+  if (replicates > 1 && std::find(with_replicates.begin(), with_replicates.end(), type) == with_replicates.end())
+    return usage_error("--replicates applies to the " + listed(with_replicates) + " experiment");
   const std::vector<std::string> with_height = types_with_key("drop_height");
   if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
     return usage_error("--height applies to the " + listed(with_height) + " experiment");

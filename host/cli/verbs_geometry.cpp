@@ -2,7 +2,9 @@
 // meshes and the angle-of-repose measurement (host/geometry, host/measure) from the command
 // line. Input errors name the file, line and column; main() prints them and exits non-zero.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -12,11 +14,14 @@
 #include "cli/verbs.h"
 #include "io/provenance.h"
 #include "util/atomic_file.h"
+#include "experiments/repose.h"
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
 #include "geometry/templates.h"
+#include "measure/bed_height.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
 
@@ -261,28 +266,115 @@ Json sectors_json(const AxisymmetricHeapAngle& a) {
   return j;
 }
 
-// Heap-angle results as JSON: the front view, then the other views and the 3D sectors when measured.
-Json heap_angle_json(const std::string& file, size_t spheres, const std::string& view, const HeapAngleOptions& options,
-                     const HeapAngle& m, const std::optional<HeapViewsAngle>& around,
-                     const std::optional<AxisymmetricHeapAngle>& a) {
+Json profile_json(const SlopeProfile& p) {
   Json j;
-  j["file"] = file;
-  j["spheres"] = spheres;
-  j["view"] = view;
+  j["runout"] = p.runout;
+  j["toe"] = p.toe;
+  j["valid"] = p.valid;
+  if (p.valid) {
+    j["convexity"] = p.convexity;
+    j["points"] = p.points;
+  } else {
+    j["problem"] = p.problem;
+  }
+  return j;
+}
+
+std::string profile_text(const SlopeProfile& p, const char* coordinate) {
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "run-out %.4g m (toe at %s = %.4g m), convexity ", p.runout, coordinate, p.toe);
+  if (!p.valid) return buf + ("not measured: " + p.problem);
+  char c[64];
+  std::snprintf(c, sizeof c, "%+.3f (%zu columns)", p.convexity, p.points);
+  return buf + std::string(c);
+}
+
+// What `repose heap-angle` measured on one input: a sphere CSV or a PNG silhouette.
+struct HeapAngleRun {
+  std::string file, view;
+  bool photo = false;
+  std::vector<Sphere> spheres;
+  HeapAngleOptions options;
+  HeapAngle m;
+  HeapProfile profile;
+  std::optional<double> bed;  // a sphere CSV's bed height
+  std::optional<HeapViewsAngle> around;
+  std::optional<AxisymmetricHeapAngle> axisymmetric;
+};
+
+void print_heap_text(const HeapAngleRun& r) {
+  const HeapAngle& m = r.m;
+  if (r.photo)
+    std::printf("heap %s: photograph, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", r.file.c_str(), m.image.pixel * 1e3,
+                m.image.width, m.image.height, m.floor_z);
+  else
+    std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", r.file.c_str(),
+                r.spheres.size(), r.view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  const char* horizontal = r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y";
+  std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
+              m.heap_height, horizontal, m.crest, m.holes_filled, r.options.band_low, r.options.band_high);
+  std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
+  std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
+  std::printf("mean angle   %7.3f deg\n", m.mean_deg);
+  std::printf("left shape   %s\n", profile_text(r.profile.left, horizontal).c_str());
+  std::printf("right shape  %s\n", profile_text(r.profile.right, horizontal).c_str());
+  if (r.bed)
+    std::printf("bed height   %.6g m (twice the spheres' volume-weighted mean height above the floor: of a bed, "
+                "before the lift)\n", *r.bed);
+  if (const auto& v = r.around) {
+    std::printf("%zu views     about (%.6g, %.6g) m: %s\n", v->azimuth_deg.size(), v->centre.x, v->centre.y,
+                describe_views(*v).c_str());
+    for (size_t k = 0; k < v->azimuth_deg.size(); ++k)
+      std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", v->azimuth_deg[k], v->left_deg[k], v->right_deg[k]);
+  }
+  if (const auto& a = r.axisymmetric) {
+    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
+    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
+    std::printf("\n");
+    for (const SectorFit& s : a->sectors)
+      std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
+  }
+}
+
+// Heap-angle results as JSON: the front view and its profile, then the bed, the other views and
+// the 3D sectors when measured.
+Json heap_angle_json(const HeapAngleRun& r) {
+  const HeapAngle& m = r.m;
+  Json j;
+  j["file"] = r.file;
+  j["spheres"] = r.spheres.size();
+  j["photograph"] = r.photo;
+  j["view"] = r.view;
   j["pixel"] = m.image.pixel;
   j["floor_z"] = m.floor_z;
   j["heap_height"] = m.heap_height;
   j["crest"] = m.crest;
-  j["band_low"] = options.band_low;
-  j["band_high"] = options.band_high;
+  j["band_low"] = r.options.band_low;
+  j["band_high"] = r.options.band_high;
   j["left"] = slope_json(m.left);
   j["right"] = slope_json(m.right);
   j["mean_deg"] = m.mean_deg;
-  if (around) j["views"] = views_json(*around);
-  if (a) j["axisymmetric"] = sectors_json(*a);
+  j["left_profile"] = profile_json(r.profile.left);
+  j["right_profile"] = profile_json(r.profile.right);
+  if (r.bed) j["bed_height"] = *r.bed;
+  if (r.around) j["views"] = views_json(*r.around);
+  if (r.axisymmetric) j["axisymmetric"] = sectors_json(*r.axisymmetric);
   j["provenance"] = version_json();
-  j["provenance"]["input_fnv1a"] = file_fnv1a(file);
+  j["provenance"]["input_fnv1a"] = file_fnv1a(r.file);
   return j;
+}
+
+// The diagnosis measures of one side as measured-data rows (measure,value): what a user copies
+// into the data CSV next to the case, the condition and the replicate.
+void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
+  const SlopeFit& fit = side == "left" ? r.m.left : r.m.right;
+  if (side != "both" && !fit.valid) throw std::runtime_error(r.file + ": no " + side + " slope: " + fit.problem);
+  if (side == "both" && !std::isfinite(r.m.mean_deg)) throw std::runtime_error(r.file + ": the heap has no measurable slope");
+  double angle = side == "both" ? r.m.mean_deg : fit.angle_deg;
+  std::printf("measure,value\n");
+  std::map<std::string, double> values = heap_measures(angle, r.bed.value_or(0), r.profile, side);
+  for (const std::string& name : heap_measure_names())
+    if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
 }
 
 int run_heap_angle(int argc, char** argv) {
@@ -294,7 +386,20 @@ int run_heap_angle(int argc, char** argv) {
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
   std::optional<double> floor_z;
-  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up")->required();
+  int threshold = 128;
+  bool light_heap = false;
+  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+      ->required();
+  app.add_option("--threshold", threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
+      ->check(CLI::Range(1, 255));
+  app.add_flag("--light-heap", light_heap, "PNG: the heap is the lighter part of the picture");
+  std::string side = "both";
+  bool data_rows = false;
+  app.add_option("--side", side, "the slope a lab measures: left, right or both (their mean; default)")
+      ->check(CLI::IsMember({"left", "right", "both"}));
+  app.add_flag("--measures", data_rows,
+               "print only the diagnosis measures of --side as 'measure,value' lines, for a measured-data CSV "
+               "(repose_angle, heap_height, runout, profile_convexity; bed_height of a sphere CSV: a bed before the lift)");
   app.add_option("--view", view, "camera looks along x or y (image horizontal = the other one)")
       ->check(CLI::IsMember({"x", "y"}));
   app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
@@ -302,17 +407,27 @@ int run_heap_angle(int argc, char** argv) {
   app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
   app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600)")->check(finite_positive());
+  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)")
+      ->check(finite_positive());
   app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom)")->check(finite_number());
+  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
+                                     "z from the picture's bottom edge)")
+      ->check(finite_number());
   app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
   app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   CLI11_PARSE(app, argc, argv);
 
-  const std::vector<Sphere> spheres = read_sphere_csv(file);
+  HeapAngleRun r;
+  r.file = file;
+  r.view = view;
+  r.photo = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
+  if (r.photo && !(options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
+  if (r.photo && (views > 1 || axisymmetric))
+    throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  if (!r.photo) r.spheres = read_sphere_csv(file);
   options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
   options.floor_z = floor_z;
   axi.floor_z = floor_z;
@@ -321,41 +436,29 @@ int run_heap_angle(int argc, char** argv) {
     options.band_high = axi.band_high = band[1];
   }
   if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
-
-  const HeapAngle m = measure_heap_angle(spheres, options);
-  const char* horizontal = options.view == ViewAxis::Y ? "x" : "y";
-  std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", file.c_str(),
-              spheres.size(), view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
-  std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
-              m.heap_height, horizontal, m.crest, m.holes_filled, options.band_low, options.band_high);
-  std::printf("left slope   %s\n", slope_text(m.left, horizontal).c_str());
-  std::printf("right slope  %s\n", slope_text(m.right, horizontal).c_str());
-  std::printf("mean angle   %7.3f deg\n", m.mean_deg);
-
-  std::optional<HeapViewsAngle> around;
-  if (views > 1) {
-    around = measure_heap_angle_views(spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
-    std::printf("%d views     about (%.6g, %.6g) m: %s\n", views, around->centre.x, around->centre.y,
-                describe_views(*around).c_str());
-    for (size_t k = 0; k < around->azimuth_deg.size(); ++k)
-      std::printf("  view %5.1f deg  left %7.3f  right %7.3f\n", around->azimuth_deg[k], around->left_deg[k], around->right_deg[k]);
+  r.options = options;
+  if (r.photo) {
+    BinaryImage image = read_silhouette_png(file, options.pixel, threshold, light_heap);
+    double floor = floor_z ? *floor_z : lowest_foreground(image);
+    r.m = measure_heap_image(std::move(image), floor, options);
+  } else {
+    r.m = measure_heap_angle(r.spheres, options);
+    r.bed = uniform_bed_height(r.spheres, floor_z);
   }
-  std::optional<AxisymmetricHeapAngle> a;
-  if (axisymmetric) {
-    a = measure_axisymmetric_heap_angle(spheres, axi);
-    std::printf("3D fit       centre (%.6g, %.6g) m: %s", a->centre.x, a->centre.y, describe_sector_fit(*a).c_str());
-    if (a->valid_sectors > 0) std::printf(", range %.3f-%.3f deg", a->min_deg, a->max_deg);
-    std::printf("\n");
-    for (const SectorFit& s : a->sectors)
-      std::printf("  sector %5.1f-%5.1f deg  %s\n", s.from_deg, s.to_deg, slope_text(s.fit, "r").c_str());
-  }
+  r.profile = measure_heap_profile(r.m);
+  if (views > 1)
+    r.around = measure_heap_angle_views(r.spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
+  if (axisymmetric) r.axisymmetric = measure_axisymmetric_heap_angle(r.spheres, axi);
+
+  if (data_rows) print_measure_rows(r, side);
+  else print_heap_text(r);
   if (!png.empty()) {
-    write_heap_angle_png(png, m, horizontal);
-    std::printf("picture      %s\n", png.c_str());
+    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    if (!data_rows) std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {
-    write_file_atomically(json, heap_angle_json(file, spheres.size(), view, options, m, around, a).dump(2) + "\n");
-    std::printf("results      %s\n", json.c_str());
+    write_file_atomically(json, heap_angle_json(r).dump(2) + "\n");
+    if (!data_rows) std::printf("results      %s\n", json.c_str());
   }
   return 0;
 }

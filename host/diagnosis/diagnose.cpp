@@ -25,13 +25,19 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   // 1. The baseline and what is wrong with it.
   d.baseline = fit_and_hold_out(c, nullptr, nullptr);
   d.lack_of_fit = lack_of_fit(obs, d.baseline, c.noise_df);
-  d.trends = residual_trends(obs, d.baseline.predicted);
+  d.trends = residual_trends(obs, d.baseline.prediction);
   // 2. Every candidate extension, fitted and compared with the baseline.
   CandidateFits fits = fit_candidates(c, selection.testable, d.baseline);
   d.candidates.insert(d.candidates.end(), fits.failed.begin(), fits.failed.end());
   d.tried = fits.tried;
   // 3. The verdict, and what the winner gains on held-out conditions.
-  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted, d.lack_of_fit);
+  std::vector<MimicTest> mimics = mimic_tests(c, d.baseline, fits.fitted);
+  d.pairs = pair_separations(mimics);
+  d.untested_rivals = untested_rivals(obs, fits.failed, d.lack_of_fit);
+  Verdict verdict = decide_verdict(c, d.baseline, fits.fitted, mimics, d.untested_rivals, d.lack_of_fit);
+  Confidence confidence = verdict_confidence(d.baseline, fits.fitted, verdict, d.untested_rivals);
+  d.weights = confidence.weights;
+  d.confidence = confidence.named;
   d.verdict = verdict.verdict;
   d.cause = verdict.cause;
   d.mimics = verdict.mimics;

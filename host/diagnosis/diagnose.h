@@ -46,7 +46,13 @@ struct ModelResult {
                                        // the model's replicate scatter; empty without a given sigma)
   Prediction prediction;               // the full fit's prediction (means, replicate variances)
   std::vector<double> heldout;         // every group, predicted with its condition left out
+  // The score that decides (F test, AIC, lack of fit). A stochastic model is scored on fresh
+  // replicates its fit never saw (its fit's own score is chosen among redraws: biased low), and a
+  // candidate's change from the baseline is shrunk by the simulations' scatter (model_fit.h).
   double chi2 = 0, aic = 0;
+  double fit_chi2 = 0;                 // the fit's own score, on the replicates it searched
+  double shrinkage = 1;                // of the change from the baseline (1: kept whole)
+  double change_d2 = 0;                // that change's chi^2 against the simulations' scatter
   int k = 0;
   double f = 0, p = 1;                 // against the baseline
   double heldout_rms = 0;              // primary measure, its unit: RMS error of the mean, or with a
@@ -54,6 +60,9 @@ struct ModelResult {
   double heldout_z = 0;                // all groups, root mean square standardised error
   bool significant = false;
   std::string simulation_error;        // not tested because its simulation failed: the error
+  int heaps = 0, refilled = 0;         // heaps simulated, and those whose grains did not fit the case's
+  double fill_raised = 0;              // fill box by random insertion (heap_fill.h), and the most its box
+                                       // was raised by (fraction of its height)
 };
 
 // Can a rival candidate mimic the winner? The rival refitted to the winner's predictions.
@@ -72,11 +81,25 @@ struct Separation {
     MoreDropData,      // drop data with a series: more replicates or a wider range
     WiderCondition,    // tilt and roll: more replicates or a wider range of the condition
     BedHeight,         // heap angles alone: the bed height before the lift
-    SecondRig,         // heap angles and bed heights: another rig
+    SecondRig,         // heap measures that both models predict alike: another rig
+    HeapMeasure,       // the heap measure (measured or not) where the two fitted models differ most
+    HeapAfterLift,     // bed heights alone: the heap after the lift (angle, run-out, convexity)
+    Untested,          // a candidate that might explain the data could not be tested
   } kind = Kind::None;
+  std::string measure;            // HeapMeasure: which; Untested: the candidate
+  double heap_sds = 0;            // HeapMeasure: the difference in SDs of one simulated heap
   double largest_difference = 0;  // DropTrajectory: m, between the two fitted trajectories
   double at_time = 0;             // s, where
   std::string condition;          // the condition compared (its label), or the condition variable
+};
+
+// Can the data tell two candidates apart? Each refitted to the other's predictions (a rival that
+// does not beat the baseline is only refitted to the winner's: it is no cause of its own).
+struct PairSeparation {
+  std::string a, b;
+  double a_as_b = -1;       // chi^2 by which a, refitted to b's predictions, misses them (-1: not tried)
+  double b_as_a = -1;
+  bool told_apart = false;  // each tried direction misses by at least kSeparableChi2
 };
 
 struct Diagnosis {
@@ -89,6 +112,16 @@ struct Diagnosis {
                                         // failed, then the fitted ones, each in table order
   std::vector<std::string> tried;  // candidates fitted (or whose simulation failed), in order
   std::vector<MimicTest> mimics;   // effect or ambiguous: each rival that improves on the baseline
+  std::vector<PairSeparation> pairs;  // which candidates these data can tell apart
+  // Untested candidates that might explain the lack of fit (their simulation failed, or they are
+  // not simulated yet, yet they act on a measured quantity): they keep a verdict from naming one
+  // cause.
+  std::vector<std::string> untested_rivals;
+  // Akaike weights (exp(-AIC/2), normalised) of the baseline and every fitted candidate, with each
+  // untested rival given the best AIC (it might do as well); `confidence` is the weight of the
+  // named cause (effect, ambiguous: the first), or of the baseline (adequate, unexplained).
+  std::vector<std::pair<std::string, double>> weights;
+  double confidence = 0;
   std::vector<LackOfFit> lack_of_fit;
   std::vector<Trend> trends;
   std::string primary_measure, primary_unit;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "experiments/repose.h"
 #include "stats/fdist.h"
 
 namespace repose {
@@ -102,6 +103,43 @@ void score_held_out(const DiagnosisContext& c, const Prediction& held, ModelResu
   r.heldout_z = std::sqrt(sz / score_terms(obs));
 }
 
+// Two fitted heap models compared on every heap measure, measured or not (a simulated heap gives
+// them all): the one where their means over the conditions differ most, in SDs of one simulated
+// heap. Bed heights alone simulate no heap: then the heap after the lift is what to measure.
+Separation heap_separation(DiagnosisContext& c, const ModelResult& best, const ModelResult& second) {
+  const Observations& obs = c.obs;
+  Separation s;
+  if (std::all_of(obs.measures.begin(), obs.measures.end(), [](const std::string& m) { return m == "bed_height"; })) {
+    s.kind = Separation::Kind::HeapAfterLift;
+    return s;
+  }
+  int reps = c.predictor.simulated_replicates();
+  for (const std::string& m : heap_measure_names()) {
+    double difference = 0, variance = 0;
+    for (size_t k = 0; k < obs.conditions.size(); ++k) {
+      double mean[2] = {0, 0}, square[2] = {0, 0};
+      const ModelResult* models[2] = {&best, &second};
+      for (int i = 0; i < 2; ++i)
+        for (int r = 0; r < reps; ++r) {
+          double v = c.predictor.simulate(k, find_extension(models[i]->id), models[i]->params, r).values.at(m);
+          mean[i] += v / reps;
+          square[i] += v * v / reps;
+        }
+      difference += (mean[0] - mean[1]) / double(obs.conditions.size());
+      for (int i = 0; i < 2; ++i)
+        variance += (square[i] - mean[i] * mean[i]) * reps / (reps - 1) / (2.0 * double(obs.conditions.size()));
+    }
+    double sds = variance > 0 ? std::abs(difference) / std::sqrt(variance) : 0;
+    if (sds > s.heap_sds) {
+      s.heap_sds = sds;
+      s.measure = m;
+      s.largest_difference = std::abs(difference);
+    }
+  }
+  s.kind = s.heap_sds >= 1 ? Separation::Kind::HeapMeasure : Separation::Kind::SecondRig;
+  return s;
+}
+
 // Which measurement would tell the winner from its closest rival.
 Separation separation_of(DiagnosisContext& c, const ModelResult& best, const ModelResult& second) {
   const Observations& obs = c.obs;
@@ -126,8 +164,7 @@ Separation separation_of(DiagnosisContext& c, const ModelResult& best, const Mod
     s.kind = Separation::Kind::WiderCondition;
     s.condition = obs.variables.empty() ? "" : obs.variables.front();
   } else {
-    bool has_bed = std::find(obs.measures.begin(), obs.measures.end(), "bed_height") != obs.measures.end();
-    s.kind = has_bed ? Separation::Kind::SecondRig : Separation::Kind::BedHeight;
+    s = heap_separation(c, best, second);
   }
   return s;
 }
@@ -208,14 +245,21 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
   if (c.progress) c.progress->next(r.id + ", all conditions");
   std::vector<double> start;
   if (ext && baseline) start = baseline->params;
-  ModelFit full = fit_model(c.predictor, ext, std::vector<char>(obs.conditions.size(), 1), start);
+  std::vector<char> all(obs.conditions.size(), 1);
+  ModelFit full = fit_model(c.predictor, ext, all, start);
   r.params = full.params;
+  r.fit_chi2 = full.chi2;
   r.prediction = full.predicted;
-  r.predicted = full.predicted.mean;
+  r.chi2 = full.chi2;
+  if (full.predicted.replicates > 1) {  // stochastic: scored on fresh replicates
+    r.prediction = c.predictor.predict(ext, r.params, all, c.predictor.simulated_replicates(),
+                                       c.predictor.confirmation_replicates());
+    r.chi2 = chi_square(obs, r.prediction, all);
+  }
+  r.predicted = r.prediction.mean;
   if (c.scatter_scored)
     for (size_t g = 0; g < obs.groups.size(); ++g)
-      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + full.predicted.var[g]));
-  r.chi2 = full.chi2;
+      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + r.prediction.var[g]));
   r.aic = r.chi2 + 2.0 * r.k;
   if (c.heldout_available) score_held_out(c, hold_out_each_condition(c, ext, r, full.predicted), r);
   return r;
@@ -248,7 +292,7 @@ std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& b
   return out;
 }
 
-std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted) {
+std::vector<Trend> residual_trends(const Observations& obs, const Prediction& predicted) {
   std::vector<Trend> trends;
   for (const std::string& m : obs.measures) {
     std::vector<std::string> variables = obs.variables;
@@ -264,9 +308,10 @@ std::vector<Trend> residual_trends(const Observations& obs, const std::vector<do
         if (v == "t") x.push_back(grp.t);
         else if (vars.count(v)) x.push_back(vars.at(v));
         else continue;
-        r.push_back(grp.mean - predicted[g]);
+        r.push_back(grp.mean - predicted.mean[g]);
         // Correlated frames of a series carry (1 + rho) / (1 - rho) times less information.
-        w.push_back(grp.weight() / (grp.series ? obs.noise.at(m).inflation : 1.0));
+        double measured = 1.0 / grp.weight() * (grp.series ? obs.noise.at(m).inflation : 1.0);
+        w.push_back(1.0 / (measured + predicted.variance_of_mean(g)));
       }
       if (x.size() < 3) continue;
       Trend t = slope_of(x, r, w);
@@ -278,7 +323,17 @@ std::vector<Trend> residual_trends(const Observations& obs, const std::vector<do
   return trends;
 }
 
-void compare_with_baseline(ModelResult& r, const ModelResult& base, int noise_df, bool heldout_available) {
+void compare_with_baseline(const Observations& obs, ModelResult& r, const ModelResult& base, int noise_df,
+                           bool heldout_available) {
+  ShrunkChange change = shrink_change(obs, base.prediction, r.prediction);
+  r.shrinkage = change.shrinkage;
+  r.change_d2 = change.d2;
+  // Fresh replicates and shrinking only take away: a candidate scores no better than on the
+  // replicates it was fitted to, on fresh ones, or with its change shrunk, whichever is worst.
+  r.chi2 = std::max(r.chi2, r.fit_chi2);
+  if (change.shrinkage < 1)
+    r.chi2 = std::max(r.chi2, chi_square(obs, change.prediction, std::vector<char>(obs.conditions.size(), 1)));
+  r.aic = r.chi2 + 2.0 * r.k;
   int dk = std::max(1, r.k - base.k);
   r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
   r.p = stats::f_upper_tail(r.f, dk, noise_df);
@@ -292,7 +347,11 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
     out.tried.push_back(ext->id);
     try {
       ModelResult r = fit_and_hold_out(c, ext, &baseline);
-      compare_with_baseline(r, baseline, c.noise_df, c.heldout_available);
+      compare_with_baseline(c.obs, r, baseline, c.noise_df, c.heldout_available);
+      Predictor::FillRecord fill = c.predictor.fills(r.id);
+      r.heaps = fill.heaps;
+      r.refilled = fill.fallback;
+      r.fill_raised = fill.most_raised;
       out.fitted.push_back(r);
     } catch (const std::runtime_error& e) {
       ModelResult failed;
@@ -306,13 +365,81 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
   return out;
 }
 
+namespace {
+
+// Significant candidates, best AIC first.
+std::vector<size_t> significant_by_aic(const std::vector<ModelResult>& fitted) {
+  std::vector<size_t> out;
+  for (size_t k = 0; k < fitted.size(); ++k)
+    if (fitted[k].significant) out.push_back(k);
+  std::sort(out.begin(), out.end(), [&](size_t a, size_t b) { return fitted[a].aic < fitted[b].aic; });
+  return out;
+}
+
+}  // namespace
+
+std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& fitted) {
+  std::vector<MimicTest> out;
+  std::vector<size_t> significant = significant_by_aic(fitted);
+  if (significant.empty()) return out;
+  std::vector<char> everything(c.obs.conditions.size(), 1);
+  auto mimic = [&](const ModelResult& rival, const ModelResult& target) {
+    if (c.progress) c.progress->next("can " + rival.id + " mimic " + target.id + "?");
+    ModelFit m = fit_model(c.predictor, find_extension(rival.id), everything, rival.params, 0.08, 50, &target.prediction);
+    MimicTest t{rival.id, target.id, m.chi2, rival.aic - target.aic, false};
+    t.close = t.chi2 < kSeparableChi2 || t.aic_difference < kAicClose;
+    out.push_back(t);
+  };
+  const ModelResult& best = fitted[significant[0]];
+  // The rivals of the best in order of AIC, then the other significant pairs.
+  std::vector<size_t> rivals;
+  for (size_t k = 0; k < fitted.size(); ++k)
+    if (k != significant[0] && fitted[k].aic < base.aic) rivals.push_back(k);
+  std::sort(rivals.begin(), rivals.end(), [&](size_t a, size_t b) { return fitted[a].aic < fitted[b].aic; });
+  for (size_t r : rivals) mimic(fitted[r], best);
+  for (size_t a : significant)
+    for (size_t b : significant)
+      if (a != b && b != significant[0]) mimic(fitted[a], fitted[b]);
+  return out;
+}
+
+std::vector<PairSeparation> pair_separations(const std::vector<MimicTest>& mimics) {
+  std::vector<PairSeparation> pairs;
+  for (const MimicTest& m : mimics) {
+    auto it = std::find_if(pairs.begin(), pairs.end(), [&](const PairSeparation& p) {
+      return (p.a == m.rival && p.b == m.winner) || (p.a == m.winner && p.b == m.rival);
+    });
+    if (it == pairs.end()) {
+      pairs.push_back({m.winner, m.rival});
+      it = pairs.end() - 1;
+    }
+    (it->a == m.rival ? it->a_as_b : it->b_as_a) = m.chi2;
+  }
+  for (PairSeparation& p : pairs)
+    p.told_apart = (p.a_as_b < 0 || p.a_as_b >= kSeparableChi2) && (p.b_as_a < 0 || p.b_as_a >= kSeparableChi2);
+  return pairs;
+}
+
+std::vector<std::string> untested_rivals(const Observations& obs, const std::vector<ModelResult>& failed,
+                                         const std::vector<LackOfFit>& lack) {
+  std::vector<std::string> out;
+  if (lack.empty() || !(lack.front().p < kDiagnosisSignificance)) return out;
+  for (const ModelResult& r : failed) {
+    const ModelExtension* e = find_extension(r.id);
+    if (!e || r.simulation_error.empty()) continue;
+    bool acts = std::any_of(obs.measures.begin(), obs.measures.end(), [&](const std::string& m) {
+      return std::find(e->revealed_by.begin(), e->revealed_by.end(), m) != e->revealed_by.end();
+    });
+    if (acts) out.push_back(r.id);
+  }
+  return out;
+}
+
 Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results,
+                       const std::vector<MimicTest>& mimics, const std::vector<std::string>& untested,
                        const std::vector<LackOfFit>& lack) {
   Verdict v;
-  std::vector<size_t> winners;
-  for (size_t k = 0; k < results.size(); ++k)
-    if (results[k].significant) winners.push_back(k);
-  std::sort(winners.begin(), winners.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
+  std::vector<size_t> winners = significant_by_aic(results);
   if (winners.empty()) {
     // A baseline that misses the data is not adequate because nothing tested beats it.
     bool missed = !lack.empty() && lack.front().p < kDiagnosisSignificance;
@@ -322,32 +449,50 @@ Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::
   v.winner = int(winners[0]);
   const ModelResult& best = results[winners[0]];
   v.cause.push_back(best.id);
-  // Rivals: every other candidate that improves on the baseline at all (lower AIC), significant
-  // or not: one that fits nearly as well as the winner leaves the cause undecided.
-  std::vector<size_t> rivals;
-  for (size_t k = 0; k < results.size(); ++k)
-    if (k != winners[0] && results[k].aic < base.aic) rivals.push_back(k);
-  std::sort(rivals.begin(), rivals.end(), [&](size_t a, size_t b) { return results[a].aic < results[b].aic; });
-  std::vector<char> everything(c.obs.conditions.size(), 1);
-  for (size_t w : rivals) {
-    const ModelResult& other = results[w];
-    if (c.progress) c.progress->next("can " + other.id + " mimic " + best.id + "?");
-    ModelFit mimic = fit_model(c.predictor, find_extension(other.id), everything, other.params, 0.08, 50, &best.prediction);
-    MimicTest m{other.id, best.id, mimic.chi2, other.aic - best.aic, false};
-    m.close = mimic.chi2 < kSeparableChi2 || m.aic_difference < kAicClose;
-    if (v.separation_chi2 < 0 || mimic.chi2 < v.separation_chi2) v.separation_chi2 = mimic.chi2;
-    if (m.close) v.cause.push_back(other.id);
+  // A rival that improves on the baseline at all and mimics the winner leaves the cause undecided.
+  for (const MimicTest& m : mimics) {
+    if (m.winner != best.id) continue;
+    if (v.separation_chi2 < 0 || m.chi2 < v.separation_chi2) v.separation_chi2 = m.chi2;
+    if (m.close) v.cause.push_back(m.rival);
     v.mimics.push_back(m);
   }
+  // So does a candidate that might explain the data but could not be tested.
+  v.cause.insert(v.cause.end(), untested.begin(), untested.end());
   if (v.cause.size() == 1) {
     v.verdict = "effect";
     return v;
   }
   v.verdict = "ambiguous";
+  if (v.cause.size() == 1 + untested.size()) {
+    v.separation.kind = Separation::Kind::Untested;
+    v.separation.measure = untested.front();
+    return v;
+  }
   const ModelResult& second =
       *std::find_if(results.begin(), results.end(), [&](const ModelResult& r) { return r.id == v.cause[1]; });
   v.separation = separation_of(c, best, second);
   return v;
+}
+
+Confidence verdict_confidence(const ModelResult& base, const std::vector<ModelResult>& fitted, const Verdict& v,
+                              const std::vector<std::string>& untested) {
+  Confidence out;
+  double best = base.aic;
+  for (const ModelResult& r : fitted) best = std::min(best, r.aic);
+  double total = 0;
+  auto add = [&](const std::string& id, double aic) {
+    double w = std::exp(-0.5 * (aic - best));
+    out.weights.push_back({id, w});
+    total += w;
+  };
+  add("baseline", base.aic);
+  for (const ModelResult& r : fitted) add(r.id, r.aic);
+  for (const std::string& id : untested) add(id, best);
+  for (auto& [id, w] : out.weights) w /= total;
+  std::string named = v.cause.empty() ? "baseline" : v.cause.front();
+  for (const auto& [id, w] : out.weights)
+    if (id == named) out.named = w;
+  return out;
 }
 
 HeldOutGain heldout_gain(const DiagnosisContext& c, const ModelResult& base, const Verdict& v,

@@ -49,14 +49,19 @@ CandidateSelection select_candidates(const Observations& obs, const std::vector<
                                      bool scatter_scored);
 
 // Fits a model (nullptr: the baseline) to every condition, then, with >= 3 conditions, to all
-// but one in turn, predicting the one left out. Extensions start from the baseline's values.
+// but one in turn, predicting the one left out. Extensions start from the baseline's values. A
+// stochastic model is then scored on Predictor::confirmation_replicates() fresh replicates: a heap
+// redraws its fills' outcomes at every parameter change, so the fit's best score is the luckiest
+// of its redraws (a dry heap's chi^2 43.7 fell to 5.2 at a cohesion of Bond number 0.01).
+// Its prediction and chi2 are then the fresh ones.
 ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* extension, const ModelResult* baseline);
 
 // The baseline's lack of fit: overall (first) and per measure, F tests against the noise.
 std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& baseline, int noise_df);
 
-// Weighted regressions of the baseline's residuals on every condition variable (and t in a series).
-std::vector<Trend> residual_trends(const Observations& obs, const std::vector<double>& predicted);
+// Weighted regressions of the baseline's residuals on every condition variable (and t in a series),
+// each residual weighed by the variance of the measured mean and of the predicted one.
+std::vector<Trend> residual_trends(const Observations& obs, const Prediction& predicted);
 
 // Every testable candidate fitted and compared with the baseline, in order. A candidate whose
 // experiment cannot be simulated to the end (e.g. a heap that never settles under it) comes back
@@ -70,12 +75,32 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
                              const ModelResult& baseline);
 
 // A candidate against the baseline: extra-sum-of-squares F test, and significant when it also
-// predicts held-out conditions better.
-void compare_with_baseline(ModelResult& candidate, const ModelResult& baseline, int noise_df, bool heldout_available);
+// predicts held-out conditions better. A stochastic candidate is scored with its change from the
+// baseline shrunk by the simulations' scatter (model_fit.h shrink_change). Its chi2 and AIC are
+// the worst of its fit's own, its fresh replicates' and its shrunk change's: a fresh draw that
+// happens to suit it better than its fit's (a clump's orientations), like the shrinking, only
+// takes away.
+void compare_with_baseline(const Observations& obs, ModelResult& candidate, const ModelResult& baseline, int noise_df,
+                           bool heldout_available);
+
+// Rivals refitted to the predictions of candidates they might stand in for: among the candidates
+// that beat the baseline, each to each; one that improves on the baseline (lower AIC) without
+// beating it, to the best significant one only (it is no cause of its own). Empty when no
+// candidate beats the baseline.
+std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& baseline,
+                                   const std::vector<ModelResult>& fitted);
+
+// The same as a table of pairs: which these data can tell apart.
+std::vector<PairSeparation> pair_separations(const std::vector<MimicTest>& mimics);
+
+// Untested candidates that might explain the baseline's lack of fit: their simulation failed (or
+// they could not be filled), yet they act on a measured quantity. None without a lack of fit.
+std::vector<std::string> untested_rivals(const Observations& obs, const std::vector<ModelResult>& failed,
+                                         const std::vector<LackOfFit>& lack);
 
 // The verdict: no significant candidate is "adequate", or "unexplained" when the baseline's lack of
-// fit is significant all the same; the significant one with the lowest AIC is the cause, unless a
-// rival can mimic its predictions ("ambiguous", with what would separate them).
+// fit is significant all the same; the significant one with the lowest AIC is the cause, unless a rival can mimic its predictions or an untested candidate might explain the
+// data as well ("ambiguous", with what would separate them).
 struct Verdict {
   std::string verdict;
   std::vector<std::string> cause;
@@ -85,7 +110,17 @@ struct Verdict {
   Separation separation;
 };
 Verdict decide_verdict(DiagnosisContext& c, const ModelResult& baseline, const std::vector<ModelResult>& fitted,
+                       const std::vector<MimicTest>& mimics, const std::vector<std::string>& untested,
                        const std::vector<LackOfFit>& lack_of_fit);
+
+// Akaike weights of the baseline, the fitted candidates and the untested rivals (each given the
+// best AIC), and the weight of what the verdict names (Diagnosis::confidence).
+struct Confidence {
+  std::vector<std::pair<std::string, double>> weights;
+  double named = 0;
+};
+Confidence verdict_confidence(const ModelResult& baseline, const std::vector<ModelResult>& fitted, const Verdict& v,
+                              const std::vector<std::string>& untested);
 
 // Held-out error of the primary measure, baseline and the extended model (the winner, or the
 // baseline again when adequate), and the gain in percent.

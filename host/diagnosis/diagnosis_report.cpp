@@ -34,7 +34,12 @@ json model_json(const ModelResult& r, bool heldout) {
   j["k"] = r.k;
   j["chi2"] = r.chi2;
   j["aic"] = r.aic;
-  j["simulated_replicates"] = r.prediction.replicates;
+  j["simulated_replicates"] = r.prediction.replicates;  // behind the scored prediction
+  j["fit_chi2"] = r.fit_chi2;                            // on the replicates the fit searched
+  if (r.id != "baseline" && r.prediction.replicates > 1) {
+    j["shrinkage"] = r.shrinkage;  // of its change from the baseline (model_fit.h shrink_change)
+    j["change_chi2"] = r.change_d2;
+  }
   if (!r.predicted_sd.empty()) j["predicted_sd"] = r.predicted_sd;  // per group, sigma + replicate scatter
   if (r.id != "baseline") {
     j["f"] = r.f;
@@ -207,6 +212,34 @@ Figures write_figures(const Observations& obs, const Diagnosis& d, const fs::pat
   return figures;
 }
 
+// The verdict's confidence, the Akaike weights, the pairs and the untested rivals.
+void confidence_json(const Diagnosis& d, json& j) {
+  j["confidence"] = d.confidence;
+  j["weights"] = json::object();
+  for (const auto& [id, w] : d.weights) j["weights"][id] = w;
+  j["untested_rivals"] = d.untested_rivals;
+  j["pairs"] = json::array();
+  for (const auto& p : d.pairs) {
+    json e = {{"a", p.a}, {"b", p.b}, {"told_apart", p.told_apart}};
+    e["a_as_b_chi2"] = p.a_as_b >= 0 ? json(p.a_as_b) : json(nullptr);
+    e["b_as_a_chi2"] = p.b_as_a >= 0 ? json(p.b_as_a) : json(nullptr);
+    j["pairs"].push_back(e);
+  }
+}
+
+// Which pairs of candidates the data tell apart, as a markdown table.
+void pairs_markdown(const Diagnosis& d, std::ostringstream& md) {
+  if (d.pairs.empty()) return;
+  auto chi2 = [](double v) { return v < 0 ? std::string("not tried") : std::to_string(v).substr(0, 6); };
+  md << "\n## Which candidates these data tell apart\n\nEach refitted to the other's predictions; apart when "
+        "every tried direction misses by chi^2 >= "
+     << kSeparableChi2 << " (3 sigma).\n\n| a | b | a refitted to b: chi^2 | b refitted to a: chi^2 | told apart |\n"
+        "|---|---|---|---|---|\n";
+  for (const auto& p : d.pairs)
+    md << "| " << p.a << " | " << p.b << " | " << chi2(p.a_as_b) << " | " << chi2(p.b_as_a) << " | "
+       << (p.told_apart ? "yes" : "no") << " |\n";
+}
+
 // diagnosis.json: the verdict, every model's fit, the tests, the noise and the figures' files.
 json diagnosis_json(const Observations& obs, const Diagnosis& d, const Figures& figures) {
   json j;
@@ -246,6 +279,7 @@ json diagnosis_json(const Observations& obs, const Diagnosis& d, const Figures& 
   for (const auto& t : d.trends)
     j["trends"].push_back({{"measure", t.measure}, {"variable", t.variable}, {"slope", t.slope}, {"se", t.se},
                            {"z", t.z}, {"p", t.p}});
+  confidence_json(d, j);
   if (d.separation_chi2 >= 0) j["separation_chi2"] = d.separation_chi2;
   if (!d.separating_measurement.empty()) j["separating_measurement"] = d.separating_measurement;
   j["noise"] = json::object();
@@ -272,6 +306,7 @@ std::string report_markdown(const Observations& obs, const Diagnosis& d, const F
     for (size_t k = 0; k < d.cause.size(); ++k) md << (k ? ", " : "") << "`" << d.cause[k] << "`";
     md << ")";
   }
+  md << ", confidence " << std::to_string(d.confidence).substr(0, 4);
   md << "\n\n" << obs.conditions.size() << " conditions, " << obs.groups.size() << " measured means; noise from the "
      << "replicate scatter:";
   for (const auto& [m, n] : obs.noise)
@@ -309,6 +344,7 @@ std::string report_markdown(const Observations& obs, const Diagnosis& d, const F
     md << "\nHeld-out error: " << d.primary_measure << " RMS (" << d.primary_unit
        << "), each condition predicted by a fit to the others. Baseline " << d.heldout_error_baseline
        << ", extended " << d.heldout_error_extended << ", gain " << d.gain_percent << " %.\n";
+  pairs_markdown(d, md);
   md << "\n## Figures\n\n";
   for (const auto& [file, caption] : figures) md << caption << ":\n\n![" << caption << "](" << file << ")\n\n";
   md << "---\n" << d.simulations << " simulations in " << d.seconds << " s.\n";

@@ -58,7 +58,12 @@ std::string trend_statement(const Trend& t) {
 std::string candidate_statement(const Diagnosis& d, const ModelResult& r) {
   if (!r.simulation_error.empty()) return r.id + ": not tested, its simulation failed (" + r.simulation_error + ").";
   const ModelResult& base = d.baseline;
-  return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + " (F = " + num(r.f, 3) +
+  // A stochastic candidate is scored on fresh replicates, its change from the baseline shrunk.
+  std::string scored = r.prediction.replicates > 1
+                           ? " (fresh replicates; its change from the baseline, chi^2 " + num(r.change_d2, 3) +
+                                 " against the simulations' scatter, kept at " + num(r.shrinkage, 2) + ")"
+                           : std::string();
+  return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + scored + " (F = " + num(r.f, 3) +
          ", p = " + num(r.p, 2) + "), AIC " + num(base.aic) + " -> " + num(r.aic) +
          (d.heldout_available ? ", held-out error " + in_unit(r.heldout_rms, d.primary_unit) + " vs " +
                                     in_unit(base.heldout_rms, d.primary_unit) + " (baseline)"
@@ -100,12 +105,38 @@ void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
                   "beyond the candidates.");
   } else if (d.verdict == "effect") {
     out.push_back("Verdict: effect. The cause is " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) + ").");
+  } else if (d.separation.kind == Separation::Kind::Untested) {
+    std::string names;
+    for (const auto& c : d.untested_rivals) names += (names.empty() ? "" : " and ") + c;
+    out.push_back("Verdict: ambiguous. " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) +
+                  ") beats the baseline, but " + names + " could not be tested and acts on the same measures: " +
+                  "it might explain the data as well. " + d.separating_measurement + ".");
   } else {
     std::string names;
     for (const auto& c : d.cause) names += (names.empty() ? "" : " and ") + c;
     out.push_back("Verdict: ambiguous between " + names + ": the data cannot tell them apart. " +
                   "To separate them, measure " + d.separating_measurement + ".");
   }
+  // How sure: the Akaike weight of what the verdict names, among the baseline, the candidates and
+  // any untested rival (given the best AIC).
+  std::string named = d.cause.empty() ? "the baseline" : d.cause[0];
+  std::string others;
+  for (const auto& [id, w] : d.weights)
+    if (id != (d.cause.empty() ? "baseline" : d.cause[0]) && w >= 0.005)
+      others += (others.empty() ? "" : ", ") + id + " " + num(w, 2);
+  out.push_back("Confidence " + num(d.confidence, 2) + ": the Akaike weight of " + named +
+                (others.empty() ? std::string(" (every other model below 0.005)") : " (" + others + ")") + ".");
+}
+
+// The pairs of candidates, told apart or not.
+std::string pairs_statement(const Diagnosis& d) {
+  std::string apart, not_apart;
+  for (const auto& p : d.pairs) {
+    std::string& list = p.told_apart ? apart : not_apart;
+    list += (list.empty() ? "" : ", ") + p.a + "/" + p.b;
+  }
+  return "These data tell apart " + (apart.empty() ? std::string("no pair") : apart) +
+         (not_apart.empty() ? std::string("") : "; not " + not_apart) + " (each refitted to the other's predictions).";
 }
 
 }  // namespace
@@ -126,6 +157,20 @@ std::string separation_in_words(const Separation& s, const Observations& obs) {
     case Separation::Kind::SecondRig:
       return "more replicate heaps, or a second rig that loads the grains differently (a flow or a shear test): the "
              "angle and the bed height move alike under both";
+    case Separation::Kind::HeapMeasure:
+      return s.measure + (std::find(obs.measures.begin(), obs.measures.end(), s.measure) == obs.measures.end()
+                              ? " (not measured here)"
+                              : " (measured here: more heaps)") +
+             ": the two fitted models differ there by " +
+             (s.measure == "repose_angle" ? num(s.largest_difference, 3) + " deg"
+              : s.measure == "profile_convexity" ? num(s.largest_difference, 3)
+                                                 : num(s.largest_difference * 1000, 3) + " mm") +
+             " on average, " + num(s.heap_sds, 2) + " SDs of one heap";
+    case Separation::Kind::HeapAfterLift:
+      return "the heap after the lift (repose_angle, runout, profile_convexity): a bed alone shows packing only";
+    case Separation::Kind::Untested:
+      return "To decide, make " + s.measure + " testable (its reason is in the candidates table) or measure what only "
+             "the named cause changes";
     case Separation::Kind::BedHeight:
       return "the bed height before the lift (measure 'bed_height'): packing separates a size spread from rolling "
              "resistance, which the angle alone confounds";
@@ -143,10 +188,20 @@ std::vector<std::string> diagnosis_statements(const Observations& obs, const Dia
                     "the trend tests count " + num(n.inflation, 3) + " frames as one.");
   out.push_back(lack_of_fit_statement(d.lack_of_fit.front()));
   for (const Trend& t : d.trends) out.push_back(trend_statement(t));
-  for (const std::string& id : d.tried) out.push_back(candidate_statement(d, *candidate(d, id)));
+  for (const std::string& id : d.tried) {
+    const ModelResult& r = *candidate(d, id);
+    out.push_back(candidate_statement(d, r));
+    if (r.refilled > 0)
+      out.push_back(r.id + ": " + std::to_string(r.refilled) + " of its " + std::to_string(r.heaps) +
+                    " heaps did not fit the case's fill box by random insertion and were filled largest grain first" +
+                    (r.fill_raised > 0 ? " in the box raised by up to " + num(100 * r.fill_raised, 3) + " % of its height"
+                                       : std::string()) +
+                    ".");
+  }
   for (const MimicTest& m : d.mimics)
     out.push_back(m.rival + " refitted to " + m.winner + "'s predictions misses them by chi^2 = " + num(m.chi2, 3) +
                   " (separable at 3 sigma above " + num(kSeparableChi2, 2) + "); AIC difference " + num(m.aic_difference, 3) + ".");
+  if (!d.pairs.empty()) out.push_back(pairs_statement(d));
   verdict_statements(d, out);
   if (d.heldout_available && !d.cause.empty())
     out.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " + d.primary_measure +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "diagnosis/bond_number.h"
 #include "diagnosis/elongated_body.h"
 #include "experiments/registry.h"
 
@@ -37,18 +38,32 @@ const std::vector<ModelExtension>& model_extensions() {
              s.air_drag.air_density = 1.2;
            }},
       {.id = "cohesion",
-       .description = "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture), with "
-                      "friction and rolling resistance on the contact's repulsion, which the attraction raises (wet "
-                      "contacts grip harder)",
+       .description = "EDEM linear cohesion: an attraction k A on the contact area A = pi R* dn (moisture); on one "
+                      "body, with friction and rolling resistance on the contact's repulsion, which the attraction "
+                      "raises (wet contacts grip harder); between a bulk's grains, with the case's own [contact] "
+                      "cohesion_friction",
        .physics = "linear_cohesion() and fn_grip in shaders/kernels/contact_law.h",
-       .case_keys = "[[interaction]] cohesion_energy_density of the tested contact; [contact] cohesion_friction = \"contact\"",
+       .case_keys = "[[interaction]] cohesion_energy_density of the tested contact; on one body also [contact] "
+                    "cohesion_friction = \"contact\"",
        .parameters = {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}},
-       .revealed_by = {"rebound_height", "restitution", "height", "slide_angle", "roll_angle"},
+       .revealed_by = {"rebound_height", "restitution", "height", "slide_angle", "roll_angle", "repose_angle",
+                       "bed_height", "heap_height", "runout", "profile_convexity"},
        .apply =
            [](CaseSpec& s, const std::vector<double>& p) {
              tested_contact(s).cohesion_energy_density = p.at(0);
-             s.contact.cohesion_friction = CohesionFriction::Contact;
-           }},
+             // Grains of a bulk (a heap filled from [[fill]]s) are held together by the attraction
+             // whatever friction sees, and the case states its engine's convention; a tilted body is
+             // revealed only through the grip.
+             if (s.fills.empty()) s.contact.cohesion_friction = CohesionFriction::Contact;
+           },
+       // In a bulk the grains' own stiffness and weight set what matters (bond_number.h): Bond
+       // numbers from 1e-3 (dry as far as a heap can tell) to 3 (clods: at 2.5 slot heaps scatter
+       // by 20 deg between fills, and never settle), not decades of soft-sphere nonsense.
+       .parameters_for = [](const CaseSpec& s) -> std::vector<FreeParameter> {
+         if (s.fills.empty()) return {{"cohesion_energy_density", "J/m^3", 1e2, 1e7, true}};
+         return {{"cohesion_energy_density", "J/m^3", heap_cohesion_for_bond_number(s, 1e-3),
+                  heap_cohesion_for_bond_number(s, 3.0), true}};
+       }},
       {.id = "rolling_epsd",
        .description = "EDEM type C rolling resistance (Ai et al. 2011 model C, LIGGGHTS epsd): a rolling spring "
                       "k_r = 2.25 mu_r^2 R*^2 k_n capped at mu_r R* |Fn|, with a dashpot of rolling_damping (fraction "
@@ -59,7 +74,7 @@ const std::vector<ModelExtension>& model_extensions() {
        .case_keys = "[contact] rolling = \"epsd\", rolling_damping; [[interaction]] spinning_friction = "
                     "rolling_friction where the case sets none",
        .parameters = {{"rolling_damping", "1", 0.05, 1.0, false}},
-       .revealed_by = {"repose_angle", "bed_height"},
+       .revealed_by = {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        .apply =
            [](CaseSpec& s, const std::vector<double>& p) {
              s.contact.rolling = RollingModel::ElasticPlastic;
@@ -76,7 +91,7 @@ const std::vector<ModelExtension>& model_extensions() {
        .physics = "append_fill() in host/case/particle_factory.cpp draws each radius; no kernel change",
        .case_keys = "[[fill]] radius = [min, max] of every sphere fill",
        .parameters = {{"size_spread", "1", 0.0, 0.4, false}},
-       .revealed_by = {"repose_angle", "bed_height"},
+       .revealed_by = {"repose_angle", "bed_height", "heap_height", "runout", "profile_convexity"},
        .apply =
            [](CaseSpec& s, const std::vector<double>& p) {
              for (FillSpec& f : s.fills) {

@@ -28,6 +28,9 @@ struct ModelExtension {
   // Its signature is the replicate scatter (a stochastic model): tested only when the data give
   // sigma, since otherwise the scatter is taken as the measurement noise.
   bool needs_sigma = false;
+  // Optional: the parameters with ranges that suit a given case (e.g. a heap's cohesion over the
+  // Bond numbers of its grains); empty: `parameters` as listed, whatever the case.
+  std::function<std::vector<FreeParameter>(const CaseSpec&)> parameters_for;
 };
 
 const std::vector<ModelExtension>& model_extensions();

@@ -34,6 +34,22 @@ std::vector<double> group_chi_squares(const Observations& obs, const Prediction&
 // The score over the groups of the conditions marked in `use`.
 double chi_square(const Observations& obs, const Prediction& predicted, const std::vector<char>& use,
                   const Prediction* target = nullptr);
+// A stochastic model's predicted change from the baseline, d = candidate - baseline per group, is
+// the difference of two Monte-Carlo means: for a chaotic simulation (a heap) any parameter change
+// redraws every fill's outcome, so d carries the scatter of both (var_d = vb/Rb + vc/Rc) even
+// where the change does nothing. Its estimate is shrunk toward no change by the positive-part
+// James-Stein factor s = max(0, 1 - (G - 2) / D), D = sum d^2 / var_d over the G groups (James &
+// Stein 1961: for G >= 3 it estimates the vector of changes better than d itself): a change no
+// larger than the simulations' scatter (D ~ G) becomes none, a real one (D >> G) stays. The
+// shrunk model predicts the means baseline + s d, with variance (1 - s)^2 vb/Rb + s^2 vc/Rc, and
+// the candidate's own replicate scatter vc (a scatter between the two models' is no model's). G counts the groups whose means scatter; a
+// deterministic pair (var_d = 0 everywhere) or fewer than 3 such groups are left as they are (s = 1).
+struct ShrunkChange {
+  Prediction prediction;
+  double shrinkage = 1;  // s
+  double d2 = 0;         // D
+};
+ShrunkChange shrink_change(const Observations& obs, const Prediction& baseline, const Prediction& candidate);
 // How many chi^2 terms the score has over all groups: one per mean, plus one per replicate
 // variance when sigma is given (the degrees of freedom before fitting).
 int score_terms(const Observations& obs);

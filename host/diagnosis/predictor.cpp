@@ -61,7 +61,11 @@ void Predictor::check_measures() const {
 std::vector<FreeParameter> Predictor::parameters(const ModelExtension* extension) const {
   std::vector<FreeParameter> p;
   if (fit_baseline_) p.push_back(role_->baseline);
-  if (extension) p.insert(p.end(), extension->parameters.begin(), extension->parameters.end());
+  if (extension) {
+    std::vector<FreeParameter> own =
+        extension->parameters_for ? extension->parameters_for(specs_.front()) : extension->parameters;
+    p.insert(p.end(), own.begin(), own.end());
+  }
   return p;
 }
 
@@ -77,7 +81,27 @@ CaseSpec Predictor::model_spec(size_t condition, const ModelExtension* extension
   if (fit_baseline_) experiment_->tested_contact(spec).*role_->baseline_field = params.at(k++);
   if (extension) extension->apply(spec, std::vector<double>(params.begin() + k, params.end()));
   experiment_->replicate(spec, replicate);  // a clump's orientation, a heap's fill
+  record_fill(condition, extension, spec);
   return spec;
+}
+
+void Predictor::record_fill(size_t condition, const ModelExtension* extension, const CaseSpec& spec) const {
+  if (spec.fills.empty()) return;
+  std::lock_guard<std::mutex> lock(fill_mutex_);
+  FillRecord& record = fills_[extension ? extension->id : "baseline"];
+  ++record.heaps;
+  const CaseSpec& original = specs_[condition];
+  bool fallback = false;
+  for (size_t k = 0; k < spec.fills.size(); ++k) {
+    const FillSpec &f = spec.fills[k], &o = original.fills[k];
+    fallback = fallback || f.largest_first;
+    for (int axis = 0; axis < 3; ++axis) {
+      double extent = o.box_max[axis] - o.box_min[axis];
+      double raised = std::max(f.box_max[axis] - o.box_max[axis], o.box_min[axis] - f.box_min[axis]);
+      if (extent > 0 && raised > 0) record.most_raised = std::max(record.most_raised, raised / extent);
+    }
+  }
+  if (fallback) ++record.fallback;
 }
 
 bool Predictor::stochastic(const ModelExtension* extension, const std::vector<double>& params) const {
@@ -135,9 +159,11 @@ double Predictor::value_of(const ObservationGroup& g, const Outcome& r) const {
 }
 
 Prediction Predictor::predict(const ModelExtension* extension, const std::vector<double>& params,
-                              const std::vector<char>& use) {
+                              const std::vector<char>& use, int first_replicate, int replicates) {
   size_t nc = obs_.conditions.size();
-  int reps = stochastic(extension, params) ? replicates_ : 1;
+  bool random = stochastic(extension, params);
+  int reps = random ? (replicates > 0 ? replicates : replicates_) : 1;
+  int first = random ? first_replicate : 0;
   std::vector<std::vector<Outcome>> results(nc, std::vector<Outcome>(size_t(reps)));
   std::vector<std::pair<size_t, int>> pending;
   for (size_t c = 0; c < nc; ++c)
@@ -150,7 +176,7 @@ Prediction Predictor::predict(const ModelExtension* extension, const std::vector
     for (size_t k = next++; k < pending.size(); k = next++) {
       try {
         auto [c, r] = pending[k];
-        results[c][size_t(r)] = simulate(c, extension, params, r);
+        results[c][size_t(r)] = simulate(c, extension, params, first + r);
       } catch (...) {
         std::lock_guard<std::mutex> lock(error_mutex);
         if (!error) error = std::current_exception();

@@ -69,12 +69,22 @@ std::optional<double> truth_baseline(const SyntheticTruth& truth, const Diagnosi
   return std::nullopt;
 }
 
-// The scalar measures written, in row order (a heap's bed height alone with --bed-only).
+// The scalar measures written, in row order (a heap's bed height alone with --bed-only; the
+// truth's own list, checked against what the experiment reports).
 std::vector<std::string> scalar_measures(const SyntheticTruth& truth, const DiagnosisRole& role) {
   const auto& all = role.synthetic;
   bool has_bed = std::find(all.begin(), all.end(), "bed_height") != all.end();
   if (truth.bed_height_only && has_bed) return {"bed_height"};
-  return all;
+  if (truth.measures.empty()) return all;
+  for (const std::string& m : truth.measures)
+    if (std::none_of(role.measures.begin(), role.measures.end(),
+                     [&](const MeasureInfo& i) { return i.name == m && !i.series; })) {
+      std::string names;
+      for (const auto& i : role.measures)
+        if (!i.series) names += (names.empty() ? "" : ", ") + i.name;
+      throw std::runtime_error("'" + m + "' is not a scalar measure of this experiment (" + names + ")");
+    }
+  return truth.measures;
 }
 
 // The camera's frames every series_dt, linear between simulated frames, up to the rebound apex,
@@ -98,7 +108,7 @@ void add_series(Rows& rows, const SyntheticTruth& truth, const std::string& cond
 // Per condition: the truth simulated once (deterministic) or once per replicate (a clump body at
 // a random orientation, a refilled heap: seeds 1,000,000 + 10,000 seed + 100 condition index +
 // replicate, which no diagnosis uses); per replicate a row of each scalar measure with Gaussian
-// noise (SD `angle_noise` for angles, `noise` for lengths); then, with series_dt, the camera
+// noise (SD `angle_noise` for angles, `noise` for lengths, `unitless_noise` for ratios); then, with series_dt, the camera
 // track of each replicate.
 void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_path) {
   const ModelExtension* ext = nullptr;
@@ -138,9 +148,9 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     auto run_of = [&](int rep) -> const DiagnosticOutcome& { return runs[stochastic ? size_t(rep - 1) : 0]; };
     for (int rep = 1; rep <= truth.replicates; ++rep)
       for (const std::string& m : scalars) {
-        bool angle = std::any_of(role.measures.begin(), role.measures.end(),
-                                 [&](const MeasureInfo& i) { return i.name == m && i.unit == "deg"; });
-        double sd = angle ? truth.angle_noise : truth.noise;
+        const std::string& unit =
+            std::find_if(role.measures.begin(), role.measures.end(), [&](const MeasureInfo& i) { return i.name == m; })->unit;
+        double sd = unit == "deg" ? truth.angle_noise : unit == "1" ? truth.unitless_noise : truth.noise;
         rows.add(value, m, run_of(rep).values.at(m) + sd * noise(), rep, sd);
       }
     if (with_series)

@@ -7,8 +7,9 @@
 //   at a random orientation: every replicate is its own drop, with seeds no diagnosis uses
 //   (1,000,000 + 10,000 seed + 100 condition index + replicate).
 // - A heap case (experiment repose, grains from sphere [[fill]]s) is refilled for every replicate
-//   with such seeds; each replicate gives repose_angle and bed_height, with measurement noise on
-//   top of the heaps' own scatter.
+//   with such seeds; each replicate gives repose_angle and bed_height (or the measures asked for:
+//   heap_height, runout, profile_convexity too), with measurement noise on top of the heaps' own
+//   scatter.
 // - A slide or roll case (one body) is simulated once per condition: slide_angle, roll_angle or
 //   roll_distance, with the measurement noise.
 #pragma once
@@ -34,6 +35,10 @@ struct SyntheticTruth {
   std::string condition_key;
   double angle_noise = 0.5;              // SD of one measured angle, deg (lengths: `noise`)
   bool bed_height_only = false;          // heap: only bed_height rows (the bed alone is simulated)
+  // The scalar measures written (any the experiment reports: a heap's heap_height, runout,
+  // profile_convexity too); empty: the experiment's usual ones (a heap's repose_angle, bed_height).
+  std::vector<std::string> measures;
+  double unitless_noise = 0.01;          // SD of one measured dimensionless value (profile_convexity)
   int replicates = 5;
   double noise = 0.001;                  // SD of one measured length (rebound height, bed height, L), m
   double series_dt = 0;                  // > 0: also the camera trajectory every series_dt s

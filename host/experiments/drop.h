@@ -79,6 +79,7 @@ class DropExperiment : public Experiment {
   Interaction& tested_contact(CaseSpec& spec) const override;
   std::string diagnosis_problem(const CaseSpec& spec) const override;
   bool stochastic(const CaseSpec& spec) const override { return !spec.bodies.empty(); }
+  bool takes_replicates() const override { return true; }
   DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
                                            bool strict) const override;
   std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;

@@ -134,6 +134,8 @@ class Experiment {
   virtual void reseed(CaseSpec& spec, uint64_t seed) const { spec.seed = seed; }
   // Whether the result depends on the replicate's seed (a clump at a random orientation, a fill).
   virtual bool stochastic(const CaseSpec&) const { return false; }
+  // Whether `repose experiment --replicates N` applies (its run() honours ExperimentRun::replicates).
+  virtual bool takes_replicates() const { return false; }
   // The measures `wanted` of one model; `strict` false: a model far from the data (met while
   // searching) gives the values that move the search away instead of an error.
   virtual DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,

@@ -13,6 +13,8 @@
 #include "case/particle_factory.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/heap_fill.h"
+#include "measure/bed_height.h"
 #include "measure/heap_png.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
@@ -39,18 +41,12 @@ double max_kinetic_energy(const HostState& st) {
   return most;
 }
 
-// Twice the volume-weighted mean height of the particles above the floor (default: the lowest
-// sphere bottom): a uniform bed of height h has its volume's centre at h / 2.
+// Twice the volume-weighted mean height of the grains above the floor (measure/bed_height.h).
 double bed_height(const HostState& st, const std::optional<double>& floor) {
-  double lowest = std::numeric_limits<double>::infinity();
-  for (const auto& p : st.pos) lowest = std::min(lowest, double(p.z) - p.w);
-  double floor_z = floor.value_or(lowest), volume = 0, moment = 0;
-  for (const auto& p : st.pos) {
-    double v = double(p.w) * p.w * p.w;
-    volume += v;
-    moment += v * (double(p.z) - floor_z);
-  }
-  return volume > 0 ? 2 * moment / volume : 0.0;
+  std::vector<Sphere> grains;
+  grains.reserve(st.pos.size());
+  for (const auto& p : st.pos) grains.push_back({{p.x, p.y, p.z}, p.w});
+  return uniform_bed_height(grains, floor);
 }
 
 }  // namespace
@@ -135,6 +131,7 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
   opts.floor_z = floor_z;
   r.heap = measure_heap_angle(r.spheres, opts);
+  r.profile = measure_heap_profile(r.heap);
   // No slope: an error, or (require_slope off) a result with angle 0.
   auto no_slope = [&](const std::string& problem) {
     if (require_slope) throw std::runtime_error(spec.path + ": " + problem);
@@ -179,6 +176,33 @@ double measure_bed_height(const CaseSpec& spec) {
   return bed_height(sim.state(), ex.heap_floor_z);
 }
 
+const std::vector<std::string>& heap_measure_names() {
+  static const std::vector<std::string> names = {"repose_angle", "bed_height", "heap_height", "runout",
+                                                 "profile_convexity"};
+  return names;
+}
+
+std::map<std::string, double> heap_measures(double angle_deg, double bed_height, const HeapProfile& profile,
+                                            const std::string& heap_side) {
+  std::vector<const SlopeProfile*> sides;
+  if (heap_side != "right") sides.push_back(&profile.left);
+  if (heap_side != "left") sides.push_back(&profile.right);
+  double runout = 0, convexity = 0;
+  for (const SlopeProfile* s : sides) {
+    runout += s->runout / double(sides.size());
+    if (s->valid) convexity += s->convexity / double(sides.size());
+  }
+  return {{"repose_angle", angle_deg},
+          {"bed_height", bed_height},
+          {"heap_height", profile.height},
+          {"runout", runout},
+          {"profile_convexity", convexity}};
+}
+
+std::map<std::string, double> heap_measures(const ReposeResult& heap, const std::string& heap_side) {
+  return heap_measures(heap.angle_deg, heap.bed_height, heap.profile, heap_side);
+}
+
 std::vector<std::string> repose_keys() {
   return {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
 }
@@ -216,6 +240,15 @@ OrderedJson slope_json(const SlopeFit& s) {
   } else {
     j["problem"] = s.problem;
   }
+  return j;
+}
+
+OrderedJson profile_json(const SlopeProfile& p) {
+  OrderedJson j;
+  j["runout"] = p.runout;
+  j["toe"] = p.toe;
+  j["convexity"] = p.valid ? OrderedJson(p.convexity) : OrderedJson(nullptr);
+  if (!p.valid) j["problem"] = p.problem;
   return j;
 }
 
@@ -263,6 +296,9 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   j["right"] = slope_json(r.heap.right);
   j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? OrderedJson(r.heap.mean_deg) : OrderedJson(nullptr);
   j["heap_height"] = r.heap.heap_height;
+  j["bed_height"] = r.bed_height;
+  j["left_profile"] = profile_json(r.profile.left);
+  j["right_profile"] = profile_json(r.profile.right);
   j["floor_z"] = r.heap.floor_z;
   j["particles_measured"] = r.particles_measured;
   j["settle_time"] = r.settle_time;
@@ -312,6 +348,10 @@ std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& 
   lines.push_back(printf_text("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles",
                               spec.name.c_str(), angle.c_str(), side(r.heap.left).c_str(), side(r.heap.right).c_str(),
                               r.heap.heap_height, r.particles_measured));
+  for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
+    lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
+                                p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));
+  lines.push_back(printf_text("  bed before the lift: %.4g m high", r.bed_height));
   if (r.views) lines.push_back("  views around the heap (the angle): " + describe_views(*r.views));
   if (r.heap_3d) lines.push_back("  3D sector fit: " + describe_sector_fit(*r.heap_3d));
   return lines;
@@ -349,7 +389,8 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
 const DiagnosisRole* ReposeExperiment::diagnosis() const {
   static const DiagnosisRole role = [] {
     DiagnosisRole r;
-    r.measures = {{"repose_angle", false, "deg"}, {"bed_height", false, "m"}};
+    r.measures = {{"repose_angle", false, "deg"}, {"bed_height", false, "m"},  {"heap_height", false, "m"},
+                  {"runout", false, "m"},         {"profile_convexity", false, "1"}};
     r.synthetic = {"repose_angle", "bed_height"};
     r.baseline = {"static_friction", "1", 0.05, 1.2, false};
     r.baseline_field = &Interaction::static_friction;
@@ -384,30 +425,41 @@ std::string ReposeExperiment::diagnosis_problem(const CaseSpec& spec) const {
          "and size spreads can refill them";
 }
 
+// A fill too tight for a model's grains is placed again (heap_fill.h); the spec's fills say how.
 void ReposeExperiment::replicate(CaseSpec& spec, int r) const {
   spec.seed += uint64_t(r);
   for (FillSpec& f : spec.fills) f.seed += uint64_t(r);
-  expand_particles(spec);
+  fill_heap(spec);
 }
 
 void ReposeExperiment::reseed(CaseSpec& spec, uint64_t seed) const {
   for (FillSpec& f : spec.fills) f.seed = seed;
-  expand_particles(spec);
+  fill_heap(spec);
 }
 
 DiagnosticOutcome ReposeExperiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
                                                            bool strict) const {
   DiagnosticOutcome out;
-  if (std::find(wanted.begin(), wanted.end(), "repose_angle") == wanted.end()) {
+  if (std::all_of(wanted.begin(), wanted.end(), [](const std::string& m) { return m == "bed_height"; })) {
     out.values["bed_height"] = measure_bed_height(spec);  // the bed alone: no lift, no heap
     return out;
   }
   // A lone grain that keeps spinning on the floor does not change the heap: measured unsettled.
-  // A model far from the data (met while searching) whose heap shows no slope: no heap (zeros),
-  // so the search moves away from it.
-  ReposeResult r = run_repose(spec, {}, true, strict);
-  out.values["repose_angle"] = r.sloped ? r.angle_deg : 0;
-  out.values["bed_height"] = r.sloped ? r.bed_height : 0;
+  // A model far from the data (met while searching) whose heap shows no slope, or no heap at all
+  // (grains so sticky that the soft contacts blow apart): no heap (zeros), so the search moves
+  // away from it.
+  try {
+    ReposeResult r = run_repose(spec, {}, true, strict);
+    if (r.sloped) {
+      out.values = heap_measures(r, spec.experiment.heap_side);
+      return out;
+    }
+  } catch (const std::exception& e) {
+    bool no_heap = dynamic_cast<const std::invalid_argument*>(&e) ||
+                   std::string(e.what()).find("no particle is left") != std::string::npos;
+    if (strict || !no_heap) throw;
+  }
+  for (const std::string& m : heap_measure_names()) out.values[m] = 0;
   return out;
 }
 

@@ -3,7 +3,9 @@
 // motion), the heap settles, and its angle is measured from a front-view picture as the
 // studies did (host/measure): both slopes, their mean, and for axisymmetric heaps a 3D sector fit.
 #pragma once
+#include <map>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "case/case_spec.h"
@@ -12,6 +14,7 @@
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 
 namespace repose {
@@ -19,6 +22,7 @@ namespace repose {
 struct ReposeResult {
   double angle_deg = 0;           // per [experiment] heap_side: left, right or their mean
   HeapAngle heap;                 // the 2D measurement (with its picture)
+  HeapProfile profile;            // the same picture's height, run-out and convexity per side
   std::optional<HeapViewsAngle> views;  // [experiment] views > 1: then angle_deg is their mean
   std::optional<AxisymmetricHeapAngle> heap_3d;
   double settle_time = 0;         // s when the heap was judged settled
@@ -54,6 +58,18 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
 
 // The bed alone, run up to the lift (a third of a heap's cost): run_repose's bed_height.
 double measure_bed_height(const CaseSpec& spec);
+
+// What a diagnosed heap reports, by measure name: the angle and the bed height, and the shape of
+// the heap in the same picture (measure/heap_profile.h): its height, its run-out and its profile's
+// convexity, taken on heap_side (the two sides' mean for "both"). In the order data files list
+// them: repose_angle, bed_height, heap_height, runout, profile_convexity.
+const std::vector<std::string>& heap_measure_names();
+std::map<std::string, double> heap_measures(const ReposeResult& heap, const std::string& heap_side);
+// The same from a measured picture (repose heap-angle on a user's own heap): the angle of the side
+// asked for, the bed height of a bed before the lift. A side whose profile could not be measured
+// gives a convexity of 0, as a flat heap would; its run-out is still measured.
+std::map<std::string, double> heap_measures(double angle_deg, double bed_height, const HeapProfile& profile,
+                                            const std::string& heap_side);
 
 // The [experiment] keys of a repose rig, and their reader.
 std::vector<std::string> repose_keys();

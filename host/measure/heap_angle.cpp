@@ -62,10 +62,7 @@ SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, b
 
 HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options) {
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
-  check_band(options.band_low, options.band_high);
-  HeapAngle out;
-  out.floor_z = options.floor_z.value_or(lowest_bottom(spheres));
-
+  const double floor_z = options.floor_z.value_or(lowest_bottom(spheres));
   double pixel = options.pixel;
   if (pixel <= 0) {
     double u_min = HUGE_VAL, u_max = -HUGE_VAL, z_max = -HUGE_VAL;
@@ -75,9 +72,16 @@ HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngle
       u_max = std::max(u_max, u + s.radius);
       z_max = std::max(z_max, s.centre.z + s.radius);
     }
-    pixel = std::max(u_max - u_min, z_max - out.floor_z) / 1600.0;
+    pixel = std::max(u_max - u_min, z_max - floor_z) / 1600.0;
   }
-  out.image = render_silhouette(spheres, options.view, pixel, out.floor_z);
+  return measure_heap_image(render_silhouette(spheres, options.view, pixel, floor_z), floor_z, options);
+}
+
+HeapAngle measure_heap_image(BinaryImage image, double floor_z, const HeapAngleOptions& options) {
+  check_band(options.band_low, options.band_high);
+  HeapAngle out;
+  out.floor_z = floor_z;
+  out.image = std::move(image);
   out.holes_filled = fill_holes(out.image);
   out.profile = top_profile(out.image);
   out.fitted_columns.assign(out.profile.size(), 0);

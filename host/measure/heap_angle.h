@@ -49,6 +49,12 @@ struct HeapAngle {
 // inconsistent options.
 HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options = {});
 
+// The same measurement of a silhouette already in pixels (a thresholded photograph,
+// read_silhouette_png): hole filling, top profile, crest, slope fits. floor_z in the image's
+// coordinates (m); options' view, pixel and floor are not used. Throws std::invalid_argument for an
+// empty silhouette or one whose top is not above the floor.
+HeapAngle measure_heap_image(BinaryImage image, double floor_z, const HeapAngleOptions& options = {});
+
 // The heap's vertical axis: volume-weighted medians of the sphere centres' x and y.
 glm::dvec2 heap_centre(const std::vector<Sphere>& spheres);
 

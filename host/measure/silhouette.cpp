@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <stb/stb_image.h>
+
 namespace repose {
 
 double horizontal_coordinate(const Sphere& s, ViewAxis view) {
@@ -50,6 +52,32 @@ BinaryImage render_silhouette(const std::vector<Sphere>& spheres, ViewAxis view,
     }
   }
   return image;
+}
+
+BinaryImage read_silhouette_png(const std::string& path, double pixel, int threshold, bool light_heap) {
+  if (!(pixel > 0) || !std::isfinite(pixel)) throw std::invalid_argument(path + ": the pixel size must be positive");
+  int width = 0, height = 0, channels = 0;
+  unsigned char* data = stbi_load(path.c_str(), &width, &height, &channels, 1);  // as grey
+  if (!data) throw std::runtime_error(path + ": cannot read the picture (" + stbi_failure_reason() + ")");
+  BinaryImage image;
+  image.width = width;
+  image.height = height;
+  image.pixel = pixel;
+  image.data.assign(size_t(width) * size_t(height), 0);
+  for (int row = 0; row < height; ++row)
+    for (int col = 0; col < width; ++col) {
+      int grey = data[size_t(height - 1 - row) * size_t(width) + size_t(col)];
+      image.at(col, row) = (light_heap ? grey >= threshold : grey < threshold) ? 1 : 0;
+    }
+  stbi_image_free(data);
+  return image;
+}
+
+double lowest_foreground(const BinaryImage& image) {
+  for (int row = 0; row < image.height; ++row)
+    for (int col = 0; col < image.width; ++col)
+      if (image.at(col, row)) return image.origin_z + row * image.pixel;
+  throw std::invalid_argument("heap angle: the silhouette is empty");
 }
 
 size_t fill_holes(BinaryImage& image) {

@@ -2,6 +2,7 @@
 // orthographic projection along a horizontal axis, z up, one bit per pixel.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "geometry/sphere.h"
@@ -29,6 +30,17 @@ double horizontal_coordinate(const Sphere& s, ViewAxis view);
 // projected disc. The image spans the projected spheres and z_floor (whichever is lower) with a
 // two-pixel background margin all round, so the background outside the heap is connected.
 BinaryImage render_silhouette(const std::vector<Sphere>& spheres, ViewAxis view, double pixel, double z_floor);
+
+// A photograph's silhouette, already thresholded by the user or thresholded here: a PNG (any
+// channels) whose pixels darker than `threshold` (0-255, luminance) are the heap, or lighter with
+// `light_heap`. `pixel` is the size of one pixel in m (from a scale in the photograph). The image's
+// bottom-left corner is (u, z) = (0, 0): PNG rows run downwards, so they are flipped. Throws
+// std::runtime_error naming the file when it cannot be read.
+BinaryImage read_silhouette_png(const std::string& path, double pixel, int threshold = 128, bool light_heap = false);
+
+// The lowest foreground row's bottom edge, z (m): a photograph's floor when none is given.
+// Throws std::invalid_argument for an empty image.
+double lowest_foreground(const BinaryImage& image);
 
 // Fills holes: background pixels that cannot be reached from the image border through
 // 4-connected background (MATLAB's imfill(BW, 'holes') with its default 2D connectivity).

@@ -15,6 +15,9 @@
 #include "geometry/sphere_csv.h"
 #include "synthetic_heaps.h"
 
+#include <stb/stb_image_write.h>
+#include <vector>
+
 namespace {
 
 using Run = repose::test::CliRun;
@@ -63,4 +66,34 @@ TEST_CASE("repose heap-angle errors name the file and exit non-zero", "[verbs]")
   r = run("heap-angle /nonexistent/heap.csv");
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Catch::Contains("/nonexistent/heap.csv: cannot open file"));
+}
+
+TEST_CASE("repose heap-angle measures a photograph's silhouette (PNG) at the given pixel size", "[verbs]") {
+  // A dark heap on a light background, as a thresholded photo: 0.5 mm pixels, a 40 mm wide
+  // plateau-free ridge rising at 35 deg on the left and falling at 25 deg on the right, 60 mm
+  // high, on a 5 mm dark floor strip spanning the picture (the table edge, cut off by --floor).
+  const double pixel = 5e-4, height = 0.06;
+  const int w = 800, h = 200, floor_rows = 10;
+  const double left = height / std::tan(35.0 * M_PI / 180), right = height / std::tan(25.0 * M_PI / 180);
+  const double crest_u = 0.03 + left;
+  std::vector<unsigned char> grey(size_t(w) * h, 255);
+  for (int row = 0; row < h; ++row)      // PNG rows run downwards
+    for (int col = 0; col < w; ++col) {
+      double u = (col + 0.5) * pixel, z = (h - row - 0.5) * pixel - floor_rows * pixel;
+      double top = u < crest_u ? height - (crest_u - u) * height / left : height - (u - crest_u) * height / right;
+      if (z < 0 || z < top) grey[size_t(row) * w + col] = 20;
+    }
+  const std::string png = temp("photo.png");
+  REQUIRE(stbi_write_png(png.c_str(), w, h, 1, grey.data(), w));
+  Run r = run("heap-angle " + png + " --pixel 0.0005 --floor 0.005 --json " + temp("photo.json"));
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  // One-pixel steps over a 60 mm slope: the fitted angles within 0.3 deg.
+  CHECK(std::abs(number_after(r.output, "left slope") - 35.0) < 0.3);
+  CHECK(std::abs(number_after(r.output, "right slope") - 25.0) < 0.3);
+  CHECK_THAT(r.output, Catch::Contains("photograph"));
+  // Without the pixel size the picture has no scale: refused.
+  r = run("heap-angle " + png);
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Catch::Contains("needs --pixel"));
 }

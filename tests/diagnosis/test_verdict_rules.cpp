@@ -1,0 +1,78 @@
+// The verdict's rules on given fit results (diagnose_stages.h), without simulating: an untested
+// candidate that might explain the data keeps a verdict from naming one cause; which pairs the data
+// tell apart; the Akaike-weight confidence of what the verdict names.
+#include <catch2/catch.hpp>
+
+#include "diagnosis/diagnose_stages.h"
+
+using namespace repose;
+
+namespace {
+
+std::string cabbage_data() { return std::string(REPOSE_SOURCE_DIR) + "/cases/diagnosis/cabbage_data.csv"; }
+
+ModelResult fitted(const std::string& id, double aic, bool significant) {
+  ModelResult r;
+  r.id = id;
+  r.aic = aic;
+  r.chi2 = aic - 4;
+  r.k = 2;
+  r.significant = significant;
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("an untested candidate that acts on the measures keeps the verdict from one cause", "[diagnosis]") {
+  Observations obs = group_observations(read_measured_data(cabbage_data()));  // rebound heights
+  Predictor predictor(obs, {}, true, 1);
+  DiagnosisContext c = describe_data(obs, predictor);
+  ModelResult base = fitted("baseline", 41, false);
+  base.k = 1;
+  std::vector<ModelResult> fits = {fitted("restitution_velocity", 9.5, true), fitted("cohesion", 43, false)};
+  ModelResult failed;
+  failed.id = "air_drag";  // acts on rebound_height
+  failed.tested = false;
+  failed.simulation_error = "the body never landed";
+  std::vector<LackOfFit> lack(1);
+  lack[0].p = 1e-4;
+
+  std::vector<std::string> rivals = untested_rivals(obs, {failed}, lack);
+  REQUIRE(rivals == std::vector<std::string>{"air_drag"});
+  Verdict v = decide_verdict(c, base, fits, {}, rivals, lack);
+  CHECK(v.verdict == "ambiguous");
+  CHECK(v.cause == std::vector<std::string>{"restitution_velocity", "air_drag"});
+  CHECK(v.separation.kind == Separation::Kind::Untested);
+  // The untested rival is given the best AIC: the named cause can be no surer than a coin.
+  Confidence conf = verdict_confidence(base, fits, v, rivals);
+  CHECK(conf.named == Approx(0.5).margin(0.01));
+
+  // Tested, it would have been one cause, and nearly certain (AIC 9.5 against 41 and 43).
+  Verdict alone = decide_verdict(c, base, fits, {}, {}, lack);
+  CHECK(alone.verdict == "effect");
+  CHECK(verdict_confidence(base, fits, alone, {}).named > 0.99);
+
+  // No lack of fit: nothing to explain, no rival.
+  lack[0].p = 0.5;
+  CHECK(untested_rivals(obs, {failed}, lack).empty());
+  // A candidate untested because the data cannot show it is no rival.
+  failed.simulation_error.clear();
+  failed.untested_reason = "none of the measured quantities responds to it";
+  lack[0].p = 1e-4;
+  CHECK(untested_rivals(obs, {failed}, lack).empty());
+}
+
+TEST_CASE("pairs of candidates: told apart only when neither mimics the other", "[diagnosis]") {
+  std::vector<MimicTest> mimics = {{"b", "a", 25.0, 3.0, false}, {"c", "a", 4.0, 5.0, true}, {"a", "b", 12.0, -3.0, false}};
+  std::vector<PairSeparation> pairs = pair_separations(mimics);
+  REQUIRE(pairs.size() == 2);
+  CHECK(pairs[0].a == "a");
+  CHECK(pairs[0].b == "b");
+  CHECK(pairs[0].b_as_a == 25.0);
+  CHECK(pairs[0].a_as_b == 12.0);
+  CHECK(pairs[0].told_apart);
+  CHECK(pairs[1].b == "c");
+  CHECK(pairs[1].b_as_a == 4.0);
+  CHECK(pairs[1].a_as_b == -1);  // c beats no baseline of its own: a not refitted to it
+  CHECK_FALSE(pairs[1].told_apart);
+}
