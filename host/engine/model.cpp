@@ -222,24 +222,11 @@ std::vector<std::string> Model::wall_group_names() const {
   return names;
 }
 
-Model build_model(const CaseSpec& spec) {
-  Model m;
-  m.case_path = spec.path;
-  m.n_particles = static_cast<uint32_t>(spec.spheres.size());
-  m.n_materials = static_cast<uint32_t>(spec.materials.size());
-  if (spec.spheres.empty() && spec.bodies.empty())
-    throw std::runtime_error(spec.path + ": the case has no particles");
+namespace {
 
-  double r_min = 1e300, r_max = 0;
-  if (!spec.bodies.empty()) {
-    add_bodies(spec, m);
-    for (const auto& p : m.pos) {
-      r_min = std::min(r_min, double(p.w));
-      r_max = std::max(r_max, double(p.w));
-    }
-  }
+// Lone spheres (when the case has no bodies: with bodies they were added as one-sphere bodies).
+void add_spheres(const CaseSpec& spec, Model& m) {
   for (const auto& s : spec.spheres) {
-    if (!spec.bodies.empty()) break;  // already added as one-sphere bodies
     const Material& mat = spec.materials.at(s.material);
     double mass = mat.density * 4.0 / 3.0 * kPi * s.radius * s.radius * s.radius;
     double inertia = 0.4 * mass * s.radius * s.radius;
@@ -249,99 +236,96 @@ Model build_model(const CaseSpec& spec) {
     m.vel.push_back(v4(s.velocity, s.fixed ? 0.0 : 1.0 / mass));
     m.omega.push_back(v4(s.angular_velocity, s.fixed ? 0.0 : 1.0 / inertia));
     m.material.push_back(static_cast<uint32_t>(s.material));
-    r_min = std::min(r_min, s.radius);
-    r_max = std::max(r_max, s.radius);
   }
+}
 
-  // Pair table: the interaction entries, symmetric. Unused pairs keep zeros (never looked up:
-  // the loader refuses cases whose materials meet without an interaction).
+// Pair table: the interaction entries, symmetric. Unused pairs keep zeros (never looked up:
+// the loader refuses cases whose materials meet without an interaction).
+void add_pairs(const CaseSpec& spec, Model& m) {
   m.pairs.assign(size_t(m.n_materials) * m.n_materials, gpu::PairParams{});
   for (const auto& in : spec.interactions) {
     auto p = pair_params(spec.materials[in.material_a], spec.materials[in.material_b], in);
     m.pairs[size_t(in.material_a) * m.n_materials + in.material_b] = p;
     m.pairs[size_t(in.material_b) * m.n_materials + in.material_a] = p;
   }
+}
 
-  for (size_t wi = 0; wi < spec.walls.size(); ++wi) {
-    const WallSpec& w = spec.walls[wi];
-    std::string base = w.name.empty() ? "wall" + std::to_string(wi) : w.name;
-    // A wall row of this [[wall]]: kind, material, motion and names are shared by its rows.
-    auto row = [&](uint32_t kind, const std::string& name) {
-      ModelWall mw;
-      mw.kind = kind;
-      mw.material = static_cast<uint32_t>(w.material);
-      mw.motion = w.motion;
-      mw.name = name;
-      mw.spec_index = static_cast<int>(wi);
-      return mw;
-    };
-    auto plane = [&](Vec3d point, Vec3d normal, const std::string& name) {
-      ModelWall mw = row(gpu::kWallPlane, name);
-      mw.p0 = point;
-      mw.p1 = unit(normal);
+// The wall rows of [[wall]] number wi: a plane or rectangle is one row, a box up to six planes,
+// a mesh one row per triangle.
+void add_wall(const CaseSpec& spec, size_t wi, Model& m) {
+  const WallSpec& w = spec.walls[wi];
+  std::string base = w.name.empty() ? "wall" + std::to_string(wi) : w.name;
+  // A wall row of this [[wall]]: kind, material, motion and names are shared by its rows.
+  auto row = [&](uint32_t kind, const std::string& name) {
+    ModelWall mw;
+    mw.kind = kind;
+    mw.material = static_cast<uint32_t>(w.material);
+    mw.motion = w.motion;
+    mw.name = name;
+    mw.spec_index = static_cast<int>(wi);
+    return mw;
+  };
+  auto plane = [&](Vec3d point, Vec3d normal, const std::string& name) {
+    ModelWall mw = row(gpu::kWallPlane, name);
+    mw.p0 = point;
+    mw.p1 = unit(normal);
+    m.walls.push_back(mw);
+  };
+  auto face = [&](Vec3d point, Vec3d normal, const std::string& suffix) {
+    if (std::find(w.open_faces.begin(), w.open_faces.end(), suffix) == w.open_faces.end())
+      plane(point, normal, base + "." + suffix);
+  };
+  switch (w.type) {
+    case WallSpec::Type::Plane: plane(w.point, w.normal, base); break;
+    case WallSpec::Type::Box: {
+      // Six inward-facing planes (less the open ones); particles live inside.
+      face(w.box_min, {1, 0, 0}, "xmin");
+      face(w.box_max, {-1, 0, 0}, "xmax");
+      face(w.box_min, {0, 1, 0}, "ymin");
+      face(w.box_max, {0, -1, 0}, "ymax");
+      face(w.box_min, {0, 0, 1}, "zmin");
+      face(w.box_max, {0, 0, -1}, "zmax");
+      break;
+    }
+    case WallSpec::Type::Rectangle: {
+      ModelWall mw = row(gpu::kWallRectangle, base);
+      mw.p0 = w.point;
+      mw.p1 = unit(w.normal);
+      mw.p2 = unit(sub(w.edge_axis, mul(mw.p1, dot(w.edge_axis, mw.p1))));
+      mw.p3 = cross(mw.p1, mw.p2);
+      mw.half_u = 0.5 * w.size[0];
+      mw.half_v = 0.5 * w.size[1];
       m.walls.push_back(mw);
-    };
-    auto face = [&](Vec3d point, Vec3d normal, const std::string& suffix) {
-      if (std::find(w.open_faces.begin(), w.open_faces.end(), suffix) == w.open_faces.end())
-        plane(point, normal, base + "." + suffix);
-    };
-    switch (w.type) {
-      case WallSpec::Type::Plane: plane(w.point, w.normal, base); break;
-      case WallSpec::Type::Box: {
-        // Six inward-facing planes (less the open ones); particles live inside.
-        face(w.box_min, {1, 0, 0}, "xmin");
-        face(w.box_max, {-1, 0, 0}, "xmax");
-        face(w.box_min, {0, 1, 0}, "ymin");
-        face(w.box_max, {0, -1, 0}, "ymax");
-        face(w.box_min, {0, 0, 1}, "zmin");
-        face(w.box_max, {0, 0, -1}, "zmax");
-        break;
-      }
-      case WallSpec::Type::Rectangle: {
-        ModelWall mw = row(gpu::kWallRectangle, base);
-        mw.p0 = w.point;
-        mw.p1 = unit(w.normal);
-        mw.p2 = unit(sub(w.edge_axis, mul(mw.p1, dot(w.edge_axis, mw.p1))));
-        mw.p3 = cross(mw.p1, mw.p2);
-        mw.half_u = 0.5 * w.size[0];
-        mw.half_v = 0.5 * w.size[1];
+      break;
+    }
+    case WallSpec::Type::Mesh: {
+      // One wall row per triangle; vertex ids let the kernels find shared corners.
+      for (const auto& tri : w.mesh->triangles) {
+        ModelWall mw = row(gpu::kWallTriangle, base);
+        mw.p0 = w.mesh->vertices[tri[0]];
+        mw.p1 = w.mesh->vertices[tri[1]];
+        mw.p2 = w.mesh->vertices[tri[2]];
+        mw.p3 = unit(cross(sub(mw.p1, mw.p0), sub(mw.p2, mw.p0)));
+        mw.mesh_id = static_cast<uint32_t>(wi);
+        mw.vertex_ids = tri;
         m.walls.push_back(mw);
-        break;
       }
-      case WallSpec::Type::Mesh: {
-        // One wall row per triangle; vertex ids let the kernels find shared corners.
-        for (const auto& tri : w.mesh->triangles) {
-          ModelWall mw = row(gpu::kWallTriangle, base);
-          mw.p0 = w.mesh->vertices[tri[0]];
-          mw.p1 = w.mesh->vertices[tri[1]];
-          mw.p2 = w.mesh->vertices[tri[2]];
-          mw.p3 = unit(cross(sub(mw.p1, mw.p0), sub(mw.p2, mw.p0)));
-          mw.mesh_id = static_cast<uint32_t>(wi);
-          mw.vertex_ids = tri;
-          m.walls.push_back(mw);
-        }
-        break;
-      }
-      case WallSpec::Type::Cylinder: {
-        ModelWall mw = row(gpu::kWallCylinder, base);
-        mw.p0 = w.base;
-        mw.p1 = unit(w.axis);
-        mw.radius = w.radius;
-        mw.height = w.height;
-        m.walls.push_back(mw);
-        break;
-      }
+      break;
+    }
+    case WallSpec::Type::Cylinder: {
+      ModelWall mw = row(gpu::kWallCylinder, base);
+      mw.p0 = w.base;
+      mw.p1 = unit(w.axis);
+      mw.radius = w.radius;
+      mw.height = w.height;
+      m.walls.push_back(mw);
+      break;
     }
   }
+}
 
-  m.rayleigh_time = rayleigh_time(spec);
-  m.dt = resolve_dt(spec);
-  m.end_time = spec.time.end_time;
-  m.output_interval = spec.output.interval;
-  m.checkpoint_interval = spec.output.checkpoint_interval;
-  m.vtk = spec.output.vtk;
-  m.gravity = spec.gravity;
-  m.integrator = spec.integrator;
+// The [contact] options and extensions as kernel flags (and the constants that go with them).
+void set_contact_flags(const CaseSpec& spec, Model& m) {
   if (spec.contact.coulomb_cap == CoulombCap::SpringOnly) m.flags |= gpu::kFlagCoulombSpringOnly;
   if (spec.contact.normal_attraction == NormalAttraction::Clip) m.flags |= gpu::kFlagClipAttraction;
   if (spec.contact.cohesion_friction == CohesionFriction::Contact) m.flags |= gpu::kFlagCohesionContactFriction;
@@ -356,7 +340,20 @@ Model build_model(const CaseSpec& spec) {
   if (needs_spinning_friction(spec)) m.flags |= gpu::kFlagSpinningFriction;
   if (spec.air_drag.drag_coefficient > 0)
     m.air_drag = 0.5 * spec.air_drag.air_density * spec.air_drag.drag_coefficient * kPi;
+}
 
+// The neighbour grid and rebuild policy, from the particles' radii and the walls' speeds.
+void choose_neighbour_search(const CaseSpec& spec, Model& m) {
+  // The radii as given for lone spheres, as stored (float) for the sub-spheres of bodies.
+  double r_min = 1e300, r_max = 0;
+  auto radius = [&](double r) {
+    r_min = std::min(r_min, r);
+    r_max = std::max(r_max, r);
+  };
+  if (spec.bodies.empty())
+    for (const auto& s : spec.spheres) radius(s.radius);
+  else
+    for (const auto& p : m.pos) radius(double(p.w));
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius.
   m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : 0.5 * r_min;
@@ -383,6 +380,32 @@ Model build_model(const CaseSpec& spec) {
     auto steps = static_cast<uint32_t>(std::max(1.0, std::floor(0.5 * m.skin / (wall_speed * m.dt))));
     m.max_interval = m.max_interval ? std::min(m.max_interval, steps) : steps;
   }
+}
+
+}  // namespace
+
+Model build_model(const CaseSpec& spec) {
+  Model m;
+  m.case_path = spec.path;
+  m.n_particles = static_cast<uint32_t>(spec.spheres.size());
+  m.n_materials = static_cast<uint32_t>(spec.materials.size());
+  if (spec.spheres.empty() && spec.bodies.empty())
+    throw std::runtime_error(spec.path + ": the case has no particles");
+  if (!spec.bodies.empty()) add_bodies(spec, m);
+  else add_spheres(spec, m);
+  add_pairs(spec, m);
+  for (size_t wi = 0; wi < spec.walls.size(); ++wi) add_wall(spec, wi, m);
+
+  m.rayleigh_time = rayleigh_time(spec);
+  m.dt = resolve_dt(spec);
+  m.end_time = spec.time.end_time;
+  m.output_interval = spec.output.interval;
+  m.checkpoint_interval = spec.output.checkpoint_interval;
+  m.vtk = spec.output.vtk;
+  m.gravity = spec.gravity;
+  m.integrator = spec.integrator;
+  set_contact_flags(spec, m);
+  choose_neighbour_search(spec, m);
   return m;
 }
 
