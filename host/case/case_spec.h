@@ -106,7 +106,7 @@ struct LatticeSpec {
   int max_count = 0;   // 0: as many as fit
   Vec3d velocity{};
   // Template lattices: bodies at the sites, all at one orientation, the cell edge per axis
-  // (elongated bodies pack aligned, as the cotton seed's 454 stalks in their bucket).
+  // (elongated bodies pack aligned, as the cotton-stalk study's 454 stalks in their bucket).
   int template_index = -1;
   Vec3d spacing_xyz{};
   std::array<double, 4> orientation{1, 0, 0, 0};

@@ -1,4 +1,4 @@
-// Materials and contact parameters measured or calibrated in the seed studies, by name, so a
+// Materials and contact parameters measured or calibrated in the two studies, by name, so a
 // case can say `preset = "cabbage"` instead of copying numbers (and override any one of them).
 #pragma once
 #include <string>
@@ -12,7 +12,7 @@ struct MaterialPreset {
   double density;        // kg/m^3
   double shear_modulus;  // Pa
   double poisson;
-  std::string_view source;  // the seed table the values come from
+  std::string_view source;  // the study's table the values come from
 };
 
 // An [[interaction]] preset: the calibrated contact parameters between two preset materials.

@@ -100,13 +100,13 @@ ClumpTemplate cabbage_group4(const ClumpTemplate& head) {
 
 const std::vector<ShippedTemplate>& shipped_templates() {
   static const std::vector<ShippedTemplate> list = {
-      {"cabbage", "cabbage seed: 160 mm core sphere + leaf veins and stem, 203 sub-spheres",
+      {"cabbage", "cabbage study: 160 mm core sphere + leaf veins and stem, 203 sub-spheres",
        [] { return cabbage(); }},
-      {"cabbage_group4", "cabbage seed's sliding test: four cabbages bonded in a 2x2 square, 812 sub-spheres",
+      {"cabbage_group4", "cabbage study's sliding test: four cabbages bonded in a 2x2 square, 812 sub-spheres",
        [] { return cabbage_group4(cabbage()); }},
-      {"cotton_stalk", "cotton seed: 40 layers x 18 spheres r=1 mm, 10 mm x 80 mm, 720 sub-spheres",
+      {"cotton_stalk", "cotton-stalk study: 40 layers x 18 spheres r=1 mm, 10 mm x 80 mm, 720 sub-spheres",
        [] { return cotton_stalk(); }},
-      {"cotton_stalk_group2", "cotton seed's sliding test: two stalks side by side, 1440 sub-spheres",
+      {"cotton_stalk_group2", "cotton-stalk study's sliding test: two stalks side by side, 1440 sub-spheres",
        [] { return cotton_stalk_group2(cotton_stalk()); }},
       {"cotton_stalk_coarse", "coarse stalk for CPU runs: 16 layers x 3 spheres r=2.5 mm, same hull, 48 sub-spheres",
        [] {

@@ -10,10 +10,10 @@
 
 namespace repose {
 
-// Cotton stalk of the cotton seed: 40 layers of 18 spheres of radius 1 mm. The seed's hull is
+// Cotton stalk of the cotton-stalk study: 40 layers of 18 spheres of radius 1 mm. The study's hull is
 // 10 mm x 80 mm, so the layer ring radius is 5 - 1 = 4 mm and the layer pitch is
 // (80 - 2*1) / (40 - 1) = 2 mm (adjacent layers touch). Neighbours in a ring are 20 degrees
-// apart, so the seed's 30 degrees between layers staggers each layer by half a pitch
+// apart, so the study's 30 degrees between layers staggers each layer by half a pitch
 // (30 mod 20 = 10): a closed, hollow, bumpy tube, centred at the origin.
 struct CottonStalkSpec {
   int layers = 40;
@@ -33,7 +33,7 @@ CottonStalkSpec coarse_cotton_stalk_spec();
 // The sliding test's group: two parallel stalks side by side along x, hulls touching.
 ClumpTemplate cotton_stalk_group2(const ClumpTemplate& stalk);
 
-// Cabbage of the cabbage seed: a 160 mm core sphere and 202 sub-spheres of leaf veins and stem
+// Cabbage of the cabbage study: a 160 mm core sphere and 202 sub-spheres of leaf veins and stem
 // (203 in all). Eight meridian veins (midribs of the outer leaves, every 45 degrees of azimuth)
 // run from the stem (the -z pole) over the head, each of 25 overlapping spheres whose radius
 // tapers from 12 mm near the stem to 5 mm at the tip while their protrusion beyond the core

@@ -5,7 +5,7 @@
 //   carries 4.5 mm. Hidden air drag shortens L by 4-17 % (20-400 mm) growing with S, which a
 //   refitted rolling friction cannot follow: the drag model must win and gain 50 % of held-out
 //   error (measured 84 % at C_d 0.4), far from what noise alone gives a one-parameter rival.
-// - Slide: the seed's four bonded cabbages at densities 250-1200 kg/m^3 (lighter and heavier
+// - Slide: the cabbage study's four bonded cabbages at densities 250-1200 kg/m^3 (lighter and heavier
 //   bodies of the same shape), 5 replicate angles with 0.5 deg noise. Cohesion (moisture) pulls
 //   each contact together by k pi R* dn and friction grips on the raised repulsion, so the body
 //   slides later, by more the lighter it is (the pull grows as dn ~ W^(2/3), the weight as W): a

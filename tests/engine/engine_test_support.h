@@ -93,7 +93,7 @@ struct CaseBuilder {
     w.material = mat;
     spec.walls.push_back(w);
   }
-  // Four spheres of radius r bonded in a square (the seed's trick against rolling), resting
+  // Four spheres of radius r bonded in a square (the cabbage study's trick against rolling), resting
   // on z = 0.
   void four_sphere_body(double r, int mat) {
     int t = clump_template("four", {{{-r, -r, 0}, r}, {{r, -r, 0}, r}, {{-r, r, 0}, r}, {{r, r, 0}, r}});

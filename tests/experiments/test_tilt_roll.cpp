@@ -109,10 +109,10 @@ TEST_CASE("inclined rolling: the distance on the floor matches the constant-roll
   double v1 = std::sqrt(10.0 / 7.0 * g * s * (std::sin(beta) - mu_r * std::cos(beta)));
   double v2 = v1 * (5 * std::cos(beta) + 2) / 7;
   double L = R * std::tan(beta / 2) + 7 * v2 * v2 / (10 * g * mu_r);
-  INFO("L = " << r.rolling_distance << " m, theory " << L << " m; mu_r from the seed's formula " << r.mu_r);
+  INFO("L = " << r.rolling_distance << " m, theory " << L << " m; mu_r from the cabbage study's formula " << r.mu_r);
   // Not in the theory: the soft contact's bounce at the floor and the rolling torque during the
   // short slip there (about 2 % of L in this configuration).
   CHECK(r.rolling_distance == Approx(L).epsilon(0.03));
-  // The seed's formula ignores the loss at the foot: it reads mu_r a few % high.
+  // The cabbage study's formula ignores the loss at the foot: it reads mu_r a few % high.
   CHECK(r.mu_r == Approx(mu_r).epsilon(0.08));
 }

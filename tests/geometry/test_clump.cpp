@@ -184,7 +184,7 @@ TEST_CASE("cylinder-like rod against the analytic capsule", "[clump]") {
   CHECK(std::abs(p.principal_moments[2] / transverse - 1) < 5e-3);
 }
 
-// The seed's stalk is a ring of spheres (hollow), so its analytic counterpart is a thick-walled
+// The cotton-stalk study's stalk is a ring of spheres (hollow), so its analytic counterpart is a thick-walled
 // tube (inner radius 3 mm, outer 5 mm, 80 mm long). Per unit mass: transverse radius of gyration
 // squared within 0.5 % (the length dominates), axial within 5 % (spheres put less mass at the
 // outer wall than a tube).

@@ -1,4 +1,4 @@
-// Calibration curves from the cabbage seed (section 3.1): a contact parameter swept in EDEM,
+// Calibration curves from the cabbage study (section 3.1): a contact parameter swept in EDEM,
 // a cubic fitted to the response, inverted at the physically measured value. The paper gives
 // the cubics (Eqs. 4-6) and the sweeps (restitution and static friction 0.1..0.9 by 0.1,
 // rolling friction 0.04..0.06 by 0.0025); the sweep responses are regenerated from the printed

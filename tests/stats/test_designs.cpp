@@ -67,7 +67,7 @@ TEST_CASE("Plackett-Burman 12 and 20: run counts, balance, orthogonality", "[sta
   CHECK_THROWS_AS(plackett_burman(12, factors(12), 0), DesignError);
 }
 
-TEST_CASE("Plackett-Burman 12 is the design the cotton seed ran (Table 3)", "[stats][design]") {
+TEST_CASE("Plackett-Burman 12 is the design the cotton-stalk study ran (Table 3)", "[stats][design]") {
   // Design-Expert's 12-run design uses the same first row; Table 3 lists its rows in random
   // order with the dummy columns omitted and three centre points added.
   Table t = read_csv(data_path("cotton_table3_pb.csv"));
