@@ -212,6 +212,7 @@ struct SimPush {
   float large_radius;  // particles above this radius go to the large bucket (neighbour.h)
   float air_drag;      // extension air_drag: 0.5 rho_air C_d pi (x r^2 = drag per v^2), 0: off
   float rolling_damping;  // kFlagRollingSpring: eta_r, the rolling dashpot's fraction of critical
+  uint absent_wall_kinds;  // bit k: no wall of kind k in the run (0: any may be present)
 };
 
 struct ScanPush {

@@ -71,6 +71,8 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.large_radius = float(m.large_radius);
   p.air_drag = float(m.air_drag);
   p.rolling_damping = float(m.rolling_damping);
+  p.absent_wall_kinds = 0xFu;
+  for (const ModelWall& w : m.walls) p.absent_wall_kinds &= ~(1u << w.kind);
   return p;
 }
 

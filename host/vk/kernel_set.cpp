@@ -63,19 +63,21 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
   }
 }
 
-VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags) {
-  auto key = std::make_pair(static_cast<uint32_t>(id), flags);
+VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall_kinds) {
+  auto key = std::make_tuple(static_cast<uint32_t>(id), flags, absent_wall_kinds);
   auto found = pipelines_.find(key);
   if (found != pipelines_.end()) return found->second;
   // The scan and the wall reduction are written for their own fixed workgroup size.
   uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
                 : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
                                              : workgroup_;
-  // constant_id 0: the workgroup size; 1: the flags word (kernels/glsl_prelude.glsl).
-  const uint32_t values[2] = {wg, flags};
-  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
-                                               {1, sizeof(uint32_t), sizeof(uint32_t)}};
-  VkSpecializationInfo spec{2, entries, sizeof(values), values};
+  // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds
+  // (kernels/glsl_prelude.glsl).
+  const uint32_t values[3] = {wg, flags, absent_wall_kinds};
+  const VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(uint32_t)},
+                                               {1, sizeof(uint32_t), sizeof(uint32_t)},
+                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
+  VkSpecializationInfo spec{3, entries, sizeof(values), values};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -117,11 +119,14 @@ void KernelSet::bind(const std::array<const Buffer*, gpu::kBindingCount>& buffer
 void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
                        uint32_t groups, VkBuffer indirect, VkDeviceSize indirect_offset) {
   if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
-  // The pipeline specialised for the push's own flags, so the two never disagree.
-  uint32_t flags = 0;
-  if (k != KernelId::Scan)
-    std::memcpy(&flags, static_cast<const char*>(push) + offsetof(gpu::SimPush, flags), sizeof flags);
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(k, flags));
+  // The pipeline specialised for the push's own words, so the two never disagree.
+  uint32_t flags = 0, absent_wall_kinds = 0;
+  if (k != KernelId::Scan) {
+    const char* bytes = static_cast<const char*>(push);
+    std::memcpy(&flags, bytes + offsetof(gpu::SimPush, flags), sizeof flags);
+    std::memcpy(&absent_wall_kinds, bytes + offsetof(gpu::SimPush, absent_wall_kinds), sizeof absent_wall_kinds);
+  }
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(k, flags, absent_wall_kinds));
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
   if (indirect != VK_NULL_HANDLE)

@@ -1,11 +1,13 @@
 // The compute pipelines of one simulation and their shared descriptor set: every kernel sees
 // the same storage-buffer bindings (shaders/repose_shared.h) and one push-constant block.
 // Workgroup size is a specialisation constant, so a variant changes it without a new shader; so
-// is the push constants' flags word, so that lavapipe does not run the code of switched-off
-// features (docs/engineering.md, "lavapipe speed"): one pipeline per kernel and flags.
+// are the push constants' flags word and absent wall kinds, so that lavapipe does not run the
+// code of switched-off features (docs/engineering.md, "lavapipe speed"): one pipeline per kernel
+// and pair of words.
 #pragma once
 #include <array>
 #include <map>
+#include <tuple>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -44,8 +46,8 @@ class KernelSet {
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::vector<VkShaderModule> modules_;
   // Created on first use (a run meets two or three flag words per kernel).
-  VkPipeline pipeline(KernelId id, uint32_t flags);
-  std::map<std::pair<uint32_t, uint32_t>, VkPipeline> pipelines_;
+  VkPipeline pipeline(KernelId id, uint32_t flags, uint32_t absent_wall_kinds);
+  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, VkPipeline> pipelines_;
 };
 
 }  // namespace repose::vk

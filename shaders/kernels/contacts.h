@@ -109,7 +109,7 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   vec3 n;
   float overlap;
   bool touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
-  if (touching && ws.info.x == kWallTriangle)
+  if (touching && wall_kind_possible(kWallTriangle) && ws.info.x == kWallTriangle)
     touching = !mesh_contact_shadowed(i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
   if (!touching) return false;
   vec3 wi = xyz(B_omega[i]);

@@ -22,9 +22,12 @@ layout(push_constant) uniform PushBlock { SimPush PC_pushed; };
 // (Mesa 22) runs both sides of every branch under a lane mask, so that code costs time even
 // when no invocation takes it. The kernels read PC.flags as before; the twin reads the push.
 layout(constant_id = 1) const uint kSpecialisedFlags = 0u;
+// Likewise the wall kinds the run has none of: their code goes too (wall_kind_possible()).
+layout(constant_id = 2) const uint kSpecialisedAbsentWallKinds = 0u;
 SimPush pc_specialised() {
   SimPush p = PC_pushed;
   p.flags = kSpecialisedFlags;
+  p.absent_wall_kinds = kSpecialisedAbsentWallKinds;
   return p;
 }
 #define PC pc_specialised()

@@ -3,6 +3,10 @@
 #ifndef REPOSE_KERNELS_WALLS_H
 #define REPOSE_KERNELS_WALLS_H
 
+// False when the run has no wall of this kind (PC.absent_wall_kinds): lavapipe then compiles
+// the kind's code out instead of running it under a lane mask (docs/engineering.md).
+bool wall_kind_possible(uint kind) { return (PC.absent_wall_kinds & (1u << kind)) == 0u; }
+
 // Closest point to p on triangle (a, b, c) and its feature (kFeatureFace/Edge/Vertex): Ericson,
 // Real-Time Collision Detection 5.1.5, the float twin of host/geometry/closest_point.cpp.
 vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
@@ -79,7 +83,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     overlap = r - dist;
     return dist < r + margin && dist > -r;
   }
-  if (type == kWallRectangle) {
+  if (wall_kind_possible(kWallRectangle) && type == kWallRectangle) {
     // One-sided like a plane inside the rectangle; beyond it the nearest boundary point (edge or
     // corner), seen from the front side only, so a sphere rolls off the plate's edge.
     precise float h = dot3(rel, dir);
@@ -97,7 +101,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     precise vec3 q = xyz(ws.p0) + scale3(xyz(ws.p2), cu) + scale3(xyz(ws.p3), cv);
     return point_contact(x, q, r, margin, n, overlap);
   }
-  if (type == kWallTriangle) {
+  if (wall_kind_possible(kWallTriangle) && type == kWallTriangle) {
     // Two-sided (STL windings are often inconsistent): the face pushes to the side of the centre.
     precise vec3 q = closest_on_triangle(x, xyz(ws.p0), xyz(ws.p1), xyz(ws.p2), feature);
     if (feature != kFeatureFace) return point_contact(x, q, r, margin, n, overlap);
@@ -108,6 +112,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     overlap = r - ah;
     return ah < r + margin;
   }
+  if (!wall_kind_possible(kWallCylinder)) return false;
   // Cylinder: inner surface of radius p1.w, from the base along the axis for vel.w. It holds
   // the spheres whose centres are inside; one outside (d >= R) never touches the inner surface.
   precise float s = dot3(rel, dir);
