@@ -6,6 +6,8 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdlib>
+#include <cstring>
 
 #include "twin_kernels.h"
 
@@ -73,11 +75,12 @@ struct Params {
 
 Params gather_params(Kernels& k, VI mi, VI mj) {
   const PairParams* pairs = k.B_pairs;
-  if (k.PC.n_materials == 1u) {
-    const PairParams& p = pairs[0];
+  VI pair = hn::Add(hn::Mul(mi, hn::Set(DI(), int(k.PC.n_materials))), mj);
+  int32_t first = hn::GetLane(pair);
+  if (hn::AllTrue(DI(), hn::Eq(pair, hn::Set(DI(), first)))) {  // one pair (the usual case): no gathers
+    const PairParams& p = pairs[first];
     return {vset(p.a.x), vset(p.a.y), vset(p.a.z), vset(p.a.w), vset(p.b.x), vset(p.b.z), vset(p.b.w)};
   }
-  VI pair = hn::Add(hn::Mul(mi, hn::Set(DI(), int(k.PC.n_materials))), mj);
   constexpr int W = sizeof(PairParams) / 4;
   return {gather(pairs, pair, W, 0), gather(pairs, pair, W, 1), gather(pairs, pair, W, 2),
           gather(pairs, pair, W, 3), gather(pairs, pair, W, 4), gather(pairs, pair, W, 6),
@@ -102,15 +105,31 @@ V cohesion_lens(Kernels& k, V r1, V r2, V dist, V overlap) {
   return hn::Div(q, hn::Mul(hn::Mul(vset(4.0f), dist), dist));
 }
 
-// contacts.h touch_particle (and set_rolling_levers) for lanes of owner i and partner p.
-Lanes touch_particle(Kernels& k, VI i, VI p) {
+// The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w). One 16-byte copy per
+// lane and one transpose: a gather per component costs several times more.
+struct V4 {
+  V x, y, z, w;
+  V3 xyz() const { return {x, y, z}; }
+};
+V4 rows(const vec4* base, const uint* index) {
+  alignas(64) float buf[4 * HWY_LANES(float)];
+  const size_t L = hn::Lanes(D());
+  for (size_t l = 0; l < L; ++l) std::memcpy(buf + 4 * l, base + index[l], sizeof(vec4));
+  V4 r;
+  hn::LoadInterleaved4(D(), buf, r.x, r.y, r.z, r.w);
+  return r;
+}
+
+// contacts.h touch_particle (and set_rolling_levers) for the lanes of owners i and partners p
+// (the same as vectors i_, p_ for the body gathers).
+Lanes touch_particle(Kernels& k, const uint* i, const uint* p, VI i_, VI p_) {
   Lanes s;
-  V3 xi = gather3(k.B_pos, i), xj = gather3(k.B_pos, p);
-  V rad_i = gather(k.B_pos, i, 4, 3), rad_j = gather(k.B_pos, p, 4, 3);
-  V3 vi = gather3(k.B_vel, i), vj = gather3(k.B_vel, p);
-  V inv_mi = gather(k.B_vel, i, 4, 3), inv_mj = gather(k.B_vel, p, 4, 3);
-  s.wi = gather3(k.B_omega, i);
-  s.wj = gather3(k.B_omega, p);
+  V4 pos_i = rows(k.B_pos, i), pos_j = rows(k.B_pos, p);
+  V4 vel_i = rows(k.B_vel, i), vel_j = rows(k.B_vel, p);
+  V3 xi = pos_i.xyz(), xj = pos_j.xyz(), vi = vel_i.xyz(), vj = vel_j.xyz();
+  V rad_i = pos_i.w, rad_j = pos_j.w, inv_mi = vel_i.w, inv_mj = vel_j.w;
+  s.wi = rows(k.B_omega, i).xyz();
+  s.wj = rows(k.B_omega, p).xyz();
   V3 d = sub3(xi, xj);
   s.dist = length3(d);
   s.overlap = hn::Sub(hn::Add(rad_i, rad_j), s.dist);
@@ -129,8 +148,8 @@ Lanes touch_particle(Kernels& k, VI i, VI p) {
   s.lever_j = s.rj;
   if (k.centre_lever(k.PC.flags) && (k.PC.flags & kFlagLeanContacts) == 0u) {
     V3 cp = sub3(xi, scale3(s.n, s.ri));  // contact_point
-    s.lever_i = rolling_lever(k, i, cp, s.ri);
-    s.lever_j = rolling_lever(k, p, cp, s.rj);
+    s.lever_i = rolling_lever(k, i_, cp, s.ri);
+    s.lever_j = rolling_lever(k, p_, cp, s.rj);
   }
   return s;
 }
@@ -243,10 +262,13 @@ Out hertz_mindlin(const Lanes& g, const Params& pp, float dt, uint flags, V3 she
 
 void store4(vec4* at, V x, V y, V z, V w) { hn::StoreInterleaved4(x, y, z, w, D(), &at->x); }
 
-// process_contact for the Lanes(D()) contacts from c, all between two particles.
-void particle_lanes(Kernels& k, uint64_t c, VI i, VI p) {
+// process_contact for the Lanes(D()) contacts from c between particles i and p.
+void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) {
+  const DI di;
+  VI i = hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at));
+  VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at));
   const uint flags = k.PC.flags;
-  Lanes s = touch_particle(k, i, p);
+  Lanes s = touch_particle(k, i_at, p_at, i, p);
   V hx, hy, hz, hw;
   hn::LoadInterleaved4(D(), &k.B_history[c].x, hx, hy, hz, hw);
   VI mi = hn::GatherIndex(DI(), reinterpret_cast<const int32_t*>(k.B_material), i);
@@ -275,20 +297,37 @@ void particle_lanes(Kernels& k, uint64_t c, VI i, VI p) {
   store4(&k.B_torque_j[c], tj.x, tj.y, tj.z, zero);
 }
 
+// Lanes whose partner is a wall (walls sort last in a row) run in the lanes as a contact of the
+// owner with itself (centres coincide: not touching), with their history kept aside; then the
+// scalar kernel computes them from that history.
+void mixed_lanes(Kernels& k, uint64_t c) {
+  const size_t L = hn::Lanes(D());
+  uint partner[HWY_LANES(float)];
+  vec4 history[HWY_LANES(float)];
+  for (size_t l = 0; l < L; ++l) {
+    bool wall = k.B_partner[c + l] >= k.PC.n_particles;
+    partner[l] = wall ? k.B_owner[c + l] : k.B_partner[c + l];
+    history[l] = k.B_history[c + l];
+  }
+  particle_lanes(k, c, k.B_owner + c, partner);
+  for (size_t l = 0; l < L; ++l) {
+    if (partner[l] == k.B_partner[c + l]) continue;
+    k.B_history[c + l] = history[l];
+    k.process_contact(k.B_owner[c + l], uint(c + l));
+  }
+}
+
 void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   const DI di;
   const size_t L = hn::Lanes(di);
   const VI particles = hn::Set(di, int32_t(k.PC.n_particles));
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
-    VI i = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_owner + c));
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
-    if (hn::AllTrue(di, hn::Lt(p, particles))) {
-      particle_lanes(k, c, i, p);
-    } else {
-      // A wall among them (walls sort last in a row, so few batches): the scalar kernel.
-      for (uint64_t e = c; e < c + L; ++e) k.process_contact(k.B_owner[e], uint(e));
-    }
+    if (hn::AllTrue(di, hn::Lt(p, particles)))
+      particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
+    else
+      mixed_lanes(k, c);
   }
   for (; c < end; ++c) k.process_contact(k.B_owner[c], uint(c));
 }
@@ -314,6 +353,8 @@ bool contact_lanes_cover(uint flags) {
 }
 
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end) {
+  static bool once = [] { if (const char* e = std::getenv("REPOSE_HWY_DISABLE")) hwy::DisableTargets(std::strtol(e, nullptr, 0)); return true; }();
+  (void)once;
   HWY_DYNAMIC_DISPATCH(ContactLanes)(k, begin, end);
 }
 

@@ -13,14 +13,16 @@ using namespace repose::gpu;
 
 namespace {
 
-// Random particles, bodies, material pairs and contacts between particles: touching and not,
-// coincident centres, zero and non-zero spins and histories, pairs with each extension off and on.
+// Random particles, bodies, material pairs and contacts: touching and not, coincident centres,
+// zero and non-zero spins and histories, pairs with each extension off and on, and a plane wall
+// (the floor z = 5 mm) as the partner of a few contacts, some in runs of lanes, some alone.
 struct Scene {
   std::vector<vec4> pos, vel, omega, history;
   std::vector<uint> material, partner, owner;
   std::vector<PairParams> pairs;
   std::vector<SubSphere> subs;
   std::vector<Body> bodies;
+  std::vector<WallState> walls;
   uint n_materials;
 
   Scene(uint n_particles, uint n_contacts, uint materials, uint64_t seed) : n_materials(materials) {
@@ -50,10 +52,16 @@ struct Scene {
                  u(rng) < 0.5f ? 0.0f : 1e4f * u(rng));
       pairs.push_back(p);
     }
+    WallState floor{};
+    floor.info = uvec4(kWallPlane, 0u, 0u, 0u);
+    floor.p0 = vec4(0.0f, 0.0f, 0.005f, 0.0f);
+    floor.p1 = vec4(0.0f, 0.0f, 1.0f, 0.0f);
+    walls.push_back(floor);
     for (uint c = 0; c < n_contacts; ++c) {
       uint i = pick(n_particles), j = pick(n_particles);
       if (j == i) j = (i + 1u) % n_particles;
       if (c % 97u == 0u) i = 0u, j = 1u;
+      if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
       owner.push_back(i);
       partner.push_back(j);
       history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
@@ -83,6 +91,8 @@ Outputs run(const Scene& s, uint flags, bool lanes) {
   k.B_owner = const_cast<uint*>(s.owner.data());
   k.B_subs = const_cast<SubSphere*>(s.subs.data());
   k.B_bodies = const_cast<Body*>(s.bodies.data());
+  k.B_walls = const_cast<WallState*>(s.walls.data());
+  k.PC.n_walls = 1;
   k.B_history = o.history.data();
   k.B_contact_force = o.force.data();
   k.B_torque_i = o.torque_i.data();
