@@ -6,7 +6,6 @@
 
 #include <atomic>
 #include <cstddef>
-#include <cstdlib>
 #include <cstring>
 
 #include "twin_kernels.h"
@@ -353,12 +352,14 @@ bool contact_lanes_cover(uint flags) {
 }
 
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end) {
-  static bool once = [] { if (const char* e = std::getenv("REPOSE_HWY_DISABLE")) hwy::DisableTargets(std::strtol(e, nullptr, 0)); return true; }();
-  (void)once;
   HWY_DYNAMIC_DISPATCH(ContactLanes)(k, begin, end);
 }
 
 const char* contact_lanes_target() { return HWY_DYNAMIC_DISPATCH(LanesTarget)(); }
+
+std::vector<int64_t> contact_lanes_targets() { return hwy::SupportedAndGeneratedTargets(); }
+
+void pin_contact_lanes_target(int64_t target) { hwy::SetSupportedTargetsForTest(target); }
 
 void set_contact_lanes(bool on) { g_lanes_on.store(on, std::memory_order_relaxed); }
 bool contact_lanes_enabled() { return g_lanes_on.load(std::memory_order_relaxed); }

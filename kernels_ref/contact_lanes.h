@@ -6,6 +6,7 @@
 // options they do not cover (rolling springs, spinning friction) run the scalar kernel.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 namespace repose::gpu {
 
@@ -17,6 +18,10 @@ bool contact_lanes_cover(uint32_t flags);
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end);
 // The SIMD target Highway picked on this machine ("AVX3", "AVX2", ...), for bench reports.
 const char* contact_lanes_target();
+// The SIMD targets (Highway's bits) this machine can run the lanes on, for tests that compare
+// them; pin_contact_lanes_target(t) makes the lanes use t only (0: the best one again).
+std::vector<int64_t> contact_lanes_targets();
+void pin_contact_lanes_target(int64_t target);
 // Process-wide switch (default on), for measuring the lanes against the scalar kernel.
 void set_contact_lanes(bool on);
 bool contact_lanes_enabled();

@@ -114,28 +114,33 @@ bool same_bytes(const std::vector<vec4>& a, const std::vector<vec4>& b) {
 
 }  // namespace
 
-TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every option it covers", "[engine][bitexact]") {
-  // Every subset of the options the lanes take; 16 * 40 + 9 contacts so a tail runs scalar.
+TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every option it covers, on every SIMD target", "[engine][bitexact]") {
+  // Every subset of the options the lanes take, on every SIMD target this machine has (SSE4,
+  // AVX2, AVX-512 here); 16 * 40 + 9 contacts so that a tail runs scalar.
   const uint options[] = {kFlagCoulombSpringOnly, kFlagClipAttraction,        kFlagRollingConstTorque,
                           kFlagRollingRelativeOmega, kFlagKeepHistory,        kFlagLeanContacts,
                           kFlagBodies,            kFlagCohesionContactFriction, kFlagRollingLeverSphere,
                           kFlagCohesionIntersection};
   const uint n_options = sizeof(options) / sizeof(options[0]);
   Scene many(120, 16 * 40 + 9, 3, 11), one(120, 16 * 40 + 9, 1, 12);
-  for (const Scene* s : {&many, &one}) {
-    for (uint subset = 0; subset < (1u << n_options); ++subset) {
-      uint flags = 0;
-      for (uint b = 0; b < n_options; ++b)
-        if (subset & (1u << b)) flags |= options[b];
-      REQUIRE(contact_lanes_cover(flags));
-      Outputs scalar = run(*s, flags, false), lanes = run(*s, flags, true);
-      INFO("flags " << flags << ", materials " << s->n_materials << ", lanes on " << contact_lanes_target());
-      CHECK(same_bytes(scalar.history, lanes.history));
-      CHECK(same_bytes(scalar.force, lanes.force));
-      CHECK(same_bytes(scalar.torque_i, lanes.torque_i));
-      if ((flags & kFlagLeanContacts) == 0u) CHECK(same_bytes(scalar.torque_j, lanes.torque_j));
+  for (int64_t target : contact_lanes_targets()) {
+    pin_contact_lanes_target(target);
+    for (const Scene* s : {&many, &one}) {
+      for (uint subset = 0; subset < (1u << n_options); ++subset) {
+        uint flags = 0;
+        for (uint b = 0; b < n_options; ++b)
+          if (subset & (1u << b)) flags |= options[b];
+        REQUIRE(contact_lanes_cover(flags));
+        Outputs scalar = run(*s, flags, false), lanes = run(*s, flags, true);
+        INFO("flags " << flags << ", materials " << s->n_materials << ", lanes on " << contact_lanes_target());
+        CHECK(same_bytes(scalar.history, lanes.history));
+        CHECK(same_bytes(scalar.force, lanes.force));
+        CHECK(same_bytes(scalar.torque_i, lanes.torque_i));
+        if ((flags & kFlagLeanContacts) == 0u) CHECK(same_bytes(scalar.torque_j, lanes.torque_j));
+      }
     }
   }
+  pin_contact_lanes_target(0);
   // The scene must exercise both sides of the kernel: some contacts touch, some do not.
   Outputs o = run(many, kFlagRollingConstTorque, false);
   int touching_contacts = 0;
