@@ -44,7 +44,7 @@ V3 select3(M m, V3 yes, V3 no) {
 }
 V3 zero_unless(M m, V3 a) { return {hn::IfThenElseZero(m, a.x), hn::IfThenElseZero(m, a.y), hn::IfThenElseZero(m, a.z)}; }
 V vset(float f) { return hn::Set(D(), f); }
-// std::max(a, b) and std::min(a, b) exactly (which operand wins on ties and NaN).
+// std::max(a, b) exactly: a < b ? b : a (which operand wins on equal zeros and NaN).
 V max_of(V a, V b) { return hn::IfThenElse(hn::Lt(a, b), b, a); }
 
 // Field `word` of the structs at indices `index`, each `stride` 4-byte words long.
@@ -55,9 +55,6 @@ V gather(const void* base, VI index, int stride, int word) {
 VI gather_int(const void* base, VI index, int stride, int word) {
   VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
   return hn::GatherIndex(DI(), static_cast<const int32_t*>(base), at);
-}
-V3 gather3(const vec4* base, VI index) {
-  return {gather(base, index, 4, 0), gather(base, index, 4, 1), gather(base, index, 4, 2)};
 }
 
 // What one lane holds of a contact: contacts.h's ContactState and ContactGeometry.
