@@ -1,5 +1,7 @@
 #include "vk/kernel_set.h"
 
+#include <cstddef>
+#include <cstring>
 #include <stdexcept>
 
 #include "vk/buffer.h"
@@ -51,36 +53,45 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
   VK_CHECK(vkAllocateDescriptorSets(dev, &ai, &set_));
 
   for (uint32_t k = 0; k < static_cast<uint32_t>(KernelId::Count); ++k) {
-    KernelId id = static_cast<KernelId>(k);
-    const EmbeddedShader& spv = embedded_shader(kernel_shader_name(id));
+    const EmbeddedShader& spv = embedded_shader(kernel_shader_name(static_cast<KernelId>(k)));
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
     mi.codeSize = spv.bytes;
     mi.pCode = spv.words;
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(dev, &mi, nullptr, &module));
     modules_.push_back(module);
-    // The scan and the wall reduction are written for their own fixed workgroup size.
-    uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
-                  : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
-                                               : workgroup;
-    VkSpecializationMapEntry entry{0, 0, sizeof(uint32_t)};
-    VkSpecializationInfo spec{1, &entry, sizeof(uint32_t), &wg};
-    VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    ci.stage.module = module;
-    ci.stage.pName = "main";
-    ci.stage.pSpecializationInfo = &spec;
-    ci.layout = layout_;
-    VkPipeline pipeline;
-    VK_CHECK(vkCreateComputePipelines(dev, VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
-    pipelines_.push_back(pipeline);
   }
+}
+
+VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags) {
+  auto key = std::make_pair(static_cast<uint32_t>(id), flags);
+  auto found = pipelines_.find(key);
+  if (found != pipelines_.end()) return found->second;
+  // The scan and the wall reduction are written for their own fixed workgroup size.
+  uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
+                : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
+                                             : workgroup_;
+  // constant_id 0: the workgroup size; 1: the flags word (kernels/glsl_prelude.glsl).
+  const uint32_t values[2] = {wg, flags};
+  const VkSpecializationMapEntry entries[2] = {{0, 0, sizeof(uint32_t)},
+                                               {1, sizeof(uint32_t), sizeof(uint32_t)}};
+  VkSpecializationInfo spec{2, entries, sizeof(values), values};
+  VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+  ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  ci.stage.module = modules_[static_cast<uint32_t>(id)];
+  ci.stage.pName = "main";
+  ci.stage.pSpecializationInfo = &spec;
+  ci.layout = layout_;
+  VkPipeline p;
+  VK_CHECK(vkCreateComputePipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p));
+  pipelines_.emplace(key, p);
+  return p;
 }
 
 KernelSet::~KernelSet() {
   VkDevice dev = ctx_.device();
-  for (auto p : pipelines_) vkDestroyPipeline(dev, p, nullptr);
+  for (auto& p : pipelines_) vkDestroyPipeline(dev, p.second, nullptr);
   for (auto m : modules_) vkDestroyShaderModule(dev, m, nullptr);
   if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
@@ -106,7 +117,11 @@ void KernelSet::bind(const std::array<const Buffer*, gpu::kBindingCount>& buffer
 void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
                        uint32_t groups, VkBuffer indirect, VkDeviceSize indirect_offset) {
   if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines_[static_cast<uint32_t>(k)]);
+  // The pipeline specialised for the push's own flags, so the two never disagree.
+  uint32_t flags = 0;
+  if (k != KernelId::Scan)
+    std::memcpy(&flags, static_cast<const char*>(push) + offsetof(gpu::SimPush, flags), sizeof flags);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(k, flags));
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
   if (indirect != VK_NULL_HANDLE)

@@ -1,8 +1,11 @@
 // The compute pipelines of one simulation and their shared descriptor set: every kernel sees
 // the same storage-buffer bindings (shaders/repose_shared.h) and one push-constant block.
-// Workgroup size is a specialisation constant, so a variant changes it without a new shader.
+// Workgroup size is a specialisation constant, so a variant changes it without a new shader; so
+// is the push constants' flags word, so that lavapipe does not run the code of switched-off
+// features (docs/engineering.md, "lavapipe speed"): one pipeline per kernel and flags.
 #pragma once
 #include <array>
+#include <map>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -40,7 +43,9 @@ class KernelSet {
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
   std::vector<VkShaderModule> modules_;
-  std::vector<VkPipeline> pipelines_;
+  // Created on first use (a run meets two or three flag words per kernel).
+  VkPipeline pipeline(KernelId id, uint32_t flags);
+  std::map<std::pair<uint32_t, uint32_t>, VkPipeline> pipelines_;
 };
 
 }  // namespace repose::vk

@@ -16,5 +16,16 @@ REPOSE_BUFFERS(REPOSE_DECLARE_BUFFER)
 #undef REPOSE_DECLARE_BUFFER
 
 #ifndef REPOSE_SCAN_PUSH
-layout(push_constant) uniform PushBlock { SimPush PC; };
+layout(push_constant) uniform PushBlock { SimPush PC_pushed; };
+// The flags word as a specialisation constant (host/vk/kernel_set.cpp builds one pipeline per
+// kernel and flags): the compiler then drops the code of every feature that is off. lavapipe
+// (Mesa 22) runs both sides of every branch under a lane mask, so that code costs time even
+// when no invocation takes it. The kernels read PC.flags as before; the twin reads the push.
+layout(constant_id = 1) const uint kSpecialisedFlags = 0u;
+SimPush pc_specialised() {
+  SimPush p = PC_pushed;
+  p.flags = kSpecialisedFlags;
+  return p;
+}
+#define PC pc_specialised()
 #endif
