@@ -1,6 +1,7 @@
 // Compiles the shared kernel bodies as C++. Must stay at -ffp-contract=off (see CMakeLists.txt).
 #include "cpu_kernels.h"
 
+#include "contact_lanes.h"
 #include "twin_kernels.h"
 
 namespace repose::gpu {
@@ -14,9 +15,20 @@ static void run_parallel(Kernels& k, uint64_t n, ThreadPool& pool) {
   });
 }
 
+// The contact kernel over contacts [0, end) in SIMD lanes (contact_lanes.h): both variants
+// compute each contact alone, so the owner rows' split does not matter.
+static void run_contact_lanes(Kernels& k, uint64_t end, ThreadPool& pool) {
+  pool.parallel_for(end, [&](uint64_t begin, uint64_t stop) { contact_forces_lanes(k, begin, stop); });
+}
+
 void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
   if (invocations == 0) return;
   Kernels k(buf);
+  uint limit = buf.control[kCtlContacts];
+  if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
+    return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);
+  if (id == KernelId::ContactRows && contact_lanes_cover(buf.push.flags))
+    return run_contact_lanes(k, std::min(buf.row_start[buf.push.n_particles], limit), pool);
   // Single-invocation control kernels must not run on several threads at once.
   if (id == KernelId::RebuildArgs) return k.k_rebuild_args(0u);
   if (id == KernelId::RowsScanned) return k.k_rows_scanned(0u);

@@ -15,6 +15,7 @@
 #include "engine/backend_factory.h"
 #include "engine/buffer_table.h"
 #include "engine/bench_bed.h"
+#include "contact_lanes.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "io/case_run.h"
@@ -188,6 +189,7 @@ int run_bench(int argc, char** argv) {
   uint32_t steps = 200;
   double settle = 0.6, skin = -1;
   std::string cache_dir = "out/bench", case_path;
+  bool scalar_contacts = false;
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
@@ -198,7 +200,10 @@ int run_bench(int argc, char** argv) {
   app.add_option("--skin", skin, "neighbour skin (m; default the case's): results do not depend on it");
   app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
   app.add_option("--case", case_path, "benchmark this case instead of the bed, after --settle simulated seconds of it");
+  app.add_flag("--scalar-contacts", scalar_contacts,
+               "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
   CLI11_PARSE(app, argc, argv);
+  if (scalar_contacts) gpu::set_contact_lanes(false);
 
   bool own_case = !case_path.empty();
   CaseSpec spec;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstring>
 
+#include "contact_lanes.h"
 #include "engine/buffer_table.h"
 
 namespace repose {
@@ -11,8 +12,11 @@ namespace repose {
 CpuBackend::CpuBackend(unsigned threads) : pool_(threads) {}
 
 std::string CpuBackend::describe() const {
+  std::string lanes = gpu::contact_lanes_enabled()
+                          ? std::string(", contacts in ") + gpu::contact_lanes_target() + " lanes"
+                          : std::string(", contacts one at a time");
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
-         (pool_.size() == 1 ? "" : "s") + ")";
+         (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
 
 void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {

@@ -1,0 +1,29 @@
+// The CPU twin's contact kernel run over several contacts at once in SIMD lanes (Highway, chosen
+// at run time for the machine: SSE4, AVX2, AVX-512). Each lane does the IEEE operations of
+// process_contact (shaders/kernels/contacts.h, contact_law.h) in the same order, so the bytes are
+// those of the scalar twin and of lavapipe; tests/engine/test_contact_lanes.cpp checks that for
+// every option the lanes take. Contacts the lanes do not take (walls, the tail of a range) and
+// options they do not cover (rolling springs, spinning friction) run the scalar kernel.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+namespace repose::gpu {
+
+struct Kernels;
+
+// Whether the lanes cover a step with these SimPush flags.
+bool contact_lanes_cover(uint32_t flags);
+// process_contact(B_owner[c], c) for every c in [begin, end), in lanes where they cover it.
+void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end);
+// The SIMD target Highway picked on this machine ("AVX3", "AVX2", ...), for bench reports.
+const char* contact_lanes_target();
+// The SIMD targets (Highway's bits) this machine can run the lanes on, for tests that compare
+// them; pin_contact_lanes_target(t) makes the lanes use t only (0: the best one again).
+std::vector<int64_t> contact_lanes_targets();
+void pin_contact_lanes_target(int64_t target);
+// Process-wide switch (default on), for measuring the lanes against the scalar kernel.
+void set_contact_lanes(bool on);
+bool contact_lanes_enabled();
+
+}  // namespace repose::gpu

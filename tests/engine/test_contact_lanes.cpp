@@ -1,0 +1,155 @@
+// The contact kernel in SIMD lanes (kernels_ref/contact_lanes.cpp) against the scalar kernel it
+// mirrors, for every combination of the options the lanes take: same bytes in every output.
+#include <catch2/catch.hpp>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "contact_lanes.h"
+#include "twin_kernels.h"
+
+using namespace repose::gpu;
+
+namespace {
+
+// Random particles, bodies, material pairs and contacts: touching and not, coincident centres,
+// zero and non-zero spins and histories, pairs with each extension off and on, and a plane wall
+// (the floor z = 5 mm) as the partner of a few contacts, some in runs of lanes, some alone.
+struct Scene {
+  std::vector<vec4> pos, vel, omega, history;
+  std::vector<uint> material, partner, owner;
+  std::vector<PairParams> pairs;
+  std::vector<SubSphere> subs;
+  std::vector<Body> bodies;
+  std::vector<WallState> walls;
+  uint n_materials;
+
+  Scene(uint n_particles, uint n_contacts, uint materials, uint64_t seed) : n_materials(materials) {
+    std::mt19937 rng{uint32_t(seed)};
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    auto pick = [&](uint n) { return uint(rng() % n); };
+    auto some = [&](float scale) { return u(rng) < 0.3f ? 0.0f : scale * (u(rng) - 0.5f); };
+    for (uint i = 0; i < n_particles; ++i) {
+      float r = 0.002f + 0.008f * u(rng);
+      pos.push_back(vec4(0.03f * u(rng), 0.03f * u(rng), 0.03f * u(rng), r));
+      vel.push_back(vec4(some(2.0f), some(2.0f), some(2.0f), 1.0f / (0.001f + 0.1f * u(rng))));
+      omega.push_back(vec4(some(50.0f), some(50.0f), some(50.0f), 1.0f / (1e-7f + 1e-5f * u(rng))));
+      material.push_back(pick(materials));
+      subs.push_back(SubSphere{vec4(0.0f), uvec4(i / 3u, 0u, 0u, 0u)});
+    }
+    pos[1] = pos[0];  // coincident centres: dist 0, no contact
+    for (uint b = 0; b * 3u < n_particles; ++b) {
+      Body body{};
+      body.pos = vec4(0.03f * u(rng), 0.03f * u(rng), 0.03f * u(rng), 1.0f);
+      body.spheres = uvec4(b * 3u, b % 2u ? 1u : 3u, 0u, 0u);  // lone spheres keep their own lever
+      bodies.push_back(body);
+    }
+    for (uint m = 0; m < materials * materials; ++m) {
+      PairParams p{};
+      p.a = vec4(1e6f + 1e8f * u(rng), 1e6f + 1e7f * u(rng), 0.5f * u(rng), 0.2f + 0.6f * u(rng));
+      p.b = vec4(u(rng) < 0.5f ? 0.0f : 0.1f * u(rng), 0.5f, u(rng) < 0.5f ? 0.0f : 1e-5f * u(rng),
+                 u(rng) < 0.5f ? 0.0f : 1e4f * u(rng));
+      pairs.push_back(p);
+    }
+    WallState floor{};
+    floor.info = uvec4(kWallPlane, 0u, 0u, 0u);
+    floor.p0 = vec4(0.0f, 0.0f, 0.005f, 0.0f);
+    floor.p1 = vec4(0.0f, 0.0f, 1.0f, 0.0f);
+    walls.push_back(floor);
+    for (uint c = 0; c < n_contacts; ++c) {
+      uint i = pick(n_particles), j = pick(n_particles);
+      if (j == i) j = (i + 1u) % n_particles;
+      if (c % 97u == 0u) i = 0u, j = 1u;
+      if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
+      owner.push_back(i);
+      partner.push_back(j);
+      history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
+    }
+  }
+};
+
+// The contact kernel's outputs over the scene, in lanes or by the scalar kernel.
+struct Outputs {
+  std::vector<vec4> history, force, torque_i, torque_j;
+};
+
+Outputs run(const Scene& s, uint flags, bool lanes) {
+  Outputs o;
+  size_t n = s.owner.size();
+  o.history = s.history;
+  o.force.assign(n, vec4(7.0f));
+  o.torque_i.assign(n, vec4(7.0f));
+  o.torque_j.assign(n, vec4(7.0f));
+  Kernels k;
+  k.B_pos = const_cast<vec4*>(s.pos.data());
+  k.B_vel = const_cast<vec4*>(s.vel.data());
+  k.B_omega = const_cast<vec4*>(s.omega.data());
+  k.B_material = const_cast<uint*>(s.material.data());
+  k.B_pairs = const_cast<PairParams*>(s.pairs.data());
+  k.B_partner = const_cast<uint*>(s.partner.data());
+  k.B_owner = const_cast<uint*>(s.owner.data());
+  k.B_subs = const_cast<SubSphere*>(s.subs.data());
+  k.B_bodies = const_cast<Body*>(s.bodies.data());
+  k.B_walls = const_cast<WallState*>(s.walls.data());
+  k.PC.n_walls = 1;
+  k.B_history = o.history.data();
+  k.B_contact_force = o.force.data();
+  k.B_torque_i = o.torque_i.data();
+  k.B_torque_j = o.torque_j.data();
+  k.PC.n_particles = uint(s.pos.size());
+  k.PC.n_materials = s.n_materials;
+  k.PC.flags = flags;
+  k.PC.dt = 1e-5f;
+  if (lanes)
+    contact_forces_lanes(k, 0, n);
+  else
+    for (uint c = 0; c < n; ++c) k.process_contact(s.owner[c], c);
+  return o;
+}
+
+bool same_bytes(const std::vector<vec4>& a, const std::vector<vec4>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(vec4)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every option it covers, on every SIMD target", "[engine][bitexact]") {
+  // Every subset of the options the lanes take, on every SIMD target this machine has (SSE4,
+  // AVX2, AVX-512 here); 16 * 40 + 9 contacts so that a tail runs scalar.
+  const uint options[] = {kFlagCoulombSpringOnly, kFlagClipAttraction,        kFlagRollingConstTorque,
+                          kFlagRollingRelativeOmega, kFlagKeepHistory,        kFlagLeanContacts,
+                          kFlagBodies,            kFlagCohesionContactFriction, kFlagRollingLeverSphere,
+                          kFlagCohesionIntersection};
+  const uint n_options = sizeof(options) / sizeof(options[0]);
+  Scene many(120, 16 * 40 + 9, 3, 11), one(120, 16 * 40 + 9, 1, 12);
+  for (int64_t target : contact_lanes_targets()) {
+    pin_contact_lanes_target(target);
+    for (const Scene* s : {&many, &one}) {
+      for (uint subset = 0; subset < (1u << n_options); ++subset) {
+        uint flags = 0;
+        for (uint b = 0; b < n_options; ++b)
+          if (subset & (1u << b)) flags |= options[b];
+        REQUIRE(contact_lanes_cover(flags));
+        Outputs scalar = run(*s, flags, false), lanes = run(*s, flags, true);
+        INFO("flags " << flags << ", materials " << s->n_materials << ", lanes on " << contact_lanes_target());
+        CHECK(same_bytes(scalar.history, lanes.history));
+        CHECK(same_bytes(scalar.force, lanes.force));
+        CHECK(same_bytes(scalar.torque_i, lanes.torque_i));
+        if ((flags & kFlagLeanContacts) == 0u) CHECK(same_bytes(scalar.torque_j, lanes.torque_j));
+      }
+    }
+  }
+  pin_contact_lanes_target(0);
+  // The scene must exercise both sides of the kernel: some contacts touch, some do not.
+  Outputs o = run(many, kFlagRollingConstTorque, false);
+  int touching_contacts = 0;
+  for (const vec4& f : o.force) touching_contacts += f.x != 0.0f;
+  CHECK(touching_contacts > 100);
+  CHECK(touching_contacts < int(o.force.size()) - 100);
+}
+
+TEST_CASE("contact lanes leave rolling springs and spinning friction to the scalar kernel", "[engine]") {
+  CHECK_FALSE(contact_lanes_cover(kFlagRollingSpring));
+  CHECK_FALSE(contact_lanes_cover(kFlagSpinningFriction | kFlagRollingConstTorque));
+}
