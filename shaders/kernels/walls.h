@@ -94,7 +94,8 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     // before the next rebuild and touch it there: keep it, or results would depend on the skin.
     bool near_face = abs(su) <= ws.p2.w + margin && abs(sv) <= ws.p3.w + margin;
     if (margin > 0.0f && near_face && h < r + margin && h > -r - margin) return true;
-    if (!(h > 0.0f)) return false;
+    // Edges touch from the front only, but a candidate behind the plane may come round the edge.
+    if (!(h > 0.0f) && !(margin > 0.0f)) return false;
     feature = (abs(su) > ws.p2.w && abs(sv) > ws.p3.w) ? kFeatureVertex : kFeatureEdge;
     precise float cu = min(max(su, -ws.p2.w), ws.p2.w);
     precise float cv = min(max(sv, -ws.p3.w), ws.p3.w);

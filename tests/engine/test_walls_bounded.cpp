@@ -301,7 +301,8 @@ TEST_CASE("rectangle and mesh walls in motion: lavapipe and the CPU twin give id
 
 // The neighbour list must hold every wall a sphere can touch before the next rebuild: a sphere
 // just beyond a rectangle's edge and behind its plane (where the edge test does not reach) that
-// slides over the face touches it there. With a wide skin the list is not rebuilt before that
+// slides over the face touches it there, and one behind the plane rising past the edge touches
+// the edge. With a wide skin the list is not rebuilt before that
 // happens, with a narrow one it is; the bytes must not differ (the list once lost this contact).
 // The same for a sphere behind a plane and just outside a cylinder.
 TEST_CASE("walls: a sphere behind a rectangle's plane sliding over its face, the same bytes for any skin", "[walls]") {
@@ -311,6 +312,10 @@ TEST_CASE("walls: a sphere behind a rectangle's plane sliding over its face, the
     if (wall == 0) {
       rig.rectangle({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0.1, 0.1);  // half extents 0.05
       rig.b.sphere({0.052, 0, -0.002}, R * 0.5, rig.grain, {-0.5, 0, 0});
+    } else if (wall == 1) {
+      // Beyond the edge and behind the plane, rising in front of it: an edge contact.
+      rig.rectangle({0, 0, 0}, {0, 0, 1}, {1, 0, 0}, 0.1, 0.1);
+      rig.b.sphere({0.053, 0, -0.001}, R * 0.5, rig.grain, {0, 0, 0.5});
     } else {
       WallSpec c;
       c.type = WallSpec::Type::Cylinder;
@@ -328,8 +333,8 @@ TEST_CASE("walls: a sphere behind a rectangle's plane sliding over its face, the
     sim->advance(3000);
     return sim->state();
   };
-  for (int wall : {0, 1}) {
-    INFO((wall == 0 ? "rectangle" : "cylinder"));
+  for (int wall : {0, 1, 2}) {
+    INFO((wall == 0 ? "rectangle face" : wall == 1 ? "rectangle edge" : "cylinder"));
     HostState narrow = run(0.0005, wall), wide = run(0.02, wall);
     CHECK(narrow.vel[0].x != -0.5f);  // it met the wall
     CHECK(same_bytes(narrow.pos, wide.pos));
