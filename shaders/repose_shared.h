@@ -70,8 +70,8 @@ namespace repose::gpu {
   X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */
 
 // Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
-// again). 16 slots of 4 bytes fit in torque_i's 16 bytes per contact while the list has room
-// for 4 contacts per particle (Simulation allocates at least that).
+// again). They share torque_i's binding, whose memory is the larger of the two views
+// (binding_bytes), so any list capacity has room for them.
 REPOSE_CONST kCandidateSlots = 16u;
 
 #define REPOSE_BINDING_CONSTANT(binding, Name, name, type, count, need, keep) REPOSE_CONST kBind##Name = binding;

@@ -355,8 +355,11 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   else
     for (const auto& p : m.pos) radius(double(p.w));
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
-  // moved a quarter of its radius.
-  m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : 0.5 * r_min;
+  // moved a quarter of its radius. With clumps twice the smallest radius: their rebuilds cost far
+  // more than the few candidates a wider skin adds (sub-spheres of one body never pair); the
+  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin.
+  double default_skin = (spec.bodies.empty() ? 0.5 : 2.0) * r_min;
+  m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : default_skin;
   double r_cell = r_max;
   choose_large_radius(m, r_cell);
   m.cell = 2 * r_cell + m.skin;

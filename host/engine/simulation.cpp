@@ -8,7 +8,7 @@
 namespace repose {
 
 Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
-                       uint32_t max_batch_steps)
+                       uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
   layout_.n_particles = model_.n_particles;
   layout_.n_walls = static_cast<uint32_t>(model_.walls.size());
@@ -38,7 +38,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   state_.trans_start.assign(model_.n_particles + 1, 0u);
   state_.bodies = model_.bodies;
   // Room for ~6 contacts per particle plus walls; grown on overflow.
-  allocate(6 * model_.n_particles + 4 * layout_.n_walls + 64);
+  allocate(first_capacity ? first_capacity : 6 * model_.n_particles + 4 * layout_.n_walls + 64);
   if (layout_.n_bodies) {
     backend_->execute(body_place_program(model_, layout_, variant_));
     backend_->download_state(state_);
@@ -50,14 +50,13 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   if (model_.integrator == Integrator::VelocityVerlet) {
     std::vector<gpu::WallState> w0;
     for (size_t w = 0; w < model_.walls.size(); ++w) w0.push_back(model_.wall_state(w, 0.0));
-    backend_->upload_walls(w0);
     for (int attempt = 0;; ++attempt) {
+      backend_->upload_walls(w0);  // again after a retry's allocate(), which zeroes every buffer
       backend_->execute(initial_forces_program(model_, layout_, variant_, 0));
       auto ctl = backend_->read_control();
       if (!ctl[gpu::kCtlOverflow]) break;
       if (attempt > 8) throw std::runtime_error("contact list keeps overflowing");
-      state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
-      allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+      grow(ctl[gpu::kCtlMaxContacts]);
     }
     backend_->download_state(state_);
   }
@@ -67,6 +66,14 @@ void Simulation::allocate(uint32_t capacity) {
   layout_.capacity = capacity;
   backend_->allocate(layout_, constants_);
   backend_->upload_state(state_);
+}
+
+// A list for `needed` contacts and some to spare, uploading state_ again. After an overflow
+// state_ must still be the state before the failed attempt (its control words included: the
+// attempt's largest list, reached after contacts went missing, is no state of the run), so the
+// redone evaluation starts where an ample list's would.
+void Simulation::grow(uint32_t needed) {
+  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
 }
 
 // Walls of the coming steps: velocity Verlet evaluates forces at the end of a step, symplectic
@@ -104,8 +111,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     if (ctl[gpu::kCtlOverflow]) {
       // Redo the batch from its start with a larger list: nothing of it is kept.
       ++retries_;
-      state_.control[gpu::kCtlMaxContacts] = ctl[gpu::kCtlMaxContacts];
-      allocate(ctl[gpu::kCtlMaxContacts] + ctl[gpu::kCtlMaxContacts] / 4 + 64);
+      grow(ctl[gpu::kCtlMaxContacts]);
       profile_.wall_seconds += since(t0);
       continue;
     }
@@ -150,8 +156,7 @@ void Simulation::restore(const HostState& s, uint64_t step) {
   state_.control[gpu::kCtlArgsContacts] = (contacts + variant_.workgroup - 1) / variant_.workgroup;
   state_.control[gpu::kCtlArgsContacts + 1] = 1;
   state_.control[gpu::kCtlArgsContacts + 2] = 1;
-  uint32_t needed = std::max(contacts, state_.control[gpu::kCtlMaxContacts]);
-  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
+  grow(std::max(contacts, state_.control[gpu::kCtlMaxContacts]));
   step_ = step;
 }
 

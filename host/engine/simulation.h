@@ -30,8 +30,10 @@ EnergySummary kinetic_energy(const HostState& state);
 
 class Simulation {
  public:
+  // first_capacity: contact-list entries to start with (0: room for ~6 contacts per particle);
+  // the list grows on overflow, so it only changes how often that happens, never the results.
   Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant = {},
-             uint32_t max_batch_steps = 200);
+             uint32_t max_batch_steps = 200, uint32_t first_capacity = 0);
 
   // Runs `steps` more steps; `on_batch` (optional) is called after every batch.
   void advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch = {});
@@ -67,6 +69,7 @@ class Simulation {
 
  private:
   void allocate(uint32_t capacity);
+  void grow(uint32_t needed);
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
   Model model_;

@@ -81,7 +81,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     precise float dist = dot3(rel, dir);
     n = dir;
     overlap = r - dist;
-    return dist < r + margin && dist > -r;
+    return dist < r + margin && dist > -r - margin;
   }
   if (wall_kind_possible(kWallRectangle) && type == kWallRectangle) {
     // One-sided like a plane inside the rectangle; beyond it the nearest boundary point (edge or
@@ -92,9 +92,14 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
     if (abs(su) <= ws.p2.w && abs(sv) <= ws.p3.w) {
       n = dir;
       overlap = r - h;
-      return h < r + margin && h > -r;
+      return h < r + margin && h > -r - margin;
     }
-    if (!(h > 0.0f)) return false;
+    // A candidate (margin > 0) just beyond the edge but behind the plane can move over the face
+    // before the next rebuild and touch it there: keep it, or results would depend on the skin.
+    bool near_face = abs(su) <= ws.p2.w + margin && abs(sv) <= ws.p3.w + margin;
+    if (margin > 0.0f && near_face && h < r + margin && h > -r - margin) return true;
+    // Edges touch from the front only, but a candidate behind the plane may come round the edge.
+    if (!(h > 0.0f) && !(margin > 0.0f)) return false;
     feature = (abs(su) > ws.p2.w && abs(sv) > ws.p3.w) ? kFeatureVertex : kFeatureEdge;
     precise float cu = min(max(su, -ws.p2.w), ws.p2.w);
     precise float cv = min(max(sv, -ws.p3.w), ws.p3.w);
@@ -119,7 +124,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
   if (s < -margin || s > ws.vel.w + margin) return false;
   precise vec3 q = rel - scale3(dir, s);
   precise float d = length3(q);
-  if (!(d > 0.0f) || !(d < ws.p1.w)) return false;
+  if (!(d > 0.0f) || !(d < ws.p1.w + margin)) return false;  // a candidate may move inside
   precise float inv_d = -1.0f / d;
   n = scale3(q, inv_d);
   overlap = r + d - ws.p1.w;
