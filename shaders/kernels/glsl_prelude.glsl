@@ -31,4 +31,7 @@ SimPush pc_specialised() {
   return p;
 }
 #define PC pc_specialised()
+// False when the run has no wall of this kind: lavapipe then compiles the kind's code out
+// instead of running it under a lane mask. The twin's is always true (kernels_ref/twin_kernels.h).
+bool wall_kind_possible(uint kind) { return (PC.absent_wall_kinds & (1u << kind)) == 0u; }
 #endif

@@ -3,10 +3,6 @@
 #ifndef REPOSE_KERNELS_WALLS_H
 #define REPOSE_KERNELS_WALLS_H
 
-// False when the run has no wall of this kind (PC.absent_wall_kinds): lavapipe then compiles
-// the kind's code out instead of running it under a lane mask (docs/engineering.md).
-bool wall_kind_possible(uint kind) { return (PC.absent_wall_kinds & (1u << kind)) == 0u; }
-
 // Closest point to p on triangle (a, b, c) and its feature (kFeatureFace/Edge/Vertex): Ericson,
 // Real-Time Collision Detection 5.1.5, the float twin of host/geometry/closest_point.cpp.
 vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
