@@ -30,9 +30,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "--variant rows,lean,wg=128,rebuild=20" -> KernelVariant; throws on anything else.
-KernelVariant parse_variant(const std::string& text) { return KernelVariant::parse(text); }
-
 int run_devices(int argc, char** argv) {
   CLI::App app{"List the Vulkan devices, and the backend `repose run` and the experiments use by default, and why."};
   CLI11_PARSE(app, argc, argv);
@@ -148,9 +145,8 @@ size_t touching_contacts(const HostState& s) {
 
 // One backend and variant on the settled model: speed, list size and memory, then where the
 // time goes (every kernel timed over the same number of steps).
-void bench_one(const Model& model, const std::string& backend, const std::string& variant_text, int device,
-               unsigned threads, uint32_t steps) {
-  KernelVariant v = parse_variant(variant_text);
+void bench_one(const Model& model, const std::string& backend, const KernelVariant& v, int device, unsigned threads,
+               uint32_t steps) {
   Simulation sim(model, make_backend(backend, device, threads, v.workgroup), v, 50);
   sim.advance(50);  // warm up: list built, caches hot
   uint32_t rebuilds_before = sim.rebuilds();
@@ -183,7 +179,7 @@ int run_bench(int argc, char** argv) {
   CLI::App app{"Benchmark a settled bed of 10 mm spheres on each backend and kernel variant."};
   uint32_t n = 50000;
   std::vector<std::string> backends{"cpu", "vulkan"};
-  std::vector<std::string> variants{"contact"};
+  std::vector<std::string> variants;
   unsigned threads = 0;
   int device = -1;
   uint32_t steps = 200;
@@ -194,7 +190,8 @@ int run_bench(int argc, char** argv) {
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
   app.add_option("--device", device, "Vulkan device index");
-  app.add_option("--variant", variants, "kernel variants to compare, e.g. contact rows,wg=128");
+  app.add_option("--variant", variants,
+                 "kernel variants to compare, e.g. contact rows,wg=128 (default: what `repose run` uses on each backend)");
   app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
   app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.6)");
   app.add_option("--skin", skin, "neighbour skin (m; default the case's): results do not depend on it");
@@ -204,6 +201,13 @@ int run_bench(int argc, char** argv) {
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
   CLI11_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_contact_lanes(false);
+  for (const auto& vt : variants) {
+    try {
+      KernelVariant::parse(vt);
+    } catch (const std::invalid_argument& e) {
+      return usage_error(std::string("--variant: ") + e.what());
+    }
+  }
 
   bool own_case = !case_path.empty();
   CaseSpec spec;
@@ -227,8 +231,10 @@ int run_bench(int argc, char** argv) {
   // figure to compare on a shared machine.
   std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
               "contacts", "touching", "B/particle", "B/contact", "rebuilds", "cpu s");
-  for (const auto& b : backends)
-    for (const auto& vt : variants) bench_one(model, b, vt, device, threads, steps);
+  for (const auto& b : backends) {
+    if (variants.empty()) bench_one(model, b, KernelVariant::fastest_for(b, model), device, threads, steps);
+    for (const auto& vt : variants) bench_one(model, b, KernelVariant::parse(vt), device, threads, steps);
+  }
   return 0;
 }
 

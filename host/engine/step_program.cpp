@@ -45,6 +45,12 @@ KernelVariant KernelVariant::parse(const std::string& text) {
   return v;
 }
 
+KernelVariant KernelVariant::fastest_for(const std::string& backend, const Model& m) {
+  KernelVariant v;
+  v.lean = backend == "vulkan" && (m.flags & (gpu::kFlagRollingSpring | gpu::kFlagSpinningFriction)) == 0u;
+  return v;
+}
+
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) {
   gpu::SimPush p{};
   p.n_particles = l.n_particles;

@@ -20,6 +20,11 @@ struct KernelVariant {
   std::string name() const;
   // "rows,lean,wg=128,rebuild=20" -> variant; throws std::invalid_argument on anything else.
   static KernelVariant parse(const std::string& text);
+  // What a run on `backend` ("vulkan" or "cpu") uses when the user names no variant: lean
+  // entries on Vulkan (lavapipe runs them faster: less to load per contact), unless the model
+  // stores torques per contact (EPSD rolling springs, spinning friction need full entries);
+  // the cpu backend's contact lanes write full ones.
+  static KernelVariant fastest_for(const std::string& backend, const Model& m);
 };
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);

@@ -94,7 +94,7 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
   Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 {}, frame_steps);
+                 KernelVariant::fastest_for(options.backend, model), frame_steps);
   auto height = [&](const HostState& s) {
     double low = 1e300;
     for (size_t i = 0; i < s.pos.size(); ++i)

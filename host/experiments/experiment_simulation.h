@@ -19,7 +19,7 @@ inline uint64_t steps_in(double seconds, double dt) {
 inline Simulation experiment_simulation(const Model& model, const ExperimentRunOptions& options,
                                         uint64_t sample_steps, uint64_t max_batch) {
   return Simulation(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                    {}, uint32_t(std::min(sample_steps, max_batch)));
+                    KernelVariant::fastest_for(options.backend, model), uint32_t(std::min(sample_steps, max_batch)));
 }
 
 }  // namespace repose

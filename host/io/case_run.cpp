@@ -168,12 +168,8 @@ int finish_run(const Simulation& sim, RunOutput& output, RunInfo& info, const Ca
 
 int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
   // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
-  // EPSD rolling springs and spinning friction need the full entry (torques stored per contact).
-  std::string variant_text = o.variant;
-  if (variant_text.empty())
-    variant_text = o.backend == "vulkan" && !needs_full_contact_entries(spec) ? "contact,lean" : "contact";
-  KernelVariant variant = KernelVariant::parse(variant_text);
   Model model = build_model(spec);
+  KernelVariant variant = o.variant.empty() ? KernelVariant::fastest_for(o.backend, model) : KernelVariant::parse(o.variant);
   StartPoint start = read_restart(o.restart, model);
   Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
 

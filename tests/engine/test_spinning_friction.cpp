@@ -202,7 +202,7 @@ TEST_CASE("spinning friction 0 (the default) leaves the bytes unchanged", "[engi
   }
 }
 
-TEST_CASE("spinning_friction case key: read per interaction, negative named by file and line", "[case]") {
+TEST_CASE("spinning_friction case key: read per interaction, negative named by file and line, and runs keep full contact entries", "[case]") {
   std::string base = R"([simulation]
 end_time = 0.1
 rayleigh_fraction = 0.2
@@ -226,6 +226,10 @@ preset = ["cabbage", "cabbage"]
   CaseSpec plain = load_case_from_string(base, "cases/spin.toml");
   CHECK(plain.interactions.at(0).spinning_friction == 0.0);
   CHECK_FALSE(needs_full_contact_entries(plain));
+  // The default variant: lean on Vulkan unless torques are stored per contact; never on cpu.
+  CHECK_FALSE(KernelVariant::fastest_for("vulkan", build_model(spec)).lean);
+  CHECK(KernelVariant::fastest_for("vulkan", build_model(plain)).lean);
+  CHECK_FALSE(KernelVariant::fastest_for("cpu", build_model(plain)).lean);
   CHECK_THROWS_WITH(load_case_from_string(base + "spinning_friction = -0.1\n", "cases/spin.toml"),
                     Catch::Matchers::StartsWith("cases/spin.toml:16: interaction[0].spinning_friction: "));
 }
