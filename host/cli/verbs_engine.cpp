@@ -201,12 +201,11 @@ int run_bench(int argc, char** argv) {
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
   CLI11_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_contact_lanes(false);
-  for (const auto& vt : variants) {
-    try {
-      KernelVariant::parse(vt);
-    } catch (const std::invalid_argument& e) {
-      return usage_error(std::string("--variant: ") + e.what());
-    }
+  std::vector<KernelVariant> named;  // checked before a bed is settled
+  try {
+    for (const auto& vt : variants) named.push_back(KernelVariant::parse(vt));
+  } catch (const std::invalid_argument& e) {
+    return usage_error(std::string("--variant: ") + e.what());
   }
 
   bool own_case = !case_path.empty();
@@ -232,8 +231,8 @@ int run_bench(int argc, char** argv) {
   std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
               "contacts", "touching", "B/particle", "B/contact", "rebuilds", "cpu s");
   for (const auto& b : backends) {
-    if (variants.empty()) bench_one(model, b, KernelVariant::fastest_for(b, model), device, threads, steps);
-    for (const auto& vt : variants) bench_one(model, b, KernelVariant::parse(vt), device, threads, steps);
+    if (named.empty()) bench_one(model, b, KernelVariant::fastest_for(b, model), device, threads, steps);
+    for (const auto& v : named) bench_one(model, b, v, device, threads, steps);
   }
   return 0;
 }
