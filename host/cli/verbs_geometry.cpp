@@ -21,6 +21,7 @@
 #include "geometry/templates.h"
 #include "measure/bed_height.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_json.h"
 #include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
@@ -212,72 +213,12 @@ int run_stl(int argc, char** argv) {
 }
 
 // ---------------------------------------------------------------------------------------
-Json slope_json(const SlopeFit& f) {
-  Json j;
-  j["valid"] = f.valid;
-  if (f.valid) {
-    j["angle_deg"] = f.angle_deg;
-    j["slope"] = f.line.slope;
-    j["intercept"] = f.line.intercept;
-    j["r_squared"] = f.line.r_squared;
-    j["points"] = f.line.points;
-    j["from"] = f.from;
-    j["to"] = f.to;
-  } else {
-    j["problem"] = f.problem;
-  }
-  return j;
-}
-
 std::string slope_text(const SlopeFit& f, const char* coordinate) {
   char buf[256];
   if (!f.valid) return "not measured: " + f.problem;
   std::snprintf(buf, sizeof buf, "%7.3f deg  (%zu points, %s from %.4g to %.4g m, R^2 %.4f)", f.angle_deg,
                 f.line.points, coordinate, f.from, f.to, f.line.r_squared);
   return buf;
-}
-
-Json views_json(const HeapViewsAngle& around) {
-  Json j;
-  j["centre_x"] = around.centre.x;
-  j["centre_y"] = around.centre.y;
-  j["valid_slopes"] = around.valid_slopes;
-  j["mean_deg"] = around.mean_deg;
-  j["sd_deg"] = around.sd_deg;
-  j["per_view"] = Json::array();
-  for (size_t k = 0; k < around.azimuth_deg.size(); ++k)
-    j["per_view"].push_back(
-        {{"azimuth_deg", around.azimuth_deg[k]}, {"left_deg", around.left_deg[k]}, {"right_deg", around.right_deg[k]}});
-  return j;
-}
-
-Json sectors_json(const AxisymmetricHeapAngle& a) {
-  Json j;
-  j["centre_x"] = a.centre.x;
-  j["centre_y"] = a.centre.y;
-  j["valid_sectors"] = a.valid_sectors;
-  j["mean_deg"] = a.mean_deg;
-  j["spread_deg"] = a.spread_deg;
-  j["min_deg"] = a.min_deg;
-  j["max_deg"] = a.max_deg;
-  j["sectors"] = Json::array();
-  for (const SectorFit& s : a.sectors)
-    j["sectors"].push_back({{"from_deg", s.from_deg}, {"to_deg", s.to_deg}, {"fit", slope_json(s.fit)}});
-  return j;
-}
-
-Json profile_json(const SlopeProfile& p) {
-  Json j;
-  j["runout"] = p.runout;
-  j["toe"] = p.toe;
-  j["valid"] = p.valid;
-  if (p.valid) {
-    j["convexity"] = p.convexity;
-    j["points"] = p.points;
-  } else {
-    j["problem"] = p.problem;
-  }
-  return j;
 }
 
 std::string profile_text(const SlopeProfile& p, const char* coordinate) {
@@ -358,7 +299,7 @@ Json heap_angle_json(const HeapAngleRun& r) {
   j["right_profile"] = profile_json(r.profile.right);
   if (r.bed) j["bed_height"] = *r.bed;
   if (r.around) j["views"] = views_json(*r.around);
-  if (r.axisymmetric) j["axisymmetric"] = sectors_json(*r.axisymmetric);
+  if (r.axisymmetric) j["axisymmetric"] = axisymmetric_json(*r.axisymmetric);
   j["provenance"] = version_json();
   j["provenance"]["input_fnv1a"] = file_fnv1a(r.file);
   return j;

@@ -15,6 +15,7 @@
 #include "experiments/body_frame.h"
 #include "experiments/heap_fill.h"
 #include "measure/bed_height.h"
+#include "measure/heap_json.h"
 #include "measure/heap_png.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
@@ -229,62 +230,6 @@ void read_repose_keys(const Section& s, ExperimentSpec& ex) {
 // The registered experiment.
 
 namespace {
-
-OrderedJson slope_json(const SlopeFit& s) {
-  OrderedJson j;
-  j["valid"] = s.valid;
-  if (s.valid) {
-    j["angle_deg"] = s.angle_deg;
-    j["from"] = s.from;
-    j["to"] = s.to;
-  } else {
-    j["problem"] = s.problem;
-  }
-  return j;
-}
-
-OrderedJson profile_json(const SlopeProfile& p) {
-  OrderedJson j;
-  j["runout"] = p.runout;
-  j["toe"] = p.toe;
-  j["convexity"] = p.valid ? OrderedJson(p.convexity) : OrderedJson(nullptr);
-  if (!p.valid) j["problem"] = p.problem;
-  return j;
-}
-
-OrderedJson views_json(const HeapViewsAngle& views) {
-  OrderedJson v;
-  v["mean_deg"] = views.mean_deg;
-  v["sd_deg"] = views.sd_deg;
-  v["valid_slopes"] = views.valid_slopes;
-  v["centre"] = {views.centre.x, views.centre.y};
-  OrderedJson per = OrderedJson::array();
-  auto angle = [](double a) { return std::isfinite(a) ? OrderedJson(a) : OrderedJson(nullptr); };
-  for (size_t k = 0; k < views.azimuth_deg.size(); ++k)
-    per.push_back({{"azimuth_deg", views.azimuth_deg[k]}, {"left_deg", angle(views.left_deg[k])},
-                   {"right_deg", angle(views.right_deg[k])}});
-  v["per_view"] = per;
-  return v;
-}
-
-OrderedJson axisymmetric_json(const AxisymmetricHeapAngle& heap) {
-  OrderedJson a;
-  a["mean_deg"] = heap.mean_deg;
-  a["spread_deg"] = heap.spread_deg;
-  a["min_deg"] = heap.min_deg;
-  a["max_deg"] = heap.max_deg;
-  a["valid_sectors"] = heap.valid_sectors;
-  a["centre"] = {heap.centre.x, heap.centre.y};
-  OrderedJson sectors = OrderedJson::array();
-  for (const auto& s : heap.sectors) {
-    OrderedJson e = slope_json(s.fit);
-    e["from_deg"] = s.from_deg;
-    e["to_deg"] = s.to_deg;
-    sectors.push_back(e);
-  }
-  a["sectors"] = sectors;
-  return a;
-}
 
 OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   OrderedJson j;
