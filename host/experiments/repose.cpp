@@ -52,10 +52,11 @@ double bed_height(const HostState& st, const std::optional<double>& floor) {
 
 }  // namespace
 
-ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled,
-                        bool require_slope) {
+namespace {
+
+// When the lifted wall stops: [experiment] lift_end, else the end of its motion; before max_time.
+double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
   const ExperimentSpec& ex = spec.experiment;
-  const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
   if (!(lift_end < 1e29))
     throw std::runtime_error(spec.path + ": [experiment] lift_end is needed: the wall '" + lift.name +
@@ -63,23 +64,23 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
   if (lift_end >= ex.max_time)
     throw std::runtime_error(spec.path + ": [experiment] max_time must exceed the end of the lift (" +
                              std::to_string(lift_end) + " s)");
+  return lift_end;
+}
 
-  Model model = build_model(spec);
-  uint64_t sample_steps = steps_in(0.05, model.dt);
-  uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
-  Simulation sim = experiment_simulation(model, options, sample_steps, 200);
-  sim.set_profiling(options.profile);
-  Progress progress(spec.name + " repose", total_steps, model.dt, options.progress);
-
+// Fill, lift and run-out, sampled every 0.05 s, until the lift is over (or the lifted wall clear
+// of the heap twice running) and no particle is faster than settle_energy; the bed height when
+// the lift starts, energies, wall forces and the time per phase go into r.
+void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options, const WallSpec& lift,
+                       bool measure_unsettled, Simulation& sim, ReposeResult& r) {
+  const ExperimentSpec& ex = spec.experiment;
+  double lift_end = lift_end_of(spec, lift);
+  uint64_t sample_steps = steps_in(0.05, r.dt);
+  Progress progress(spec.name + " repose", uint64_t(ex.max_time / r.dt) + 1, r.dt, options.progress);
   // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
-  auto names = model.wall_group_names();
+  auto names = sim.model().wall_group_names();
   size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
-  bool clear_before = false;
-
-  ReposeResult r;
+  bool clear_before = false, bed_measured = false;
   r.phases = {{"fill", {}}, {"lift", {}}, {"run-out", {}}};
-  r.dt = model.dt;
-  bool bed_measured = false;
   while (true) {
     auto sample_start = std::chrono::steady_clock::now();
     size_t phase = sim.time() < lift.motion.start_time - 1e-9 ? 0 : sim.time() < lift_end - 1e-9 ? 1 : 2;
@@ -93,65 +94,61 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "max E " + std::to_string(e).substr(0, 8) + " J");
     RunProfile sample = sim.take_profile();
-    sample.wall_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
+    sample.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
     r.phases[phase].second.add(sample);
     const WallForce& f = r.wall_forces.rows.back().at(lift_group);
     bool clear = sim.time() > lift.motion.start_time && f.fx == 0 && f.fy == 0 && f.fz == 0;
     bool lift_over = sim.time() >= lift_end || (ex.end_when_clear && clear && clear_before);
     clear_before = clear;
-    if (lift_over && e < ex.settle_energy) {
+    bool out_of_time = sim.time() >= ex.max_time;
+    if ((lift_over && e < ex.settle_energy) || (out_of_time && measure_unsettled)) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
+      r.settled = !out_of_time || (lift_over && e < ex.settle_energy);
       break;
     }
-    if (sim.time() >= ex.max_time && measure_unsettled) {
-      r.settle_time = sim.time();
-      r.kinetic_energy = e;
-      r.settled = false;
-      break;
-    }
-    if (sim.time() >= ex.max_time)
+    if (out_of_time)
       throw std::runtime_error(spec.path + ": the heap had not settled (largest kinetic energy " + std::to_string(e) +
                                " J of a particle, settle_energy " + std::to_string(ex.settle_energy) +
                                ") by max_time = " + std::to_string(ex.max_time) + " s");
   }
   progress.finish();
+}
 
-  // The heap: particles whose bottom is not below the heap floor (those that fell off a plate or
-  // out of a bucket are not in the picture).
+// The heap's particles: those whose bottom is not below the heap floor (those that fell off a
+// plate or out of a bucket are not in the picture). Returns the floor used.
+double collect_heap(const CaseSpec& spec, const HostState& state, ReposeResult& r) {
   double lowest = std::numeric_limits<double>::infinity();
-  for (const auto& p : sim.state().pos) lowest = std::min(lowest, double(p.z) - p.w);
-  double floor_z = ex.heap_floor_z.value_or(lowest);
-  for (const auto& p : sim.state().pos)
+  for (const auto& p : state.pos) lowest = std::min(lowest, double(p.z) - p.w);
+  double floor_z = spec.experiment.heap_floor_z.value_or(lowest);
+  for (const auto& p : state.pos)
     if (double(p.z) - p.w >= floor_z - 0.5 * p.w) r.spheres.push_back({{p.x, p.y, p.z}, p.w});
   r.particles_measured = r.spheres.size();
   if (r.spheres.empty()) throw std::runtime_error(spec.path + ": no particle is left above the heap floor");
+  return floor_z;
+}
 
+// The studies' picture measurement of r.spheres: the slope on [experiment] heap_side (or both),
+// around the heap in `views` views, and the 3D sector fit. No slope: an error, or (require_slope
+// off) a result with angle 0 that says why.
+void measure_heap(const CaseSpec& spec, double floor_z, bool require_slope, ReposeResult& r) {
+  const ExperimentSpec& ex = spec.experiment;
   HeapAngleOptions opts;
   opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
   opts.floor_z = floor_z;
   r.heap = measure_heap_angle(r.spheres, opts);
   r.profile = measure_heap_profile(r.heap);
-  // No slope: an error, or (require_slope off) a result with angle 0.
   auto no_slope = [&](const std::string& problem) {
     if (require_slope) throw std::runtime_error(spec.path + ": " + problem);
     r.sloped = false;
     r.problem = spec.path + ": " + problem;
     r.angle_deg = 0;
-    return r;
   };
-  if (ex.heap_side == "left") {
-    if (!r.heap.left.valid) return no_slope("no left slope: " + r.heap.left.problem);
-    r.angle_deg = r.heap.left.angle_deg;
-  } else if (ex.heap_side == "right") {
-    if (!r.heap.right.valid) return no_slope("no right slope: " + r.heap.right.problem);
-    r.angle_deg = r.heap.right.angle_deg;
-  } else {
-    if (!r.heap.left.valid && !r.heap.right.valid)
-      return no_slope("the heap has no measurable slope (" + r.heap.left.problem + ")");
-    r.angle_deg = r.heap.mean_deg;
-  }
+  const SlopeFit* side = ex.heap_side == "left" ? &r.heap.left : ex.heap_side == "right" ? &r.heap.right : nullptr;
+  if (side && !side->valid) return no_slope("no " + ex.heap_side + " slope: " + side->problem);
+  if (!side && !r.heap.left.valid && !r.heap.right.valid)
+    return no_slope("the heap has no measurable slope (" + r.heap.left.problem + ")");
+  r.angle_deg = side ? side->angle_deg : r.heap.mean_deg;
   if (ex.views > 1) {
     r.views = measure_heap_angle_views(r.spheres, ex.views, opts);
     if (r.views->valid_slopes == 0) return no_slope("no view of the heap shows a measurable slope");
@@ -162,6 +159,22 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
     a.floor_z = floor_z;
     r.heap_3d = measure_axisymmetric_heap_angle(r.spheres, a);
   }
+}
+
+}  // namespace
+
+ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled,
+                        bool require_slope) {
+  const WallSpec& lift = spec.walls.at(find_wall(spec, spec.experiment.lift_wall, "lifted wall"));
+  lift_end_of(spec, lift);  // a case error before anything is built
+  Model model = build_model(spec);
+  Simulation sim = experiment_simulation(model, options, steps_in(0.05, model.dt), 200);
+  sim.set_profiling(options.profile);
+  ReposeResult r;
+  r.dt = model.dt;
+  run_until_settled(spec, options, lift, measure_unsettled, sim, r);
+  double floor_z = collect_heap(spec, sim.state(), r);
+  measure_heap(spec, floor_z, require_slope, r);
   return r;
 }
 
