@@ -16,93 +16,121 @@
 
 namespace repose {
 
-TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
-  CaseSpec spec = input;
+namespace {
+
+// The plate's motion replaced by the tilt: about tilt_axis through its point at tilt_rate after
+// settle_time, up to max_angle. Returns the plate.
+const WallSpec& set_tilt(CaseSpec& spec) {
   const ExperimentSpec& ex = spec.experiment;
-  size_t plate_index = find_wall(spec, ex.plate, "tilting plate");
-  WallSpec& plate = spec.walls[plate_index];
+  WallSpec& plate = spec.walls[find_wall(spec, ex.plate, "tilting plate")];
   if (plate.type != WallSpec::Type::Rectangle && plate.type != WallSpec::Type::Plane)
     throw std::runtime_error(spec.path + ": the tilting plate '" + plate.name + "' must be a rectangle or a plane");
   double rate = ex.tilt_rate_deg * kPi / 180.0;
-  Vec3d pivot = plate.point;
   plate.motion = WallMotion{};
-  plate.motion.rotation_axis_point = pivot;
+  plate.motion.rotation_axis_point = plate.point;
   plate.motion.rotation_axis = ex.tilt_axis;
   plate.motion.angular_rate = rate;
   plate.motion.start_time = ex.settle_time;
   plate.motion.stop_time = ex.settle_time + ex.max_angle_deg * kPi / 180.0 / rate;
+  return plate;
+}
 
+// The body on the tilting plate, sample by sample: its displacement along the plate, relative
+// to the plate (rotated back by the tilt so far, exactly, in double), and its turn since the
+// tilt began (w dt summed: rocking cancels).
+struct TiltTracker {
+  const ExperimentSpec& ex;
+  Vec3d pivot, up;
+  double rate, rolling_radius = 0;
+  Vec3d start{0, 0, 0}, turned{0, 0, 0};
+
+  TiltTracker(const ExperimentSpec& e, const WallSpec& plate, const HostState& at_rest, double time)
+      : ex(e), pivot(plate.point), up(plate.normal), rate(plate.motion.angular_rate) {
+    start = in_plate_frame(body_centre(at_rest), time);
+    // The rolling radius: the lowest point of the body below its centre at rest.
+    Vec3d c = body_centre(at_rest);
+    for (const auto& p : at_rest.pos) rolling_radius = std::max(rolling_radius, dot(sub(c, {p.x, p.y, p.z}), up) + p.w);
+  }
+  double tilt(double t) const { return rate * std::max(0.0, t - ex.settle_time); }
+  Vec3d in_plate_frame(Vec3d x, double t) const { return rotate_about(sub(x, pivot), ex.tilt_axis, -tilt(t)); }
+
+  TiltSample sample(const HostState& s, double t, uint64_t steps, double dt) {
+    Vec3d w = first_body_spin(s);
+    for (int k = 0; k < 3; ++k) turned[k] += w[k] * double(steps) * dt;
+    // Along the plate only: the body still sinks into the plate (Hertz) while it settles.
+    Vec3d moved = sub(in_plate_frame(body_centre(s), t), start);
+    double sink = dot(moved, up);
+    Vec3d along = {moved[0] - sink * up[0], moved[1] - sink * up[1], moved[2] - sink * up[2]};
+    return {t, rate * (t - ex.settle_time) * 180 / kPi, std::sqrt(dot(along, along))};
+  }
+  // The body's own turn (the plate turned it with it) x rolling radius / displacement.
+  double rolled_fraction(const TiltSample& s) const {
+    double a = tilt(s.time);
+    Vec3d own = {turned[0] - a * ex.tilt_axis[0], turned[1] - a * ex.tilt_axis[1], turned[2] - a * ex.tilt_axis[2]};
+    return std::sqrt(dot(own, own)) * rolling_radius / s.displacement;
+  }
+};
+
+// Where the onset criterion was met between samples a and b: the displacement crossing its
+// threshold, or the speed (an interval's mean, taken at its middle) crossing its; a fraction of
+// the interval.
+double onset_fraction(const ExperimentSpec& ex, const TiltSample& a, const TiltSample& b, double speed_a, double speed_b) {
+  if (ex.onset_speed > 0) return std::clamp((ex.onset_speed - speed_a) / (speed_b - speed_a), 0.0, 1.0) - 0.5;
+  return (ex.onset_distance - a.displacement) / (b.displacement - a.displacement);
+}
+
+std::string no_motion_message(const CaseSpec& spec, double angle_deg) {
+  const ExperimentSpec& ex = spec.experiment;
+  return spec.path + ": the body did not move by " +
+         (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
+                             : std::to_string(ex.onset_distance) + " m") +
+         " up to a tilt of " + std::to_string(angle_deg) + " degrees (max_angle, max_time)";
+}
+
+}  // namespace
+
+TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
+  CaseSpec spec = input;
+  const ExperimentSpec& ex = spec.experiment;
+  const WallSpec& plate = set_tilt(spec);
+  double rate = plate.motion.angular_rate;
   Model model = build_model(spec);
   double sample_dt = std::min(0.01, 0.05 * kPi / 180.0 / rate);  // every 0.05 degrees at most
   uint64_t sample_steps = steps_in(sample_dt, model.dt);
   double end_time = std::min(ex.max_time, plate.motion.stop_time);
-  uint64_t total_steps = uint64_t(end_time / model.dt) + 1;
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
-  Progress progress(spec.name + " tilt", total_steps, model.dt, options.progress);
+  Progress progress(spec.name + " tilt", uint64_t(end_time / model.dt) + 1, model.dt, options.progress);
 
   TiltResult r;
-  auto settle_steps = uint64_t(std::llround(ex.settle_time / model.dt));
-  sim.advance(settle_steps);
-  // The body in the plate's frame: rotate back by the tilt so far (exact on the host, in double).
-  auto in_plate_frame = [&](Vec3d x, double t) {
-    double angle = rate * std::max(0.0, t - ex.settle_time);
-    return rotate_about(sub(x, pivot), ex.tilt_axis, -angle);
-  };
-  Vec3d start = in_plate_frame(body_centre(sim.state()), sim.time());
-  Vec3d turned{0, 0, 0};  // the first body's rotation since the tilt began (w dt summed: rocking cancels)
-  // Its rolling radius: the lowest point of the body below its centre at rest.
-  double rolling_radius = 0;
-  const Vec3d up = plate.normal;
-  {
-    Vec3d c = body_centre(sim.state());
-    for (const auto& p : sim.state().pos)
-      rolling_radius = std::max(rolling_radius, dot(sub(c, {p.x, p.y, p.z}), up) + p.w);
-  }
+  sim.advance(uint64_t(std::llround(ex.settle_time / model.dt)));
+  TiltTracker body(ex, plate, sim.state(), sim.time());
   TiltSample previous{sim.time(), 0, 0};
   double previous_speed = 0;
+  bool moved = false;
   r.trajectory.push_back(previous);
   r.wall_forces.sample(sim);
-  while (true) {
-    if (sim.time() >= end_time) {
-      if (require_motion)
-        throw std::runtime_error(spec.path + ": the body did not move by " +
-                                 (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
-                                                     : std::to_string(ex.onset_distance) + " m") +
-                                 " up to a tilt of " + std::to_string(rate * (sim.time() - ex.settle_time) * 180 / kPi) +
-                                 " degrees (max_angle, max_time)");
-      r.moved = false;
-      break;
-    }
+  while (sim.time() < end_time) {
     sim.advance(sample_steps);
-    Vec3d w = first_body_spin(sim.state());
-    for (int k = 0; k < 3; ++k) turned[k] += w[k] * double(sample_steps) * model.dt;
-    // Along the plate only: the body still sinks into the plate (Hertz) while it settles.
-    Vec3d moved = sub(in_plate_frame(body_centre(sim.state()), sim.time()), start);
-    double sink = dot(moved, up);
-    Vec3d along = {moved[0] - sink * up[0], moved[1] - sink * up[1], moved[2] - sink * up[2]};
-    TiltSample s{sim.time(), rate * (sim.time() - ex.settle_time) * 180 / kPi, std::sqrt(dot(along, along))};
+    TiltSample s = body.sample(sim.state(), sim.time(), sample_steps, model.dt);
     r.trajectory.push_back(s);
     r.wall_forces.sample(sim);
     progress.update(sim.step(), "tilt " + std::to_string(s.angle_deg).substr(0, 5) + " deg");
     // Speed relative to the plate over the last sample interval.
     double speed = (s.displacement - previous.displacement) / (s.time - previous.time);
-    bool moving = ex.onset_speed > 0 ? speed >= ex.onset_speed : s.displacement >= ex.onset_distance;
-    if (moving) {
-      // Where the criterion was met, between the two samples: the displacement crossing its
-      // threshold, or the speed (an interval's mean, taken at its middle) crossing its.
-      double f = ex.onset_speed > 0
-                     ? std::clamp((ex.onset_speed - previous_speed) / (speed - previous_speed), 0.0, 1.0) - 0.5
-                     : (ex.onset_distance - previous.displacement) / (s.displacement - previous.displacement);
+    if (ex.onset_speed > 0 ? speed >= ex.onset_speed : s.displacement >= ex.onset_distance) {
+      double f = onset_fraction(ex, previous, s, previous_speed, speed);
       r.onset_angle_deg = previous.angle_deg + f * (s.angle_deg - previous.angle_deg);
       r.onset_time = previous.time + f * (s.time - previous.time);
-      // Relative to the plate, which turned the body with it.
-      double tilt = rate * (sim.time() - ex.settle_time);
-      Vec3d own = {turned[0] - tilt * ex.tilt_axis[0], turned[1] - tilt * ex.tilt_axis[1], turned[2] - tilt * ex.tilt_axis[2]};
-      r.rolled_fraction = std::sqrt(dot(own, own)) * rolling_radius / s.displacement;
+      r.rolled_fraction = body.rolled_fraction(s);
+      moved = true;
       break;
     }
     previous = s;
     previous_speed = speed;
+  }
+  if (!moved) {
+    if (require_motion) throw std::runtime_error(no_motion_message(spec, rate * (sim.time() - ex.settle_time) * 180 / kPi));
+    r.moved = false;
   }
   progress.finish();
   r.tan_alpha = std::tan(r.onset_angle_deg * kPi / 180);
