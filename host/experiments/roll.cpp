@@ -17,16 +17,21 @@
 
 namespace repose {
 
-RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
-  CaseSpec spec = input;
-  const ExperimentSpec& ex = spec.experiment;
-  int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
-  double beta = ex.incline_deg * kPi / 180, S = ex.slope_distance;
-  double cb = std::cos(beta), sb = std::sin(beta);
-  Vec3d down = {cb, 0, -sb};    // along the incline, downhill
-  Vec3d normal = {sb, 0, cb};   // the incline's normal
+namespace {
 
-  // Body: lowest point (along the incline normal) on the incline, centre S uphill of the foot.
+// The incline of the roll rig: beta from the horizontal, falling towards +x.
+struct Incline {
+  double beta, S;
+  Vec3d down, normal;  // along the incline (downhill) and its normal
+  explicit Incline(const ExperimentSpec& ex)
+      : beta(ex.incline_deg * kPi / 180), S(ex.slope_distance),
+        down{std::cos(beta), 0, -std::sin(beta)}, normal{std::sin(beta), 0, std::cos(beta)} {}
+};
+
+// Moves the body so that its lowest point (along the incline's normal) rests on the incline with
+// its centre S uphill of the foot; returns its extent (largest distance of a surface from the
+// centre), which sizes the rig.
+double place_on_incline(CaseSpec& spec, const Incline& in) {
   auto spheres = case_spheres(spec);
   if (spheres.empty()) throw std::runtime_error(spec.path + ": a rolling test needs a body");
   Vec3d centre{0, 0, 0};
@@ -37,44 +42,48 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
   for (const auto& s : spheres) {
     double h = 0, d2 = 0;
     for (int k = 0; k < 3; ++k) {
-      h += (s.position[k] - centre[k]) * normal[k];
+      h += (s.position[k] - centre[k]) * in.normal[k];
       d2 += (s.position[k] - centre[k]) * (s.position[k] - centre[k]);
     }
     lowest = std::min(lowest, h - s.radius);
     extent = std::max(extent, std::sqrt(d2) + s.radius);
   }
   Vec3d shift;
-  for (int k = 0; k < 3; ++k) shift[k] = -centre[k] - S * down[k] - lowest * normal[k];
+  for (int k = 0; k < 3; ++k) shift[k] = -centre[k] - in.S * in.down[k] - lowest * in.normal[k];
   shift_to_rest(spec, shift);
+  return extent;
+}
 
-  // Rig: the incline (a rectangle from the foot up to beyond the release point) and the floor.
-  double length = S + 4 * extent, width = std::max(1.0, 20 * extent);
+// The rig's walls, of the plate's material: the incline (a rectangle from the foot up to beyond
+// the release point) and the floor.
+std::vector<WallSpec> incline_walls(const Incline& in, double extent, int material) {
+  double length = in.S + 4 * extent, width = std::max(1.0, 20 * extent);
   WallSpec incline;
   incline.type = WallSpec::Type::Rectangle;
   incline.name = "incline";
-  incline.material = plate_material;
-  incline.point = {-0.5 * length * down[0], 0, -0.5 * length * down[2]};
-  incline.normal = normal;
-  incline.edge_axis = down;
+  incline.material = material;
+  incline.point = {-0.5 * length * in.down[0], 0, -0.5 * length * in.down[2]};
+  incline.normal = in.normal;
+  incline.edge_axis = in.down;
   incline.size = {length, width};
   WallSpec floor;
   floor.type = WallSpec::Type::Plane;
   floor.name = "floor";
-  floor.material = plate_material;
+  floor.material = material;
   floor.point = {0, 0, 0};
   floor.normal = {0, 0, 1};
-  spec.walls = {incline, floor};
+  return {incline, floor};
+}
 
+// Samples every 5 ms until the body, past the foot (x > 0: the centre is above its contact
+// point on the floor), is slower than stop_speed or no longer moves forward (the constant
+// rolling torque rocks a stopped body back and forth by a hair).
+void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options, bool require_stop, RollResult& r) {
+  const ExperimentSpec& ex = spec.experiment;
   Model model = build_model(spec);
   uint64_t sample_steps = steps_in(0.005, model.dt);
-  uint64_t total_steps = uint64_t(ex.max_time / model.dt) + 1;
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
-  Progress progress(spec.name + " roll", total_steps, model.dt, options.progress);
-
-  RollResult r;
-  r.incline_deg = ex.incline_deg;
-  r.slope_distance = S;
-  // The centre is above the contact point on the floor; on the incline it is R sin(beta) ahead.
+  Progress progress(spec.name + " roll", uint64_t(ex.max_time / model.dt) + 1, model.dt, options.progress);
   bool on_floor = false;
   double previous_x = -1e300;
   while (true) {
@@ -96,8 +105,6 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
       on_floor = true;
       r.speed_at_foot = speed;
     }
-    // Stopped: slow enough, or no longer moving forward (the constant rolling torque rocks a
-    // stopped body back and forth by a hair).
     if (on_floor && (speed < ex.stop_speed || x <= previous_x)) {
       r.rolling_distance = std::max(x, previous_x);
       r.stop_time = sim.time();
@@ -106,7 +113,22 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
     previous_x = x;
   }
   progress.finish();
-  r.mu_r = S * std::sin(beta) / (S * std::cos(beta) + r.rolling_distance);
+}
+
+}  // namespace
+
+RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
+  CaseSpec spec = input;
+  const ExperimentSpec& ex = spec.experiment;
+  int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
+  Incline in(ex);
+  double extent = place_on_incline(spec, in);
+  spec.walls = incline_walls(in, extent, plate_material);
+  RollResult r;
+  r.incline_deg = ex.incline_deg;
+  r.slope_distance = in.S;
+  run_until_stopped(spec, options, require_stop, r);
+  r.mu_r = in.S * std::sin(in.beta) / (in.S * std::cos(in.beta) + r.rolling_distance);
   return r;
 }
 
