@@ -151,10 +151,6 @@ bool needs_spinning_friction(const CaseSpec& spec) {
                      [](const Interaction& in) { return in.spinning_friction > 0; });
 }
 
-bool needs_full_contact_entries(const CaseSpec& spec) {
-  return spec.contact.rolling == RollingModel::ElasticPlastic || needs_spinning_friction(spec);
-}
-
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in) {
   auto youngs = [](const Material& m) {
     return m.youngs_modulus > 0 ? m.youngs_modulus : 2 * m.shear_modulus * (1 + m.poisson);

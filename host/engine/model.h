@@ -73,8 +73,5 @@ Model build_model(const CaseSpec& spec);
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in);
 // Some interaction has spinning friction (kFlagSpinningFriction).
 bool needs_spinning_friction(const CaseSpec& spec);
-// The case stores per-contact torques the lean entry has no room for (EPSD rolling springs,
-// spinning friction): run the 'full' kernel variant.
-bool needs_full_contact_entries(const CaseSpec& spec);
 
 }  // namespace repose

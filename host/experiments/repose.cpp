@@ -71,9 +71,8 @@ double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
 // of the heap twice running) and no particle is faster than settle_energy; the bed height when
 // the lift starts, energies, wall forces and the time per phase go into r.
 void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options, const WallSpec& lift,
-                       bool measure_unsettled, Simulation& sim, ReposeResult& r) {
+                       double lift_end, bool measure_unsettled, Simulation& sim, ReposeResult& r) {
   const ExperimentSpec& ex = spec.experiment;
-  double lift_end = lift_end_of(spec, lift);
   uint64_t sample_steps = steps_in(0.05, r.dt);
   Progress progress(spec.name + " repose", uint64_t(ex.max_time / r.dt) + 1, r.dt, options.progress);
   // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
@@ -166,13 +165,13 @@ void measure_heap(const CaseSpec& spec, double floor_z, bool require_slope, Repo
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled,
                         bool require_slope) {
   const WallSpec& lift = spec.walls.at(find_wall(spec, spec.experiment.lift_wall, "lifted wall"));
-  lift_end_of(spec, lift);  // a case error before anything is built
+  double lift_end = lift_end_of(spec, lift);  // a case error before anything is built
   Model model = build_model(spec);
   Simulation sim = experiment_simulation(model, options, steps_in(0.05, model.dt), 200);
   sim.set_profiling(options.profile);
   ReposeResult r;
   r.dt = model.dt;
-  run_until_settled(spec, options, lift, measure_unsettled, sim, r);
+  run_until_settled(spec, options, lift, lift_end, measure_unsettled, sim, r);
   double floor_z = collect_heap(spec, sim.state(), r);
   measure_heap(spec, floor_z, require_slope, r);
   return r;
