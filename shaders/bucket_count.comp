@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_bucket_count(gl_GlobalInvocationID.x); }
+void main() { k_bucket_count(invocation_index()); }

@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_bucket_sort(gl_GlobalInvocationID.x); }
+void main() { k_bucket_sort(invocation_index()); }

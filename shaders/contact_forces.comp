@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_contact_forces(gl_GlobalInvocationID.x); }
+void main() { k_contact_forces(invocation_index()); }

@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_kick_drift(gl_GlobalInvocationID.x); }
+void main() { k_kick_drift(invocation_index()); }

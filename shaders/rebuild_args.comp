@@ -4,5 +4,5 @@
 #include "kernels/all.h"
 
 void main() {
-  if (gl_GlobalInvocationID.x == 0u) k_rebuild_args(0u);  // one invocation decides
+  if (invocation_index() == 0u) k_rebuild_args(0u);  // one invocation decides
 }

@@ -213,6 +213,7 @@ struct SimPush {
   float air_drag;      // extension air_drag: 0.5 rho_air C_d pi (x r^2 = drag per v^2), 0: off
   float rolling_damping;  // kFlagRollingSpring: eta_r, the rolling dashpot's fraction of critical
   uint absent_wall_kinds;  // bit k: no wall of kind k in the run (0: any may be present)
+  uint max_groups_x;  // workgroups per dispatch row: more go into rows along y (dispatch_rows)
 };
 
 struct ScanPush {
@@ -221,6 +222,18 @@ struct ScanPush {
   uint capacity;
   uint workgroup;
 };
+
+// Vulkan guarantees 65,535 workgroups along x (maxComputeWorkGroupCount[0]); some GPUs allow no
+// more. A dispatch of more groups runs as rows of at most max_groups_x along y; every kernel takes
+// its index from invocation_index() (kernels/glsl_prelude.glsl), which counts across the rows.
+REPOSE_CONST kMaxGroupsX = 65535u;
+#ifdef __cplusplus
+inline uint dispatch_rows(uint groups, uint max_x) { return groups == 0u ? 1u : (groups + max_x - 1u) / max_x; }
+inline uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups : max_x; }
+#else
+uint dispatch_rows(uint groups, uint max_x) { return groups == 0u ? 1u : (groups + max_x - 1u) / max_x; }
+uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups : max_x; }
+#endif
 
 #ifdef __cplusplus
 static_assert(sizeof(PairParams) == 48);

@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_save_old_contacts(gl_GlobalInvocationID.x); }
+void main() { k_save_old_contacts(invocation_index()); }

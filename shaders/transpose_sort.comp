@@ -3,4 +3,4 @@
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/all.h"
 
-void main() { k_transpose_sort(gl_GlobalInvocationID.x); }
+void main() { k_transpose_sort(invocation_index()); }

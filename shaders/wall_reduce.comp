@@ -10,7 +10,10 @@ shared float sum_y[kWallReduceWorkgroup];
 shared float sum_z[kWallReduceWorkgroup];
 
 void main() {
-  uint w = gl_WorkGroupID.x;
+  // One workgroup per wall, in rows of workgroups when there are many walls (dispatch_rows);
+  // a whole group past the last wall leaves together, before any barrier.
+  uint w = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
+  if (w >= PC.n_walls) return;
   uint t = gl_LocalInvocationID.x;
   uint partner = PC.n_particles + w;
   uint limit = B_control[kCtlContacts];

@@ -15,9 +15,10 @@ struct CliRun {
   std::string output;  // stdout and stderr
 };
 
-inline CliRun run_repose(const std::string& arguments, const std::string& cwd = "") {
-  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + std::string(REPOSE_BINARY) + " " +
-                              arguments + " 2>&1";
+// `environment`: assignments put before the command ("NAME=value "), or empty.
+inline CliRun run_repose_env(const std::string& environment, const std::string& arguments, const std::string& cwd = "") {
+  const std::string command = (cwd.empty() ? "" : "cd '" + cwd + "' && ") + environment + std::string(REPOSE_BINARY) +
+                              " " + arguments + " 2>&1";
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return {-1, "popen failed for: " + command};
   std::string output;
@@ -26,6 +27,10 @@ inline CliRun run_repose(const std::string& arguments, const std::string& cwd = 
   while ((n = fread(buffer, 1, sizeof buffer, pipe)) > 0) output.append(buffer, n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+inline CliRun run_repose(const std::string& arguments, const std::string& cwd = "") {
+  return run_repose_env("", arguments, cwd);
 }
 
 // Starts `repose ARGS...` in the background (stdout and stderr to `log`), for tests that signal

@@ -43,6 +43,7 @@ int run_devices(int argc, char** argv) {
     std::printf("%s [%u] %s (%s; %s; %.1f GiB device-local)\n", int(d.index) == chosen ? "*" : " ",
                 d.index, d.name.c_str(), d.type.c_str(), d.driver.c_str(),
                 d.device_local_bytes / 1073741824.0);
+  for (const auto& d : devices) std::printf("  [%u] limits: %s\n", d.index, d.limits_text().c_str());
   std::printf("* = the device of --backend vulkan (--device N chooses another)\n");
   BackendChoice c = choose_backend(devices);
   std::printf("default backend: %s%s: %s\n", c.backend.c_str(),

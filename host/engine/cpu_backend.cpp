@@ -56,7 +56,10 @@ void CpuBackend::upload_walls(const std::vector<gpu::WallState>& walls) { put(gp
 void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   for (const Dispatch& d : program) {
     auto t0 = std::chrono::steady_clock::now();
-    uint32_t groups = d.indirect_word >= 0 ? buf_.control[d.indirect_word] : d.groups;
+    // Indirect arguments hold rows of workgroups (gpu::dispatch_rows): x times y groups.
+    uint64_t groups = d.indirect_word >= 0
+                          ? uint64_t(buf_.control[d.indirect_word]) * buf_.control[d.indirect_word + 1]
+                          : d.groups;
     if (d.kernel == KernelId::Scan) {
       if (groups > 0) gpu::run_scan(buf_, d.scan);
     } else {

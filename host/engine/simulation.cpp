@@ -153,8 +153,9 @@ void Simulation::restore(const HostState& s, uint64_t step) {
   // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
   // early past the contact count, so only coverage matters).
   uint32_t contacts = state_.control[gpu::kCtlContacts];
-  state_.control[gpu::kCtlArgsContacts] = (contacts + variant_.workgroup - 1) / variant_.workgroup;
-  state_.control[gpu::kCtlArgsContacts + 1] = 1;
+  uint32_t groups = (contacts + variant_.workgroup - 1) / variant_.workgroup;
+  state_.control[gpu::kCtlArgsContacts] = gpu::dispatch_columns(groups, max_groups_x());
+  state_.control[gpu::kCtlArgsContacts + 1] = gpu::dispatch_rows(groups, max_groups_x());
   state_.control[gpu::kCtlArgsContacts + 2] = 1;
   grow(std::max(contacts, state_.control[gpu::kCtlMaxContacts]));
   step_ = step;

@@ -1,5 +1,6 @@
 #include "engine/step_program.h"
 
+#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
@@ -77,9 +78,23 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
   p.large_radius = float(m.large_radius);
   p.air_drag = float(m.air_drag);
   p.rolling_damping = float(m.rolling_damping);
+  p.max_groups_x = max_groups_x();
   p.absent_wall_kinds = 0xFu;
   for (const ModelWall& w : m.walls) p.absent_wall_kinds &= ~(1u << w.kind);
   return p;
+}
+
+uint32_t max_groups_x() {
+  static const uint32_t limit = [] {
+    const char* text = std::getenv("REPOSE_MAX_GROUPS_X");
+    if (!text || !*text) return gpu::kMaxGroupsX;
+    char* end = nullptr;
+    unsigned long v = std::strtoul(text, &end, 10);
+    if (*end || v == 0 || v > gpu::kMaxGroupsX)
+      throw std::invalid_argument("REPOSE_MAX_GROUPS_X = '" + std::string(text) + "': give 1 ... 65535");
+    return static_cast<uint32_t>(v);
+  }();
+  return limit;
 }
 
 namespace {

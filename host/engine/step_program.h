@@ -29,6 +29,11 @@ struct KernelVariant {
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);
 
+// Workgroups per dispatch row along x: gpu::kMaxGroupsX, or less with the environment variable
+// REPOSE_MAX_GROUPS_X (tests lower it to run the split dispatches of large runs on small ones).
+// The same on both backends, so their indirect arguments agree to the byte.
+uint32_t max_groups_x();
+
 // Places every sub-sphere from its body (empty without bodies): run once before the first step.
 std::vector<Dispatch> body_place_program(const Model& m, const Layout& l, const KernelVariant& v);
 // Neighbour list, forces and F(0) without moving anything (kick 0).

@@ -33,6 +33,7 @@ class VulkanBackend : public Backend {
 
  private:
   vk::Buffer& b(uint32_t binding) { return buffers_[binding]; }
+  void check_fits(const Layout& l) const;
   vk::Context ctx_;
   vk::KernelSet kernels_;
   Layout layout_;

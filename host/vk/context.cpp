@@ -1,5 +1,6 @@
 #include "vk/context.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -60,7 +61,11 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 }
 
 DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
+  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  maintenance3.pNext = &subgroup;
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+  driver.pNext = &maintenance3;
   VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   props.pNext = &driver;
   vkGetPhysicalDeviceProperties2(pd, &props);
@@ -72,15 +77,37 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   info.type = type_name(props.properties.deviceType);
   info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
   info.api_version = props.properties.apiVersion;
+  // The largest device-local heap (a GPU may list its small host-mappable window as a second one).
   for (uint32_t h = 0; h < mem.memoryHeapCount; ++h)
     if (mem.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-      info.device_local_bytes += mem.memoryHeaps[h].size;
+      info.device_local_bytes = std::max<uint64_t>(info.device_local_bytes, mem.memoryHeaps[h].size);
   info.max_storage_buffers = props.properties.limits.maxPerStageDescriptorStorageBuffers;
   info.max_storage_range = props.properties.limits.maxStorageBufferRange;
+  for (int k = 0; k < 3; ++k) info.max_groups[k] = props.properties.limits.maxComputeWorkGroupCount[k];
+  info.max_allocation = maintenance3.maxMemoryAllocationSize;
+  info.subgroup_size = subgroup.subgroupSize;
+  for (uint32_t t = 0; t < mem.memoryTypeCount; ++t) {
+    VkMemoryPropertyFlags f = mem.memoryTypes[t].propertyFlags;
+    if ((f & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) && (f & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) &&
+        (f & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) &&
+        mem.memoryHeaps[mem.memoryTypes[t].heapIndex].size == info.device_local_bytes)
+      info.device_local_mappable = true;
+  }
   return info;
 }
 
 }  // namespace
+
+std::string DeviceInfo::limits_text() const {
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "workgroups %u x %u x %u, storage buffer range %.3g GiB, allocation %.3g GiB, %u storage buffers "
+                "per stage, subgroup %u, device-local memory %s",
+                max_groups[0], max_groups[1], max_groups[2], max_storage_range / 1073741824.0,
+                max_allocation / 1073741824.0, max_storage_buffers, subgroup_size,
+                device_local_mappable ? "mapped directly" : "reached through staging copies");
+  return line;
+}
 
 std::vector<DeviceInfo> Context::list_devices() {
   VkInstance instance = create_instance(false);

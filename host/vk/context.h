@@ -18,6 +18,11 @@ struct DeviceInfo {
   uint64_t device_local_bytes = 0;
   uint32_t max_storage_buffers = 0;
   uint64_t max_storage_range = 0;
+  uint32_t max_groups[3] = {0, 0, 0};    // maxComputeWorkGroupCount
+  uint64_t max_allocation = 0;           // maxMemoryAllocationSize
+  uint32_t subgroup_size = 0;            // for the record: no kernel depends on it
+  bool device_local_mappable = false;    // a device-local type the host can map (no staging)
+  std::string limits_text() const;       // one line for `repose devices` and error messages
 };
 
 class Context {

@@ -120,19 +120,20 @@ void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_
                        uint32_t groups, VkBuffer indirect, VkDeviceSize indirect_offset) {
   if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
   // The pipeline specialised for the push's own words, so the two never disagree.
-  uint32_t flags = 0, absent_wall_kinds = 0;
+  uint32_t flags = 0, absent_wall_kinds = 0, max_x = gpu::kMaxGroupsX;
   if (k != KernelId::Scan) {
     const char* bytes = static_cast<const char*>(push);
     std::memcpy(&flags, bytes + offsetof(gpu::SimPush, flags), sizeof flags);
     std::memcpy(&absent_wall_kinds, bytes + offsetof(gpu::SimPush, absent_wall_kinds), sizeof absent_wall_kinds);
+    std::memcpy(&max_x, bytes + offsetof(gpu::SimPush, max_groups_x), sizeof max_x);
   }
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(k, flags, absent_wall_kinds));
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
   if (indirect != VK_NULL_HANDLE)
     vkCmdDispatchIndirect(cb, indirect, indirect_offset);
-  else if (groups > 0)
-    vkCmdDispatch(cb, groups, 1, 1);
+  else if (groups > 0)  // in rows of at most max_x groups (invocation_index() counts across them)
+    vkCmdDispatch(cb, gpu::dispatch_columns(groups, max_x), gpu::dispatch_rows(groups, max_x), 1);
 }
 
 void KernelSet::barrier(VkCommandBuffer cb) {

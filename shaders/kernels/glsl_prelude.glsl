@@ -6,6 +6,13 @@
 
 layout(local_size_x_id = 0) in;
 
+// This invocation's index over the whole dispatch, counting across rows of workgroups along y
+// (a dispatch above the device's workgroup count along x is split: dispatch_rows in
+// repose_shared.h). The CPU twin runs the same indices in order.
+uint invocation_index() {
+  return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+}
+
 #define INOUT(T) inout T
 #define OUT(T) out T
 

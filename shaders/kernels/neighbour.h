@@ -11,9 +11,10 @@
 #ifndef REPOSE_KERNELS_NEIGHBOUR_H
 #define REPOSE_KERNELS_NEIGHBOUR_H
 
+// Indirect arguments for `groups` workgroups, in rows of at most PC.max_groups_x.
 void set_groups(uint word, uint groups) {
-  B_control[word] = groups;
-  B_control[word + 1u] = 1u;
+  B_control[word] = dispatch_columns(groups, PC.max_groups_x);
+  B_control[word + 1u] = dispatch_rows(groups, PC.max_groups_x);
   B_control[word + 2u] = 1u;
 }
 
