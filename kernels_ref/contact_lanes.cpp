@@ -64,23 +64,30 @@ struct Lanes {
   V overlap, dist, radius_star, mass_star, ri, rj, lever_i, lever_j, cohesion_lens;
 };
 
-// The per-pair parameters (PairParams) of each lane.
+// The per-pair parameters of each lane: every row of REPOSE_PAIR_PARAMS (repose_shared.h), by name.
 struct Params {
-  V e_star, g_star, damping, mu_s, mu_r, time_a, pi_k;
+#define REPOSE_LANE_PARAM(name, unit, source) V name;
+  REPOSE_PAIR_PARAMS(REPOSE_LANE_PARAM)
+#undef REPOSE_LANE_PARAM
 };
 
 Params gather_params(Kernels& k, VI mi, VI mj) {
   const PairParams* pairs = k.B_pairs;
   VI pair = hn::Add(hn::Mul(mi, hn::Set(DI(), int(k.PC.n_materials))), mj);
   int32_t first = hn::GetLane(pair);
+  Params out;
   if (hn::AllTrue(DI(), hn::Eq(pair, hn::Set(DI(), first)))) {  // one pair (the usual case): no gathers
     const PairParams& p = pairs[first];
-    return {vset(p.a.x), vset(p.a.y), vset(p.a.z), vset(p.a.w), vset(p.b.x), vset(p.b.z), vset(p.b.w)};
+#define REPOSE_LANE_PARAM_SET(name, unit, source) out.name = vset(p.name);
+    REPOSE_PAIR_PARAMS(REPOSE_LANE_PARAM_SET)
+#undef REPOSE_LANE_PARAM_SET
+    return out;
   }
   constexpr int W = sizeof(PairParams) / 4;
-  return {gather(pairs, pair, W, 0), gather(pairs, pair, W, 1), gather(pairs, pair, W, 2),
-          gather(pairs, pair, W, 3), gather(pairs, pair, W, 4), gather(pairs, pair, W, 6),
-          gather(pairs, pair, W, 7)};
+#define REPOSE_LANE_PARAM_GATHER(name, unit, source) out.name = gather(pairs, pair, W, offsetof(PairParams, name) / 4);
+  REPOSE_PAIR_PARAMS(REPOSE_LANE_PARAM_GATHER)
+#undef REPOSE_LANE_PARAM_GATHER
+  return out;
 }
 
 // integrate.h rolling_lever.
@@ -213,20 +220,20 @@ Out hertz_mindlin(const Lanes& g, const Params& pp, float dt, uint flags, V3 she
 
   V fn = hn::Sub(fn_elastic, hn::Mul(gamma_n, vn));
   // viscoelastic_damping
-  fn = hn::Sub(fn, hn::IfThenElseZero(hn::Gt(pp.time_a, zero), hn::Mul(hn::Mul(pp.time_a, sn), vn)));
+  fn = hn::Sub(fn, hn::IfThenElseZero(hn::Gt(pp.viscoelastic_time, zero), hn::Mul(hn::Mul(pp.viscoelastic_time, sn), vn)));
   if ((flags & kFlagClipAttraction) != 0u) fn = max_of(fn, zero);
   V fn_grip = fn;
   // linear_cohesion
-  V lens_force = hn::Mul(pp.pi_k, g.cohesion_lens);
-  V hertz_force = hn::Mul(hn::Mul(pp.pi_k, g.radius_star), g.overlap);
+  V lens_force = hn::Mul(pp.cohesion_pi_k, g.cohesion_lens);
+  V hertz_force = hn::Mul(hn::Mul(pp.cohesion_pi_k, g.radius_star), g.overlap);
   V cohesion = hn::IfThenElse(hn::Ge(g.cohesion_lens, zero), lens_force, hertz_force);
-  fn = hn::Sub(fn, hn::IfThenElseZero(hn::Gt(pp.pi_k, zero), cohesion));
+  fn = hn::Sub(fn, hn::IfThenElseZero(hn::Gt(pp.cohesion_pi_k, zero), cohesion));
   if ((flags & kFlagCohesionContactFriction) == 0u) fn_grip = fn;
 
   V3 spring = add3(turn_into_tangent_plane(shear, g.n), scale3(v_t, vset(dt)));
   V3 f_spring = scale3(spring, hn::Neg(st));
   V3 f_damp = scale3(v_t, hn::Neg(gamma_t));
-  V ft_max = hn::Mul(pp.mu_s, hn::Abs(fn_grip));
+  V ft_max = hn::Mul(pp.static_friction, hn::Abs(fn_grip));
   V3 ft;
   if ((flags & kFlagCoulombSpringOnly) != 0u) {
     V fs = length3(f_spring);
@@ -249,9 +256,9 @@ Out hertz_mindlin(const Lanes& g, const Params& pp, float dt, uint flags, V3 she
   o.normal_force = fn;
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   V roll_force = relative ? fn_elastic : hn::Abs(fn_grip);
-  M rolling = hn::Gt(pp.mu_r, zero);
+  M rolling = hn::Gt(pp.rolling_friction, zero);
   if ((flags & kFlagRollingConstTorque) == 0u) rolling = hn::Lt(zero, zero);
-  o.roll_arm = hn::IfThenElse(rolling, hn::Mul(pp.mu_r, roll_force), vset(-1.0f));
+  o.roll_arm = hn::IfThenElse(rolling, hn::Mul(pp.rolling_friction, roll_force), vset(-1.0f));
   if ((flags & kFlagLeanContacts) == 0u) contact_torques(g, flags, o);
   return o;
 }

@@ -114,7 +114,7 @@ REPOSE_CONST kFlagKeepHistory = 32u;          // forces without updating springs
 REPOSE_CONST kFlagLeanContacts = 64u;         // contact kernels store the lean entry (contacts.h)
 REPOSE_CONST kFlagBodies = 128u;              // particles are sub-spheres of rigid bodies (bodies.h)
 REPOSE_CONST kFlagRollingSpring = 256u;       // EDEM type C (EPSD) rolling resistance, full entries only
-REPOSE_CONST kFlagSpinningFriction = 512u;    // some pair has spinning friction (PairParams::c.x), full entries only
+REPOSE_CONST kFlagSpinningFriction = 512u;    // some pair has spinning friction (PairParams::spinning_friction), full entries only
 REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling lever on the force before cohesion
 REPOSE_CONST kFlagRollingLeverSphere = 2048u; // LIGGGHTS multisphere: a clump's rolling lever is the sub-sphere's
                                               // radius, not |contact point - centre of mass| (EDEM)
@@ -144,13 +144,32 @@ REPOSE_CONST kDefaultWorkgroup = 64;
 REPOSE_CONST kScanWorkgroup = 256;      // threads of the single-group scan
 REPOSE_CONST kWallReduceWorkgroup = 256;
 
-// Contact parameters of a material pair, precomputed on the host (no transcendentals in kernels).
+// ---- Contact parameters of a material pair: one table, one row per float of PairParams. ----
+// The host computes them in double and rounds each once (pair_params, host/engine/model.cpp); the
+// contact law reads them by name on every backend (pp.rolling_friction in kernels/contact_law.h);
+// the SIMD lanes gather each row at its word (kernels_ref/contact_lanes.cpp). A row's slot is its
+// place in the table: word k of PairParams. Adding a per-pair constant is a row here and, by its
+// source, either the Interaction field of that name with its case key (interaction) or a member
+// of the same name in DerivedPairConstants, with its formula (derived; model.cpp). Columns:
+//   name, unit (1: dimensionless), source: interaction or derived.
+#define REPOSE_PAIR_PARAMS(X) \
+  X(e_star, Pa, derived)                /* E*: 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b */ \
+  X(g_star, Pa, derived)                /* G*: 1/G* = 2 (2 - nu_a)(1 + nu_a)/E_a + the same for b */ \
+  X(damping, 1, derived)                /* -2 sqrt(5/6) beta >= 0, beta from the restitution */ \
+  X(static_friction, 1, interaction)    /* mu_s: |Ft| <= mu_s |Fn| */ \
+  X(rolling_friction, 1, interaction)   /* mu_r: rolling torque mu_r |Fn| R, the EPSD spring's cap */ \
+  X(viscoelastic_time, s, interaction)  /* A, extension restitution_velocity (0: off) */ \
+  X(cohesion_pi_k, Pa, derived)         /* pi x cohesion_energy_density, extension cohesion (0: off) */ \
+  X(spinning_friction, 1, interaction)  /* mu_spin (0: off) */
+
 struct PairParams {
-  vec4 a;  // x E*, y G*, z damping factor -2 sqrt(5/6) beta (>= 0), w static friction
-  vec4 b;  // x rolling friction, y restitution, z viscoelastic time A (s, extension
-           // restitution_velocity, 0: off), w pi x cohesion energy density (extension cohesion, 0: off)
-  vec4 c;  // x spinning (twisting) friction mu_spin (0: off), yzw unused
+#define REPOSE_PAIR_FIELD(name, unit, source) float name;
+  REPOSE_PAIR_PARAMS(REPOSE_PAIR_FIELD)
+#undef REPOSE_PAIR_FIELD
 };
+#define REPOSE_PAIR_COUNT(name, unit, source) +1u
+REPOSE_CONST kPairParamCount = 0u REPOSE_PAIR_PARAMS(REPOSE_PAIR_COUNT);
+#undef REPOSE_PAIR_COUNT
 
 // One wall at one step of a batch; the host evaluates prescribed motion.
 struct WallState {
@@ -236,7 +255,7 @@ uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups 
 #endif
 
 #ifdef __cplusplus
-static_assert(sizeof(PairParams) == 48);
+static_assert(sizeof(PairParams) == 4 * kPairParamCount, "PairParams holds floats only: the lanes gather its words");
 static_assert(sizeof(WallState) == 144);
 static_assert(sizeof(Body) == 160);
 static_assert(sizeof(SubSphere) == 32);

@@ -151,22 +151,32 @@ bool needs_spinning_friction(const CaseSpec& spec) {
                      [](const Interaction& in) { return in.spinning_friction > 0; });
 }
 
-gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in) {
+DerivedPairConstants derived_pair_constants(const Material& a, const Material& b, const Interaction& in) {
   auto youngs = [](const Material& m) {
     return m.youngs_modulus > 0 ? m.youngs_modulus : 2 * m.shear_modulus * (1 + m.poisson);
   };
   double ea = youngs(a), eb = youngs(b), na = a.poisson, nb = b.poisson;
-  double e_star = 1.0 / ((1 - na * na) / ea + (1 - nb * nb) / eb);
-  double g_star = 1.0 / (2 * (2 - na) * (1 + na) / ea + 2 * (2 - nb) * (1 + nb) / eb);
+  DerivedPairConstants d;
+  d.e_star = 1.0 / ((1 - na * na) / ea + (1 - nb * nb) / eb);
+  d.g_star = 1.0 / (2 * (2 - na) * (1 + na) / ea + 2 * (2 - nb) * (1 + nb) / eb);
   double ln_e = std::log(in.restitution);
   double beta = ln_e / std::sqrt(ln_e * ln_e + kPi * kPi);
-  double damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
+  d.damping = -2.0 * std::sqrt(5.0 / 6.0) * beta;
+  d.cohesion_pi_k = kPi * in.cohesion_energy_density;
+  return d;
+}
+
+gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in) {
+  DerivedPairConstants derived = derived_pair_constants(a, b, in);
   gpu::PairParams p;
-  p.a = gpu::vec4(float(e_star), float(g_star), float(damping), float(in.static_friction));
-  // Extensions (docs/diagnosis.md), zero when off: viscoelastic time, pi x cohesion energy density.
-  p.b = gpu::vec4(float(in.rolling_friction), float(in.restitution), float(in.viscoelastic_time),
-                  float(kPi * in.cohesion_energy_density));
-  p.c = gpu::vec4(float(in.spinning_friction), 0.0f, 0.0f, 0.0f);
+  // Every row of REPOSE_PAIR_PARAMS (shaders/repose_shared.h), from where its source column says.
+#define REPOSE_PAIR_FROM_interaction(name) in.name
+#define REPOSE_PAIR_FROM_derived(name) derived.name
+#define REPOSE_PAIR_SET(name, unit, source) p.name = float(REPOSE_PAIR_FROM_##source(name));
+  REPOSE_PAIR_PARAMS(REPOSE_PAIR_SET)
+#undef REPOSE_PAIR_SET
+#undef REPOSE_PAIR_FROM_derived
+#undef REPOSE_PAIR_FROM_interaction
   return p;
 }
 

@@ -69,7 +69,14 @@ struct Model {
 // Throws CaseError-style messages naming the case file when the case cannot be simulated.
 Model build_model(const CaseSpec& spec);
 
-// EDEM's derived pair constants (docs/engineering.md, contact law), in double, then rounded once.
+// The pair constants computed from the materials and the interaction (the rows of
+// REPOSE_PAIR_PARAMS whose source is `derived`), in double: EDEM's (docs/engineering.md, contact
+// law) and the extensions'.
+struct DerivedPairConstants {
+  double e_star = 0, g_star = 0, damping = 0, cohesion_pi_k = 0;
+};
+DerivedPairConstants derived_pair_constants(const Material& a, const Material& b, const Interaction& in);
+// Every pair constant the kernels read (REPOSE_PAIR_PARAMS), each rounded to float once.
 gpu::PairParams pair_params(const Material& a, const Material& b, const Interaction& in);
 // Some interaction has spinning friction (kFlagSpinningFriction).
 bool needs_spinning_friction(const CaseSpec& spec);

@@ -207,11 +207,11 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
                          float dt, uint flags, INOUT(vec3) shear) {
   ContactOut o;
   vec3 n = g.n;
-  float e_star = pp.a.x;
-  float g_star = pp.a.y;
-  float damping = pp.a.z;  // -2 sqrt(5/6) beta, >= 0
-  float mu_s = pp.a.w;
-  float mu_r = pp.b.x;
+  float e_star = pp.e_star;
+  float g_star = pp.g_star;
+  float damping = pp.damping;  // -2 sqrt(5/6) beta, >= 0
+  float mu_s = pp.static_friction;
+  float mu_r = pp.rolling_friction;
 
   precise float sqrt_rd = sqrt(g.radius_star * g.overlap);
   precise float sn = 2.0f * e_star * sqrt_rd;
@@ -225,11 +225,11 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
   precise vec3 v_t = v_rel - scale3(n, vn);
 
   precise float fn = fn_elastic - gamma_n * vn;
-  fn = fn - viscoelastic_damping(pp.b.z, sn, vn);
+  fn = fn - viscoelastic_damping(pp.viscoelastic_time, sn, vn);
   if ((flags & kFlagClipAttraction) != 0u) fn = max(fn, 0.0f);
   // What friction and the rolling lever see: the net force, or the repulsion before cohesion.
   precise float fn_grip = fn;
-  fn = fn - linear_cohesion(pp.b.w, g.radius_star, g.overlap, g.cohesion_lens);
+  fn = fn - linear_cohesion(pp.cohesion_pi_k, g.radius_star, g.overlap, g.cohesion_lens);
   if ((flags & kFlagCohesionContactFriction) == 0u) fn_grip = fn;
 
   // Rotate the stored spring into the current tangent plane, keeping its length, then stretch it.

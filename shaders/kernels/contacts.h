@@ -160,17 +160,17 @@ void process_contact(uint i, uint c) {
   if (rolling_spring) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
     vec3 spring = xyz(B_rolling_spring[c]);
-    vec3 tr = epsd_rolling_torque(n, wi, st.w_other, st.g.radius_star, o.grip_force, o.normal_stiffness, pp.b.x,
+    vec3 tr = epsd_rolling_torque(n, wi, st.w_other, st.g.radius_star, o.grip_force, o.normal_stiffness, pp.rolling_friction,
                                   1.0f / st.inv_inertia_r, PC.rolling_damping, PC.dt, spring);
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
     if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);
   }
-  if ((PC.flags & kFlagSpinningFriction) != 0u && pp.c.x > 0.0f) {
+  if ((PC.flags & kFlagSpinningFriction) != 0u && pp.spinning_friction > 0.0f) {
     // Full entries only (the host refuses lean ones), like the rolling spring.
     precise float share = spin_stop_share(i, n);
     if (!is_wall) share = share + spin_stop_share(p, n);
-    vec3 ts = spinning_friction_torque(n, wi, st.w_other, pp.c.x, st.g.radius_star, o.grip_force, share, PC.dt);
+    vec3 ts = spinning_friction_torque(n, wi, st.w_other, pp.spinning_friction, st.g.radius_star, o.grip_force, share, PC.dt);
     o.torque_i = o.torque_i + ts;
     if (!is_wall) o.torque_j = o.torque_j - ts;
   }

@@ -283,8 +283,8 @@ position = [0.0, 0.0, 0.0]
   CHECK(off.interactions[0].viscoelastic_time == 0);
   CHECK(off.interactions[0].cohesion_energy_density == 0);
   gpu::PairParams p = build_model(off).pairs[0];
-  CHECK(p.b.z == 0.0f);
-  CHECK(p.b.w == 0.0f);
+  CHECK(p.viscoelastic_time == 0.0f);
+  CHECK(p.cohesion_pi_k == 0.0f);
 
   std::string on_text = base + "[air_drag]\ndrag_coefficient = 0.47\nair_density = 1.2\n"
                                "[[interaction]]\nmaterials = [\"a\", \"a\"]\nrestitution = 0.5\nstatic_friction = 0.3\n"
@@ -293,7 +293,7 @@ position = [0.0, 0.0, 0.0]
   CHECK(on.air_drag.drag_coefficient == 0.47);
   CHECK(on.interactions[0].viscoelastic_time == 1e-4);
   Model model = build_model(on);
-  CHECK(model.pairs[0].b.w == Approx(kPi * 3e4));
+  CHECK(model.pairs[0].cohesion_pi_k == Approx(kPi * 3e4));
   CHECK(model.air_drag == Approx(0.5 * 1.2 * 0.47 * kPi));
 
   auto error_of = [&](const std::string& text) {

@@ -47,9 +47,14 @@ struct Scene {
     }
     for (uint m = 0; m < materials * materials; ++m) {
       PairParams p{};
-      p.a = vec4(1e6f + 1e8f * u(rng), 1e6f + 1e7f * u(rng), 0.5f * u(rng), 0.2f + 0.6f * u(rng));
-      p.b = vec4(u(rng) < 0.5f ? 0.0f : 0.1f * u(rng), 0.5f, u(rng) < 0.5f ? 0.0f : 1e-5f * u(rng),
-                 u(rng) < 0.5f ? 0.0f : 1e4f * u(rng));
+      p.e_star = 1e6f + 1e8f * u(rng);
+      p.g_star = 1e6f + 1e7f * u(rng);
+      p.damping = 0.5f * u(rng);
+      p.static_friction = 0.2f + 0.6f * u(rng);
+      p.rolling_friction = u(rng) < 0.5f ? 0.0f : 0.1f * u(rng);
+      u(rng);  // the restitution the table no longer holds: the same draws, the same scene
+      p.viscoelastic_time = u(rng) < 0.5f ? 0.0f : 1e-5f * u(rng);
+      p.cohesion_pi_k = u(rng) < 0.5f ? 0.0f : 1e4f * u(rng);
       pairs.push_back(p);
     }
     WallState floor{};

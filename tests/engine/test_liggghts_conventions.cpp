@@ -55,7 +55,7 @@ TEST_CASE("rolling_omega relative is LIGGGHTS cdt: mu_r kn dn R* (w - (w.n) n) /
     ContactOut o = contact(wall, flags, w_i, w_j, g, pp);
     // LIGGGHTS: kn dn is the Hertz elastic force 4/3 E* sqrt(R* dn) dn; the lever R* for two
     // spheres, the contact radius r - dn/2 against a wall, whose spin is not counted.
-    double dn = g.overlap, e_star = pp.a.x, mu_r = pp.b.x;
+    double dn = g.overlap, e_star = pp.e_star, mu_r = pp.rolling_friction;
     double fn_el = 4.0 / 3.0 * e_star * std::sqrt(double(g.radius_star) * dn) * dn;
     double lever = wall ? double(g.ri) : double(g.radius_star);
     D3 w = wall ? d3(w_i) : D3{w_i.x - w_j.x, w_i.y - w_j.y, w_i.z - w_j.z};

@@ -221,7 +221,7 @@ preset = ["cabbage", "cabbage"]
 )";
   CaseSpec spec = load_case_from_string(base + "spinning_friction = 0.04\n", "cases/spin.toml");
   CHECK(spec.interactions.at(0).spinning_friction == 0.04);
-  CHECK(build_model(spec).pairs.at(0).c.x == 0.04f);
+  CHECK(build_model(spec).pairs.at(0).spinning_friction == 0.04f);
   CaseSpec plain = load_case_from_string(base, "cases/spin.toml");
   CHECK(plain.interactions.at(0).spinning_friction == 0.0);
   // The default variant: lean on Vulkan unless torques are stored per contact; never on cpu.

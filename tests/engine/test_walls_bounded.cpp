@@ -59,7 +59,7 @@ constexpr double R = 0.01, kDelta = 1e-4;
 // Hertz force of the sphere pressed kDelta into a wall (float E* as the kernels use it).
 double hertz(const Rig& rig) {
   auto p = pair_params(rig.b.spec.materials[rig.grain], rig.b.spec.materials[rig.steel], {});
-  return 4.0 / 3.0 * double(p.a.x) * std::sqrt(R) * kDelta * std::sqrt(kDelta);
+  return 4.0 / 3.0 * double(p.e_star) * std::sqrt(R) * kDelta * std::sqrt(kDelta);
 }
 
 // Total force of a sphere at rest at `x` on all walls, from the initial force evaluation.
