@@ -22,6 +22,14 @@ using std::max;
 using std::min;
 using std::sqrt;
 
+// The contact law's dialect (kernels/contact_law.h) on one contact: a real is a float, a cond a
+// bool (the SIMD lanes give these names one float per contact, kernels_ref/contact_lanes.cpp).
+using real = float;
+using real3 = vec3;
+using cond = bool;
+inline float pick(bool c, float yes, float no) { return c ? yes : no; }
+inline vec3 pick(bool c, vec3 yes, vec3 no) { return c ? yes : no; }
+
 inline uint atomicAdd(uint& target, uint value) {
   return std::atomic_ref<uint>(target).fetch_add(value, std::memory_order_relaxed);
 }

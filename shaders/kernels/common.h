@@ -3,29 +3,9 @@
 #ifndef REPOSE_KERNELS_COMMON_H
 #define REPOSE_KERNELS_COMMON_H
 
+#include "kernels/vector3.h"
+
 vec3 xyz(vec4 v) { return vec3(v.x, v.y, v.z); }
-
-float dot3(vec3 a, vec3 b) {
-  precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
-  return r;
-}
-
-vec3 cross3(vec3 a, vec3 b) {
-  precise float x = a.y * b.z - a.z * b.y;
-  precise float y = a.z * b.x - a.x * b.z;
-  precise float z = a.x * b.y - a.y * b.x;
-  return vec3(x, y, z);
-}
-
-float length3(vec3 a) {
-  precise float r = sqrt(dot3(a, a));
-  return r;
-}
-
-vec3 scale3(vec3 a, float s) {
-  precise vec3 r = vec3(a.x * s, a.y * s, a.z * s);
-  return r;
-}
 
 // Groups of `workgroup` invocations needed to cover `count` items.
 uint groups_for(uint count, uint workgroup) { return (count + workgroup - 1u) / workgroup; }

@@ -39,59 +39,40 @@ struct ContactState {
   uint mj;              // j's material
 };
 
-// The area cohesion pulls on, over pi, when it is LIGGGHTS sjkr's intersection disc; -1 (EDEM's
-// Hertz area R* dn, in linear_cohesion()) otherwise.
-float cohesion_lens(float r1, float r2, float dist, float overlap, bool wall) {
-  if ((PC.flags & kFlagCohesionIntersection) == 0u) return -1.0f;
-  return cohesion_intersection_area(r1, r2, dist, overlap, wall);
-}
-
-// The rolling levers of i and (unless a wall) p at the contact: the sphere's own ri, rj, or
-// for EDEM's torque on a clump the distance to its centre of mass (full entries; the lean
-// gather measures them itself).
+// The rolling levers of i and (unless a wall) p at the contact: the sphere's own ri, rj as the
+// geometry holds them, or for EDEM's torque on a clump the distance to its centre of mass (full
+// entries; the lean gather measures them itself).
 void set_rolling_levers(uint i, uint p, vec3 xi, bool is_wall, INOUT(ContactGeometry) g) {
-  g.lever_i = g.ri;
-  g.lever_j = g.rj;
   if (!centre_lever(PC.flags) || (PC.flags & kFlagLeanContacts) != 0u) return;
   vec3 cp = contact_point(xi, g.n, g.ri);
   g.lever_i = rolling_lever(i, cp, g.ri);
   if (!is_wall) g.lever_j = rolling_lever(p, cp, g.rj);
 }
 
+// A particle as touching_spheres() (contact_law.h) takes it.
+SphereState sphere_state(uint k) {
+  SphereState s;
+  vec4 p = B_pos[k];
+  vec4 v = B_vel[k];
+  s.x = xyz(p);
+  s.radius = p.w;
+  s.v = xyz(v);
+  s.inv_mass = v.w;
+  s.w = xyz(B_omega[k]);
+  return s;
+}
+
 // Contact of particles i and p: false when they do not touch.
 bool touch_particle(uint i, uint p, OUT(ContactState) s) {
-  vec4 pi = B_pos[i];
-  vec4 vi = B_vel[i];
-  vec4 pj = B_pos[p];
-  vec4 vj = B_vel[p];
-  float rad_i = pi.w;
-  float rad_j = pj.w;
-  s.wj = xyz(B_omega[p]);
-  s.w_other = s.wj;
+  SphereState si = sphere_state(i);
+  SphereState sj = sphere_state(p);
+  s.wj = sj.w;
+  s.w_other = sj.w;
   s.mj = B_material[p];
-  precise vec3 d = xyz(pi) - xyz(pj);
-  precise float dist = length3(d);
-  precise float overlap = rad_i + rad_j - dist;
-  if (!(overlap > 0.0f && dist > 0.0f)) return false;
-  vec3 wi = xyz(B_omega[i]);
-  precise vec3 n = vec3(d.x / dist, d.y / dist, d.z / dist);
-  precise float radius_star = (rad_i * rad_j) / (rad_i + rad_j);
-  precise float mass_star = 1.0f / (vi.w + vj.w);
-  precise float ri = rad_i - 0.5f * overlap;
-  precise float rj = rad_j - 0.5f * overlap;
-  precise vec3 spin = scale3(wi, ri) + scale3(s.wj, rj);
-  precise vec3 v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
-  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri)) + vj.w / (1.4f * (rj * rj));
-  s.g.n = n;
-  s.g.overlap = overlap;
-  s.g.radius_star = radius_star;
-  s.g.mass_star = mass_star;
-  s.g.ri = ri;
-  s.g.rj = rj;
-  s.g.cohesion_lens = cohesion_lens(rad_i, rad_j, dist, overlap, false);
-  s.v_rel = v_rel;
+  if (!touching_spheres(si, sj, PC.flags, s.g, s.v_rel)) return false;
+  precise float inv_inertia_r = si.inv_mass / (1.4f * (s.g.ri * s.g.ri)) + sj.inv_mass / (1.4f * (s.g.rj * s.g.rj));
   s.inv_inertia_r = inv_inertia_r;
-  set_rolling_levers(i, p, xyz(pi), false, s.g);
+  set_rolling_levers(i, p, si.x, false, s.g);
   return true;
 }
 
@@ -124,7 +105,9 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   s.g.mass_star = mass_star;
   s.g.ri = ri;
   s.g.rj = 0.0f;
-  s.g.cohesion_lens = cohesion_lens(rad_i, 0.0f, 0.0f, overlap, true);
+  s.g.lever_i = ri;
+  s.g.lever_j = 0.0f;
+  s.g.cohesion_lens = cohesion_lens(PC.flags, rad_i, 0.0f, 0.0f, overlap, true);
   s.v_rel = v_rel;
   s.inv_inertia_r = inv_inertia_r;
   set_rolling_levers(i, p, xi, true, s.g);

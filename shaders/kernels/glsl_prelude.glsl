@@ -16,6 +16,14 @@ uint invocation_index() {
 #define INOUT(T) inout T
 #define OUT(T) out T
 
+// The contact law's dialect (kernels/contact_law.h): here a real is a float, a cond a bool, and
+// pick() GLSL's selection. The SIMD lanes give the same names one float per contact.
+#define real float
+#define real3 vec3
+#define cond bool
+float pick(bool c, float yes, float no) { return c ? yes : no; }
+vec3 pick(bool c, vec3 yes, vec3 no) { return c ? yes : no; }
+
 // Every buffer of the table in repose_shared.h as B_name[].
 #define REPOSE_DECLARE_BUFFER(index, Name, name, type, count, need, keep) \
   layout(std430, set = 0, binding = index) buffer Name##Buf { type B_##name[]; };

@@ -67,15 +67,10 @@ void k_gather_kick(uint i) {
   if (PC.kick > 0.0f) kick_and_drift(i, f, t);
 }
 
-// The rolling lever of particle k at contact point cp (centre_lever() in contact_law.h): the
-// distance from cp to the centre of mass of k's body when it has more than one sphere, else r
-// (k's centre to cp: a lone sphere keeps its bytes).
+// The rolling lever of particle k at contact point cp (centre_of_mass_lever() in contact_law.h).
 float rolling_lever(uint k, vec3 cp, float r) {
   uint b = B_subs[k].info.x;
-  if (B_bodies[b].spheres.y < 2u) return r;
-  precise vec3 d = cp - xyz(B_bodies[b].pos);
-  precise float lever = length3(d);
-  return lever;
+  return centre_of_mass_lever(cp, xyz(B_bodies[b].pos), r, B_bodies[b].spheres.y < 2u);
 }
 
 // The unit normal of stored contact c, recomputed from the positions exactly as process_contact
