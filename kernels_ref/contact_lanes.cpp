@@ -251,7 +251,7 @@ std::atomic<bool> g_lanes_on{true};
 
 bool contact_lanes_cover(uint flags) {
   return g_lanes_on.load(std::memory_order_relaxed) &&
-         (flags & (kFlagRollingSpring | kFlagSpinningFriction)) == 0u;
+         (flags & kFlagsNeedFullEntries) == 0u;
 }
 
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end) {

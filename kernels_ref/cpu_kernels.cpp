@@ -29,30 +29,20 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);
   if (id == KernelId::ContactRows && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min(buf.row_start[buf.push.n_particles], limit), pool);
-  // Single-invocation control kernels must not run on several threads at once.
-  if (id == KernelId::RebuildArgs) return k.k_rebuild_args(0u);
-  if (id == KernelId::RowsScanned) return k.k_rows_scanned(0u);
+  // The list in kernel_ids.h: Each over the pool, Once on this thread (a control kernel must not
+  // run on several threads at once), Own kernels have entries of their own (run_scan, run_wall_reduce).
   switch (id) {
-    case KernelId::KickDrift: return run_parallel<&Kernels::k_kick_drift>(k, invocations, pool);
-    case KernelId::GatherKick: return run_parallel<&Kernels::k_gather_kick>(k, invocations, pool);
-    case KernelId::GatherLean: return run_parallel<&Kernels::k_gather_lean>(k, invocations, pool);
-    case KernelId::SaveOldRows: return run_parallel<&Kernels::k_save_old_rows>(k, invocations, pool);
-    case KernelId::SaveOldContacts: return run_parallel<&Kernels::k_save_old_contacts>(k, invocations, pool);
-    case KernelId::ClearBuckets: return run_parallel<&Kernels::k_clear_buckets>(k, invocations, pool);
-    case KernelId::BucketCount: return run_parallel<&Kernels::k_bucket_count>(k, invocations, pool);
-    case KernelId::BucketScatter: return run_parallel<&Kernels::k_bucket_scatter>(k, invocations, pool);
-    case KernelId::BucketSort: return run_parallel<&Kernels::k_bucket_sort>(k, invocations, pool);
-    case KernelId::ContactCount: return run_parallel<&Kernels::k_contact_count>(k, invocations, pool);
-    case KernelId::ContactFill: return run_parallel<&Kernels::k_contact_fill>(k, invocations, pool);
-    case KernelId::TransposeCount: return run_parallel<&Kernels::k_transpose_count>(k, invocations, pool);
-    case KernelId::TransposeFill: return run_parallel<&Kernels::k_transpose_fill>(k, invocations, pool);
-    case KernelId::TransposeSort: return run_parallel<&Kernels::k_transpose_sort>(k, invocations, pool);
-    case KernelId::ContactForces: return run_parallel<&Kernels::k_contact_forces>(k, invocations, pool);
-    case KernelId::ContactRows: return run_parallel<&Kernels::k_contact_rows>(k, invocations, pool);
-    case KernelId::BodyKickDrift: return run_parallel<&Kernels::k_body_kick_drift>(k, invocations, pool);
-    case KernelId::BodyPlace: return run_parallel<&Kernels::k_body_place>(k, invocations, pool);
-    case KernelId::BodyGatherKick: return run_parallel<&Kernels::k_body_gather_kick>(k, invocations, pool);
-    default: return;
+#define REPOSE_RUN_Each(name) return run_parallel<&Kernels::k_##name>(k, invocations, pool);
+#define REPOSE_RUN_Once(name) return k.k_##name(0u);
+#define REPOSE_RUN_Own(name) return;
+#define REPOSE_RUN(Id, name, kind) \
+  case KernelId::Id: REPOSE_RUN_##kind(name)
+    REPOSE_KERNELS(REPOSE_RUN)
+#undef REPOSE_RUN
+#undef REPOSE_RUN_Own
+#undef REPOSE_RUN_Once
+#undef REPOSE_RUN_Each
+    case KernelId::Count: return;
   }
 }
 

@@ -27,8 +27,9 @@ namespace repose::gpu {
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
 //           which costs no descriptor; no kernel uses both names of one buffer),
-//   keep:   Scratch (rewritten by the kernels), State (the host keeps a copy between batches),
-//           File (kept, and written to state files in table order), Constant (uploaded once),
+//   keep:   Scratch (rewritten by the kernels), State (the host keeps a copy between batches, and
+//           state files hold it after the File rows, in table order, for restarts), File (kept,
+//           and written to state files in table order), Constant (uploaded once),
 //           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
@@ -41,11 +42,11 @@ namespace repose::gpu {
   X(2, Omega, omega, vec4, Particles, Always, File)           /* xyz angular velocity, w 1/I */ \
   X(3, Force, force, vec4, Particles, Always, File)           /* xyz contact force sum */ \
   X(4, Torque, torque, vec4, Particles, Always, File)         /* xyz contact torque sum */ \
-  X(5, PosAtBuild, pos_at_build, vec4, Particles, Always, State)  /* position at the list's build */ \
+  X(5, Control, control, uint, Control, Always, State)        /* kCtl* words */ \
   X(6, Material, material, uint, Particles, Always, Constant) \
   X(7, Pairs, pairs, PairParams, Pairs, Always, Constant)     /* per material pair */ \
   X(8, Walls, walls, WallState, WallRows, Always, Walls)      /* every wall at every step of a batch */ \
-  X(9, Control, control, uint, Control, Always, State)        /* kCtl* words */ \
+  X(9, PosAtBuild, pos_at_build, vec4, Particles, Always, State)  /* position at the list's build */ \
   X(10, CellOf, cell_of, uint, Particles, Always, Scratch)    /* hash bucket of each particle */ \
   X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch)  /* counts, scanned to starts */ \
   X(12, CellFill, cell_fill, uint, Buckets, Always, Scratch)  /* scatter cursor */ \
@@ -119,6 +120,10 @@ REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling l
 REPOSE_CONST kFlagRollingLeverSphere = 2048u; // LIGGGHTS multisphere: a clump's rolling lever is the sub-sphere's
                                               // radius, not |contact point - centre of mass| (EDEM)
 REPOSE_CONST kFlagCohesionIntersection = 4096u;  // LIGGGHTS sjkr: cohesion on the spheres' intersection disc
+// The options that keep each contact's torques in its entry (per-contact springs, counts of
+// contacts): they need full contact entries, never lean ones, and the SIMD lanes leave them to the
+// scalar contact kernel. The one rule for both (step_program.cpp, contact_lanes.cpp).
+REPOSE_CONST kFlagsNeedFullEntries = kFlagRollingSpring | kFlagSpinningFriction;
 
 // ---- Scan selector (ScanPush::target). ----
 REPOSE_CONST kScanCells = 0;

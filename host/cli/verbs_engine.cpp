@@ -159,10 +159,7 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
   uint32_t rebuilds = sim.rebuilds() - rebuilds_before;
   double contacts = sim.contacts(), n = model.n_particles;
   // Memory split: buffers sized by particles (and hash buckets) vs by list capacity.
-  Layout probe;
-  probe.lean_contacts = v.lean;
-  probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
-  size_t per_contact_bytes = bytes_per_contact(probe);
+  size_t per_contact_bytes = bytes_per_contact(sim.layout());
   double bytes_per_particle = double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
   std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9u %8.3g\n", backend.c_str(), v.name().c_str(),
               n * steps / secs, contacts * steps / secs, contacts, touching_contacts(sim.state()),

@@ -10,20 +10,7 @@ namespace repose {
 Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
                        uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
-  layout_.n_particles = model_.n_particles;
-  layout_.n_walls = static_cast<uint32_t>(model_.walls.size());
-  layout_.n_materials = model_.n_materials;
-  layout_.table_size = model_.table_size;
-  layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
-  layout_.lean_contacts = variant_.lean;
-  layout_.rolling_springs = (model_.flags & gpu::kFlagRollingSpring) != 0;
-  if (layout_.rolling_springs && variant_.lean)
-    throw std::invalid_argument("rolling = \"epsd\" stores each contact's rolling torque: use the 'full' kernel "
-                                "variant, not 'lean'");
-  if ((model_.flags & gpu::kFlagSpinningFriction) != 0 && variant_.lean)
-    throw std::invalid_argument("spinning_friction stores each contact's torques: use the 'full' kernel variant, "
-                                "not 'lean'");
-  layout_.n_bodies = static_cast<uint32_t>(model_.bodies.size());
+  layout_ = model_layout(model_, variant_, max_batch_steps);
   constants_ = {model_.material, model_.pairs, model_.subs};
 
   // Initial host state: particles as given, empty contact list (the first step builds it).

@@ -1,5 +1,6 @@
 #include "engine/step_program.h"
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -48,8 +49,26 @@ KernelVariant KernelVariant::parse(const std::string& text) {
 
 KernelVariant KernelVariant::fastest_for(const std::string& backend, const Model& m) {
   KernelVariant v;
-  v.lean = backend == "vulkan" && (m.flags & (gpu::kFlagRollingSpring | gpu::kFlagSpinningFriction)) == 0u;
+  v.lean = backend == "vulkan" && (m.flags & gpu::kFlagsNeedFullEntries) == 0u;
   return v;
+}
+
+Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps) {
+  if ((m.flags & gpu::kFlagsNeedFullEntries) != 0u && v.lean) {
+    const char* option = (m.flags & gpu::kFlagRollingSpring) ? "rolling = \"epsd\" stores each contact's rolling torque"
+                                                              : "spinning_friction stores each contact's torques";
+    throw std::invalid_argument(std::string(option) + ": use the 'full' kernel variant, not 'lean'");
+  }
+  Layout l;
+  l.n_particles = m.n_particles;
+  l.n_walls = static_cast<uint32_t>(m.walls.size());
+  l.n_materials = m.n_materials;
+  l.table_size = m.table_size;
+  l.batch_steps = std::max<uint32_t>(1, batch_steps);
+  l.lean_contacts = v.lean;
+  l.rolling_springs = (m.flags & gpu::kFlagRollingSpring) != 0;
+  l.n_bodies = static_cast<uint32_t>(m.bodies.size());
+  return l;
 }
 
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) {

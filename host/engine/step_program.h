@@ -27,6 +27,11 @@ struct KernelVariant {
   static KernelVariant fastest_for(const std::string& backend, const Model& m);
 };
 
+// The buffer layout of model m run with variant v, `batch_steps` wall states per upload (the list
+// capacity is the simulation's to choose). Throws std::invalid_argument for lean entries with an
+// option that needs full ones (gpu::kFlagsNeedFullEntries).
+Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps);
+
 gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);
 
 // Workgroups per dispatch row along x: gpu::kMaxGroupsX, or less with the environment variable

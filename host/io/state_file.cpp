@@ -29,6 +29,19 @@ void for_each_file_array(State& s, F&& f) {
   });
 }
 
+// The State rows, in binding order: what a restart needs beside the File rows.
+template <class State, class F>
+void for_each_restart_array(State& s, F&& f) {
+  for_each_kept(s, [&](const BufferSpec& b, auto& v) {
+    if (b.keep == BufferKeep::State) f(b, v);
+  });
+}
+
+// Elements of a State row a state file holds: all of it, of the control words the first few.
+size_t restart_count(const BufferSpec& b, size_t size) {
+  return b.count == BufferCount::Control ? kRestartControlWords : size;
+}
+
 size_t file_count(const BufferSpec& b, uint32_t n, uint32_t c, uint32_t bodies, uint32_t r) {
   switch (b.count) {
     case BufferCount::Particles: return n;
@@ -62,12 +75,11 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
     put(out, step);
     put(out, time);
     for_each_file_array(s, [&](const BufferSpec&, const auto& v) { put_array(out, v); });
-    // Version 4: the neighbour list's bookkeeping, so a restart continues with the same bytes.
-    out.write(reinterpret_cast<const char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
-    put_array(out, s.pos_at_build);
-    put_array(out, s.owner);
-    put_array(out, s.trans_start);
-    put_array(out, s.trans_list);
+    // Version 4: the neighbour list's bookkeeping (the State rows, in table order), so a restart
+    // continues with the same bytes; of the control words the first kRestartControlWords.
+    for_each_restart_array(s, [&](const BufferSpec& b, const auto& v) {
+      out.write(reinterpret_cast<const char*>(v.data()), std::streamsize(restart_count(b, v.size()) * sizeof(v[0])));
+    });
   }, true);
 }
 
@@ -108,13 +120,17 @@ HostState read_state_file(const std::string& path, StateFileInfo& info) {
     get(v, file_count(spec, n, c, b, r));
   });
   if (version >= 4) {
-    s.control.assign(gpu::kControlWords, 0u);
-    in.read(reinterpret_cast<char*>(s.control.data()), kRestartControlWords * sizeof(uint32_t));
-    get(s.pos_at_build, n);
-    get(s.owner, c);
-    get(s.trans_start, n + 1);
-    if (in && s.trans_start[n] > c) throw std::runtime_error("state file '" + path + "' is damaged");
-    get(s.trans_list, in ? s.trans_start[n] : 0);
+    for_each_restart_array(s, [&](const BufferSpec& spec, auto& v) {
+      if (spec.count == BufferCount::Control) {
+        v.assign(gpu::kControlWords, {});
+        in.read(reinterpret_cast<char*>(v.data()), kRestartControlWords * sizeof(v[0]));
+        return;
+      }
+      if (spec.count == BufferCount::Transposed && in && s.trans_start[n] > c)
+        throw std::runtime_error("state file '" + path + "' is damaged");
+      get(v, spec.count == BufferCount::Transposed ? (in ? s.trans_start[n] : 0)  // trans_start came before
+                                                    : file_count(spec, n, c, b, r));
+    });
   }
   if (!in) throw std::runtime_error("state file '" + path + "' is truncated");
   return s;

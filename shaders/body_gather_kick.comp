@@ -1,6 +1,0 @@
-#version 450
-// Kernel body: k_body_gather_kick in shaders/kernels/ (shared with the CPU twin).
-#include "kernels/glsl_prelude.glsl"
-#include "kernels/all.h"
-
-void main() { k_body_gather_kick(invocation_index()); }
