@@ -7,11 +7,12 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "engine/backend.h"
 
 namespace repose::calibrate {
 
 struct ExperimentOptions {
-  std::string backend = "cpu";  // each simulation single-threaded on the cpu backend by default
+  std::string backend = kLibraryBackend;  // each simulation single-threaded on the cpu backend by default
   int device = -1;
   unsigned threads = 1;
   std::string picture_path;     // non-empty: save the experiment's picture there (a heap's PNG)

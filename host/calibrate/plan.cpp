@@ -99,7 +99,7 @@ void read_campaign(const PlanTable& t, CampaignPlan& plan) {
     else if (*mode == "adaptive") plan.mode = CampaignMode::adaptive;
     else t.fail("mode", "expected \"design\" or \"adaptive\", got \"" + *mode + "\"");
   }
-  plan.backend = t.text("backend").value_or("cpu");
+  plan.backend = t.text("backend").value_or(kLibraryBackend);
   if (plan.backend != "cpu" && plan.backend != "vulkan") t.fail("backend", "expected \"cpu\" or \"vulkan\"");
   plan.seed_key = t.text("seed_key").value_or("simulation.seed");
   if (auto s = t.integer("base_seed")) {

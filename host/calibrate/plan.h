@@ -9,6 +9,7 @@
 
 #include "case/case_error.h"
 #include "case/case_loader.h"
+#include "engine/backend.h"
 #include "util/number_text.h"
 
 namespace repose::calibrate {
@@ -60,7 +61,7 @@ struct CampaignPlan {
   std::string case_text;   // its content (sent to MPI ranks)
   std::string case_identity;  // CaseSpec::identity of the base case with [set] (hashed into the plan)
   CampaignMode mode = CampaignMode::design;
-  std::string backend = "cpu";
+  std::string backend = kLibraryBackend;
   std::string seed_key = "simulation.seed";
   std::uint64_t base_seed = 1;  // replicate r runs with base_seed + r
   std::string response;

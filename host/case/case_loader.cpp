@@ -292,21 +292,18 @@ class CaseReader {
     s->allow_only(allowed, "[experiment] of type '" + type + "'");
     ex.where = s->where();
     if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
-    reader->read(*s, ex);
+    ex.settings = reader->read(*s);
+    for (const std::string& key : reader->wall_keys)
+      if (auto name = s->text(key)) named_walls_.push_back({*name, s->where(key)});
   }
 
-  // [experiment] names walls; they must exist (checked once all walls are read).
+  // The walls [experiment] names must exist (checked once all walls are read).
   void check_experiment_walls() {
-    const ExperimentSpec& ex = spec_.experiment;
-    auto exists = [&](const std::string& name) {
-      return std::any_of(spec_.walls.begin(), spec_.walls.end(), [&](const WallSpec& w) { return w.name == name; });
-    };
     std::vector<std::string> names;
     for (const WallSpec& w : spec_.walls) names.push_back(w.name);
-    for (const auto& [key, name] : {std::pair<std::string, std::string>{"plate", ex.plate}, {"lift_wall", ex.lift_wall}})
-      if (!name.empty() && !exists(name))
-        throw CaseError({file_, "experiment." + key, ex.where.line},
-                        "no [[wall]] is named '" + name + "'" + did_you_mean(name, names));
+    for (const auto& [name, where] : named_walls_)
+      if (!name.empty() && std::find(names.begin(), names.end(), name) == names.end())
+        throw CaseError(where, "no [[wall]] is named '" + name + "'" + did_you_mean(name, names));
   }
 
   // Extension air_drag (docs/diagnosis.md).
@@ -917,6 +914,7 @@ class CaseReader {
   const std::string& file_;
   CaseSpec spec_;
   std::map<int, SourceRef> particle_users_, wall_users_;
+  std::vector<std::pair<std::string, SourceRef>> named_walls_;  // [experiment] values naming walls
 };
 
 }  // namespace

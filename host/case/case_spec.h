@@ -205,40 +205,21 @@ struct OutputSpec {
   double checkpoint_interval = 0;  // s between checkpoint.state files of `repose run`; 0: none
 };
 
-// The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]).
+// An experiment's own [experiment] keys, as a type the experiment derives from this one
+// (host/experiments); the case layer holds them without knowing the type.
+struct ExperimentSettings {
+  virtual ~ExperimentSettings() = default;
+};
+
+// The virtual experiment a case runs with `repose experiment TYPE CASE.toml` ([experiment]). The
+// keys besides type and max_time are the experiment's: its reader (case/experiment_keys.h)
+// returns them as its settings.
 struct ExperimentSpec {
-  std::string type;          // "drop", "slide", "roll", "repose"; empty: a plain simulation
-  double max_time = 5.0;     // s: give up when the measurement has not ended by then
-  // drop
-  double drop_height = 0.5;  // m: the body's lowest point above the plate at release
-  double camera_fps = 1000;  // frames per second of the simulated high-speed camera
-  // slide, and roll with method "tilt": the plate wall tilts about `tilt_axis` through its centre
-  std::string plate;            // wall name; default the first wall
-  double tilt_rate_deg = 1.0;   // deg/s
-  Vec3d tilt_axis{0, 1, 0};
-  double settle_time = 0.5;     // s at rest before the tilt starts
-  double onset_distance = 1e-3; // m the body moves relative to the plate: it slides (or rolls)
-  double onset_speed = 0;       // m/s > 0: the onset is where its speed relative to the plate first
-                                // reaches this instead (a soft body creeps its first mm early)
-  double max_angle_deg = 60;    // give up beyond this tilt
-  // roll
-  std::string method = "incline";  // "incline" (release, roll onto the floor) or "tilt"
-  double incline_deg = 10;         // beta
-  double slope_distance = 0.26;    // S, m along the incline from the release point to the foot
-  double stop_speed = 0.005;       // m/s: the body has stopped
-  // repose
-  std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
-  double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
-  bool end_when_clear = true;      // the lift is also over once the lifted wall has touched no
-                                   // particle for two samples: the rest of its motion cannot
-                                   // change the heap (repose.cpp)
-  double settle_energy = 1e-4;     // J: settled when no particle (or body) has more
-  std::string view = "y";          // camera looks along +y ("y") or +x ("x")
-  std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
-  bool axisymmetric = false;       // also the 3D sector fit (bottomless cylinder)
-  int views = 1;                   // > 1: the angle is the mean slope of that many front views
-                                   // over half a turn about the heap axis (needs heap_side both)
-  std::optional<double> heap_floor_z;  // default: the lowest sphere bottom
+  std::string type;       // "drop", "slide", "roll", "repose", ...; empty: a plain simulation
+  double max_time = 5.0;  // s: give up when the measurement has not ended by then
+  // Read through settings_of<T> (experiments/experiment.h); shared by copies of the case and never
+  // changed in place (edit_settings<T> replaces it by a changed copy).
+  std::shared_ptr<const ExperimentSettings> settings;
   SourceRef where;
 };
 

@@ -56,7 +56,7 @@ int run_experiment(int argc, char** argv) {
   std::string descriptions;
   for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
   CLI::App app{"Run a virtual experiment: " + descriptions + "."};
-  std::string type, case_path, backend = "auto", out_dir;
+  std::string type, case_path, backend = kUserBackend, out_dir;
   unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;

@@ -12,6 +12,13 @@
 
 namespace repose {
 
+// The backend a run takes when its caller names none: commands a user runs (`repose run`,
+// `repose experiment`) the fastest here ("auto": resolve_backend, engine/backend_factory.h); runs the
+// library makes (calibration campaigns, diagnosis searches, tests) one thread of the cpu backend
+// each, so that many run side by side on the cores.
+inline constexpr const char* kUserBackend = "auto";
+inline constexpr const char* kLibraryBackend = "cpu";
+
 // Buffer sizes of one simulation.
 struct Layout {
   uint32_t n_particles = 0;

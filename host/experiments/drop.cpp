@@ -88,7 +88,7 @@ void place_body(CaseSpec& spec, const DropSurface& surface, double height, const
 // The camera's frames of the body's lowest point (particles that move: fixed ones are the rig's),
 // until past the rebound's apex; contact and lift-off from the body's speed along `up`.
 DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_down, const DropOptions& options) {
-  const ExperimentSpec& ex = spec.experiment;
+  const DropSettings& ex = settings_of<DropSettings>(spec.experiment);
   const Vec3d& up = surface.up;
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
@@ -120,7 +120,7 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
   r.wall_forces.sample(sim);
   bool touched = false, left = false;
   double touch_time = 0, prev_speed = 0;
-  uint64_t max_frames = uint64_t(ex.max_time / frame_dt) + 1;
+  uint64_t max_frames = uint64_t(spec.experiment.max_time / frame_dt) + 1;
   for (uint64_t f = 0; f < max_frames; ++f) {
     sim.advance(frame_steps);
     double h = height(sim.state()), v = normal_speed(sim.state());
@@ -167,7 +167,7 @@ DropResult drop_onto(const CaseSpec& input, const DropSurface& surface, const Dr
   double g_down = -dot(input.gravity, surface.up);
   if (!(g_down > 0)) throw std::runtime_error(input.path + ": a drop test needs gravity towards the plate");
   CaseSpec spec = input;
-  place_body(spec, surface, spec.experiment.drop_height, options);
+  place_body(spec, surface, settings_of<DropSettings>(spec.experiment).drop_height, options);
   return film_drop(spec, surface, g_down, options);
 }
 
@@ -192,7 +192,7 @@ void align_impact_phase(CaseSpec& spec) {
   if (spec.spheres.empty() && spec.bodies.empty()) return;
   const Vec3d& gv = spec.gravity;
   double g = std::sqrt(gv[0] * gv[0] + gv[1] * gv[1] + gv[2] * gv[2]);
-  double H = spec.experiment.drop_height;
+  double H = settings_of<DropSettings>(spec.experiment).drop_height;
   if (!(g > 0) || !(H > 0)) return;
   // Fall from rest under gravity and drag k v^2 (per unit mass): t = acosh(exp(k H)) / sqrt(g k).
   // A clump body falls in vacuum (the engine's drag acts on free spheres only) and without
@@ -216,12 +216,15 @@ void align_impact_phase(CaseSpec& spec) {
 // ---------------------------------------------------------------------------------------------
 // The registered experiment.
 
-void DropExperiment::read_keys(const Section& s, ExperimentSpec& ex) const {
+std::shared_ptr<const ExperimentSettings> DropExperiment::read_keys(const Section& s) const {
+  auto settings = std::make_shared<DropSettings>();
+  DropSettings& ex = *settings;
   if (auto h = s.number("drop_height")) {
     ex.drop_height = positive(s, "drop_height", *h);
     if (ex.drop_height > 20) s.fail("drop_height", format_number(*h) + " m is no lab drop: millimetres written as metres?");
   }
   if (auto f = s.number("camera_fps")) ex.camera_fps = positive(s, "camera_fps", *f);
+  return settings;
 }
 
 std::vector<std::string> DropExperiment::responses() const {
@@ -245,7 +248,7 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   j["restitution"] = r.restitution;
   j["impact_speed"] = r.impact_speed;
   j["contact_time"] = r.contact_time;
-  j["camera_fps"] = spec.experiment.camera_fps;
+  j["camera_fps"] = settings_of<DropSettings>(spec.experiment).camera_fps;
   auto track = std::make_shared<DropResult>(r);
   o.files.push_back(text_file("trajectory.csv", [track](std::ostream& out) {
     out << "t,height,centre\n";
@@ -274,7 +277,8 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
   for (int k = 0; k < run.replicates; ++k) {
     CaseSpec replicate = spec;
     replicate.seed = spec.seed + uint64_t(k);
-    DropOptions options{run.backend, run.device, run.threads};
+    DropOptions options;
+    static_cast<ExperimentRunOptions&>(options) = run;
     options.require_rebound = false;
     DropResult r = k == 0 ? first : drop(replicate, options);
     if (!r.rebounded) {
@@ -308,7 +312,8 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
 }
 
 ExperimentOutcome DropExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
-  DropOptions options{run.backend, run.device, run.threads};
+  DropOptions options;
+  static_cast<ExperimentRunOptions&>(options) = run;
   options.require_rebound = run.strict;
   DropResult r = drop(spec, options);
   if (!r.rebounded) {
@@ -360,9 +365,10 @@ std::string DropExperiment::diagnosis_problem(const CaseSpec& spec) const {
 DiagnosticOutcome DropExperiment::simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>&,
                                                          bool strict) const {
   double g = std::sqrt(dot(spec.gravity, spec.gravity));
+  double H = settings_of<DropSettings>(spec.experiment).drop_height;
   if (!strict) {
     // A search meets models that stop the body on the plate: no need to wait long for them.
-    double fall = std::sqrt(2 * spec.experiment.drop_height / g);
+    double fall = std::sqrt(2 * H / g);
     spec.experiment.max_time = std::min(spec.experiment.max_time, 3 * fall + 0.5);
   }
   align_impact_phase(spec);
@@ -375,7 +381,7 @@ DiagnosticOutcome DropExperiment::simulate_for_diagnosis(CaseSpec spec, const st
     out.values = {{"rebound_height", 0}, {"restitution", 0}};
     for (int k = 0; k <= 100; ++k) {
       double t = k * 0.01 * spec.experiment.max_time;
-      out.trajectory.push_back({t, std::max(0.0, spec.experiment.drop_height - 0.5 * g * t * t)});
+      out.trajectory.push_back({t, std::max(0.0, H - 0.5 * g * t * t)});
     }
     return out;
   }
@@ -389,11 +395,12 @@ DiagnosticOutcome DropExperiment::simulate_for_diagnosis(CaseSpec spec, const st
 std::string DropExperiment::implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const {
   if (m.name == "restitution" && !(value > 0 && value <= 1)) return "a restitution coefficient lies in (0, 1]";
   if (m.unit != "m") return "";
-  if (value > 10 * spec.experiment.drop_height)
-    return std::to_string(value) + " m is more than ten times the drop height " +
-           std::to_string(spec.experiment.drop_height) + " m: millimetres? Values are in SI units (m)";
-  if (m.name == "rebound_height" && value > spec.experiment.drop_height)
-    return std::to_string(value) + " m is higher than the drop height " + std::to_string(spec.experiment.drop_height) +
+  double H = settings_of<DropSettings>(spec.experiment).drop_height;
+  if (value > 10 * H)
+    return std::to_string(value) + " m is more than ten times the drop height " + std::to_string(H) +
+           " m: millimetres? Values are in SI units (m)";
+  if (m.name == "rebound_height" && value > H)
+    return std::to_string(value) + " m is higher than the drop height " + std::to_string(H) +
            " m: a body does not rebound above its release (e > 1)";
   return "";
 }

@@ -13,10 +13,14 @@
 
 namespace repose {
 
-struct DropOptions {
-  std::string backend = "cpu";
-  int device = -1;
-  unsigned threads = 1;
+// The drop's [experiment] keys.
+struct DropSettings : ExperimentSettings {
+  double drop_height = 0.5;  // m: the body's lowest point above the plate at release
+  double camera_fps = 1000;  // frames per second of the simulated high-speed camera
+};
+
+// How a drop runs: the run options of every experiment and the drop's own.
+struct DropOptions : ExperimentRunOptions {
   bool random_orientation = true;  // a clump falls at a random orientation drawn from the seed
   bool require_rebound = true;     // false: a body that never leaves the plate is a result
 };
@@ -72,7 +76,7 @@ class DropExperiment : public Experiment {
   std::string id() const override { return "drop"; }
   std::string description() const override { return "drop (restitution)"; }
   std::vector<std::string> keys() const override { return {"drop_height", "camera_fps"}; }
-  void read_keys(const Section& s, ExperimentSpec& ex) const override;
+  std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override;
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
   const DiagnosisRole* diagnosis() const override;

@@ -8,6 +8,7 @@
 // example, drop_on_bed.cpp a variant of it) and one line in registry.cpp.
 #pragma once
 #include <functional>
+#include <memory>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -108,10 +109,13 @@ class Experiment {
   // type itself is not compared.
   virtual bool handles(const CaseSpec&) const { return true; }
 
-  // --- Its case keys: the [experiment] keys besides type and max_time, read into ExperimentSpec
-  // with located errors. Experiments of one type share their keys and reader.
+  // --- Its case keys: the [experiment] keys besides type and max_time, those of them whose value
+  // names a [[wall]] (the loader checks the wall exists), and their reader, which returns the
+  // experiment's settings (ExperimentSpec::settings, settings_of below) with located errors.
+  // Experiments of one type share their keys and reader.
   virtual std::vector<std::string> keys() const = 0;
-  virtual void read_keys(const Section& s, ExperimentSpec& ex) const = 0;
+  virtual std::vector<std::string> wall_keys() const { return {}; }
+  virtual std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const = 0;
 
   // --- Running: the names of the values an outcome holds (what a calibration can fit), and a run.
   // A strict run throws std::runtime_error naming the case where the rig cannot take a reading.
@@ -144,6 +148,24 @@ class Experiment {
   // thousand times the rig's size are millimetres written as metres.
   virtual std::string implausible(const MeasureInfo&, double, const CaseSpec&) const { return ""; }
 };
+
+// An experiment's settings of type T as its reader left them in a case, or T's defaults when the
+// case holds none (a case built in code; a plan's base case without [experiment]).
+// A T is also what a type derived from T holds (a roll case's settings are a tilt's and more).
+template <class T>
+const T& settings_of(const ExperimentSpec& ex) {
+  static const T defaults{};
+  const T* s = dynamic_cast<const T*>(ex.settings.get());
+  return s ? *s : defaults;
+}
+// The same to change (tests, a diagnosis): the case gets a copy of its settings (T's defaults when
+// it holds none), which this returns; other copies of the case keep theirs.
+template <class T>
+T& edit_settings(ExperimentSpec& ex) {
+  auto copy = std::make_shared<T>(settings_of<T>(ex));
+  ex.settings = copy;
+  return *copy;
+}
 
 // The responses of an outcome as a strict run must have them: throws its problem when the rig
 // could not take the reading.

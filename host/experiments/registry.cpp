@@ -70,7 +70,7 @@ void install_experiments() {
   for (const Experiment* e : experiments()) {
     bool known = std::any_of(readers.begin(), readers.end(), [&](const auto& r) { return r.type == e->type(); });
     if (!known)
-      readers.push_back({e->type(), e->keys(), [e](const Section& s, ExperimentSpec& ex) { e->read_keys(s, ex); }});
+      readers.push_back({e->type(), e->keys(), e->wall_keys(), [e](const Section& s) { return e->read_keys(s); }});
   }
   set_experiment_key_readers(std::move(readers));
 }

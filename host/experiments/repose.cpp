@@ -56,12 +56,12 @@ namespace {
 
 // When the lifted wall stops: [experiment] lift_end, else the end of its motion; before max_time.
 double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
-  const ExperimentSpec& ex = spec.experiment;
+  const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
   if (!(lift_end < 1e29))
     throw std::runtime_error(spec.path + ": [experiment] lift_end is needed: the wall '" + lift.name +
                              "' moves without a stop time");
-  if (lift_end >= ex.max_time)
+  if (lift_end >= spec.experiment.max_time)
     throw std::runtime_error(spec.path + ": [experiment] max_time must exceed the end of the lift (" +
                              std::to_string(lift_end) + " s)");
   return lift_end;
@@ -72,9 +72,9 @@ double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
 // the lift starts, energies, wall forces and the time per phase go into r.
 void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options, const WallSpec& lift,
                        double lift_end, bool measure_unsettled, Simulation& sim, ReposeResult& r) {
-  const ExperimentSpec& ex = spec.experiment;
+  const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   uint64_t sample_steps = steps_in(0.05, r.dt);
-  Progress progress(spec.name + " repose", uint64_t(ex.max_time / r.dt) + 1, r.dt, options.progress);
+  Progress progress(spec.name + " repose", uint64_t(spec.experiment.max_time / r.dt) + 1, r.dt, options.progress);
   // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
   auto names = sim.model().wall_group_names();
   size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
@@ -99,7 +99,7 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
     bool clear = sim.time() > lift.motion.start_time && f.fx == 0 && f.fy == 0 && f.fz == 0;
     bool lift_over = sim.time() >= lift_end || (ex.end_when_clear && clear && clear_before);
     clear_before = clear;
-    bool out_of_time = sim.time() >= ex.max_time;
+    bool out_of_time = sim.time() >= spec.experiment.max_time;
     if ((lift_over && e < ex.settle_energy) || (out_of_time && measure_unsettled)) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
@@ -109,7 +109,7 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
     if (out_of_time)
       throw std::runtime_error(spec.path + ": the heap had not settled (largest kinetic energy " + std::to_string(e) +
                                " J of a particle, settle_energy " + std::to_string(ex.settle_energy) +
-                               ") by max_time = " + std::to_string(ex.max_time) + " s");
+                               ") by max_time = " + std::to_string(spec.experiment.max_time) + " s");
   }
   progress.finish();
 }
@@ -119,7 +119,7 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
 double collect_heap(const CaseSpec& spec, const HostState& state, ReposeResult& r) {
   double lowest = std::numeric_limits<double>::infinity();
   for (const auto& p : state.pos) lowest = std::min(lowest, double(p.z) - p.w);
-  double floor_z = spec.experiment.heap_floor_z.value_or(lowest);
+  double floor_z = settings_of<ReposeSettings>(spec.experiment).heap_floor_z.value_or(lowest);
   for (const auto& p : state.pos)
     if (double(p.z) - p.w >= floor_z - 0.5 * p.w) r.spheres.push_back({{p.x, p.y, p.z}, p.w});
   r.particles_measured = r.spheres.size();
@@ -131,7 +131,7 @@ double collect_heap(const CaseSpec& spec, const HostState& state, ReposeResult& 
 // around the heap in `views` views, and the 3D sector fit. No slope: an error, or (require_slope
 // off) a result with angle 0 that says why.
 void measure_heap(const CaseSpec& spec, double floor_z, bool require_slope, ReposeResult& r) {
-  const ExperimentSpec& ex = spec.experiment;
+  const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   HeapAngleOptions opts;
   opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
   opts.floor_z = floor_z;
@@ -164,7 +164,7 @@ void measure_heap(const CaseSpec& spec, double floor_z, bool require_slope, Repo
 
 ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& options, bool measure_unsettled,
                         bool require_slope) {
-  const WallSpec& lift = spec.walls.at(find_wall(spec, spec.experiment.lift_wall, "lifted wall"));
+  const WallSpec& lift = spec.walls.at(find_wall(spec, settings_of<ReposeSettings>(spec.experiment).lift_wall, "lifted wall"));
   double lift_end = lift_end_of(spec, lift);  // a case error before anything is built
   Model model = build_model(spec);
   Simulation sim = experiment_simulation(model, options, steps_in(0.05, model.dt), 200);
@@ -178,7 +178,7 @@ ReposeResult run_repose(const CaseSpec& spec, const ExperimentRunOptions& option
 }
 
 double measure_bed_height(const CaseSpec& spec) {
-  const ExperimentSpec& ex = spec.experiment;
+  const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   const WallSpec& lift = spec.walls.at(find_wall(spec, ex.lift_wall, "lifted wall"));
   Model model = build_model(spec);
   // run_repose's sampling: batches of 0.05 s, the bed taken at the first sample at the lift.
@@ -220,7 +220,9 @@ std::vector<std::string> repose_keys() {
   return {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
 }
 
-void read_repose_keys(const Section& s, ExperimentSpec& ex) {
+std::shared_ptr<const ExperimentSettings> read_repose_keys(const Section& s) {
+  auto settings = std::make_shared<ReposeSettings>();
+  ReposeSettings& ex = *settings;
   ex.lift_wall = s.text("lift_wall").value_or("");
   if (ex.lift_wall.empty()) s.missing("lift_wall", " (the name of the [[wall]] that is lifted or pulled)");
   if (auto t = s.number("lift_end")) ex.lift_end = non_negative(s, "lift_end", *t);
@@ -236,6 +238,7 @@ void read_repose_keys(const Section& s, ExperimentSpec& ex) {
       s.fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
   }
   if (auto z = s.number("floor_z")) ex.heap_floor_z = *z;
+  return settings;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -247,7 +250,7 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   OrderedJson j;
   j["experiment"] = "repose";
   j["case"] = spec.path;
-  j["heap_side"] = spec.experiment.heap_side;
+  j["heap_side"] = settings_of<ReposeSettings>(spec.experiment).heap_side;
   j["angle_deg"] = r.angle_deg;
   j["left"] = slope_json(r.heap.left);
   j["right"] = slope_json(r.heap.right);
@@ -281,7 +284,7 @@ void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeRe
   }));
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
-  std::string horizontal = spec.experiment.view == "x" ? "y" : "x";  // the picture's horizontal axis
+  std::string horizontal = settings_of<ReposeSettings>(spec.experiment).view == "x" ? "y" : "x";  // the picture's horizontal axis
   o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
 }
 
@@ -408,7 +411,7 @@ DiagnosticOutcome ReposeExperiment::simulate_for_diagnosis(CaseSpec spec, const 
   try {
     ReposeResult r = run_repose(spec, {}, true, strict);
     if (r.sloped) {
-      out.values = heap_measures(r, spec.experiment.heap_side);
+      out.values = heap_measures(r, settings_of<ReposeSettings>(spec.experiment).heap_side);
       return out;
     }
   } catch (const std::exception& e) {

@@ -19,6 +19,22 @@
 
 namespace repose {
 
+// The [experiment] keys of a repose rig.
+struct ReposeSettings : ExperimentSettings {
+  std::string lift_wall;           // the wall that lifts or is pulled (its [[wall]] motion)
+  double lift_end = 0;             // s: the lift is over (default: the wall's motion stop)
+  bool end_when_clear = true;      // the lift is also over once the lifted wall has touched no
+                                   // particle for two samples: the rest of its motion cannot
+                                   // change the heap (repose.cpp)
+  double settle_energy = 1e-4;     // J: settled when no particle (or body) has more
+  std::string view = "y";          // camera looks along +y ("y") or +x ("x")
+  std::string heap_side = "both";  // which slope is the angle: "left", "right", "both" (mean)
+  bool axisymmetric = false;       // also the 3D sector fit (bottomless cylinder)
+  int views = 1;                   // > 1: the angle is the mean slope of that many front views
+                                   // over half a turn about the heap axis (needs heap_side both)
+  std::optional<double> heap_floor_z;  // default: the lowest sphere bottom
+};
+
 struct ReposeResult {
   double angle_deg = 0;           // per [experiment] heap_side: left, right or their mean
   HeapAngle heap;                 // the 2D measurement (with its picture)
@@ -73,7 +89,7 @@ std::map<std::string, double> heap_measures(double angle_deg, double bed_height,
 
 // The [experiment] keys of a repose rig, and their reader.
 std::vector<std::string> repose_keys();
-void read_repose_keys(const Section& s, ExperimentSpec& ex);
+std::shared_ptr<const ExperimentSettings> read_repose_keys(const Section& s);
 
 // The angle of repose as a registered experiment: `repose experiment repose` writes repose.json,
 // heap.png, heap.csv, energy.csv and wall_forces.csv; a diagnosis fits the grains' sliding
@@ -83,7 +99,8 @@ class ReposeExperiment : public Experiment {
   std::string id() const override { return "repose"; }
   std::string description() const override { return "repose (angle of repose of a rig)"; }
   std::vector<std::string> keys() const override { return repose_keys(); }
-  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_repose_keys(s, ex); }
+  std::vector<std::string> wall_keys() const override { return {"lift_wall"}; }
+  std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override { return read_repose_keys(s); }
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
   const DiagnosisRole* diagnosis() const override;

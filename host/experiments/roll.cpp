@@ -23,7 +23,7 @@ namespace {
 struct Incline {
   double beta, S;
   Vec3d down, normal;  // along the incline (downhill) and its normal
-  explicit Incline(const ExperimentSpec& ex)
+  explicit Incline(const RollSettings& ex)
       : beta(ex.incline_deg * kPi / 180), S(ex.slope_distance),
         down{std::cos(beta), 0, -std::sin(beta)}, normal{std::sin(beta), 0, std::cos(beta)} {}
 };
@@ -79,23 +79,23 @@ std::vector<WallSpec> incline_walls(const Incline& in, double extent, int materi
 // point on the floor), is slower than stop_speed or no longer moves forward (the constant
 // rolling torque rocks a stopped body back and forth by a hair).
 void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options, bool require_stop, RollResult& r) {
-  const ExperimentSpec& ex = spec.experiment;
+  const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
   Model model = build_model(spec);
   uint64_t sample_steps = steps_in(0.005, model.dt);
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
-  Progress progress(spec.name + " roll", uint64_t(ex.max_time / model.dt) + 1, model.dt, options.progress);
+  Progress progress(spec.name + " roll", uint64_t(spec.experiment.max_time / model.dt) + 1, model.dt, options.progress);
   bool on_floor = false;
   double previous_x = -1e300;
   while (true) {
-    if (sim.time() >= ex.max_time && !require_stop) {
+    if (sim.time() >= spec.experiment.max_time && !require_stop) {
       r.rolling_distance = std::max(0.0, previous_x);
       r.stop_time = sim.time();
       r.stopped = false;
       break;
     }
-    if (sim.time() >= ex.max_time)
+    if (sim.time() >= spec.experiment.max_time)
       throw std::runtime_error(spec.path + ": the body had not stopped on the floor after max_time = " +
-                               std::to_string(ex.max_time) + " s");
+                               std::to_string(spec.experiment.max_time) + " s");
     sim.advance(sample_steps);
     double x = body_centre(sim.state())[0], speed = body_speed(sim.state());
     r.trajectory.push_back({sim.time(), x, speed});
@@ -119,7 +119,7 @@ void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options
 
 RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
   CaseSpec spec = input;
-  const ExperimentSpec& ex = spec.experiment;
+  const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
   int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
   Incline in(ex);
   double extent = place_on_incline(spec, in);
@@ -138,7 +138,9 @@ std::vector<std::string> roll_keys() {
   return keys;
 }
 
-void read_roll_keys(const Section& s, ExperimentSpec& ex) {
+std::shared_ptr<const ExperimentSettings> read_roll_keys(const Section& s) {
+  auto settings = std::make_shared<RollSettings>();
+  RollSettings& ex = *settings;
   read_tilt_keys(s, ex);
   ex.method = s.choice<std::string>("method", {{"incline", "incline"}, {"tilt", "tilt"}}, ex.method);
   if (auto b = s.number("incline_angle")) {
@@ -147,6 +149,7 @@ void read_roll_keys(const Section& s, ExperimentSpec& ex) {
   }
   if (auto d = s.number("slope_distance")) ex.slope_distance = positive(s, "slope_distance", *d);
   if (auto v = s.number("stop_speed")) ex.stop_speed = positive(s, "stop_speed", *v);
+  return settings;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -214,11 +217,12 @@ DiagnosticOutcome RollExperiment::simulate_for_diagnosis(CaseSpec spec, const st
 // rolling friction a diagnosis fits that bounds any honest L.
 std::string RollExperiment::implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const {
   if (m.name != "roll_distance") return "";
-  double beta = spec.experiment.incline_deg * kPi / 180;
-  double longest = spec.experiment.slope_distance * std::sin(beta) / kSmallestRollingFriction;
+  const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
+  double beta = ex.incline_deg * kPi / 180;
+  double longest = ex.slope_distance * std::sin(beta) / kSmallestRollingFriction;
   if (!(value > longest)) return "";
   return std::to_string(value) + " m is farther than the body can roll from S = " +
-         std::to_string(spec.experiment.slope_distance) + " m at rolling friction " +
+         std::to_string(ex.slope_distance) + " m at rolling friction " +
          std::to_string(kSmallestRollingFriction).substr(0, 5) + " (" + std::to_string(longest) +
          " m): millimetres? Values are in SI units (m)";
 }
@@ -245,9 +249,11 @@ class RollTiltExperiment : public TiltExperiment {
   }
 
  public:
-  bool handles(const CaseSpec& spec) const override { return spec.experiment.method == "tilt"; }
+  bool handles(const CaseSpec& spec) const override {
+    return settings_of<RollSettings>(spec.experiment).method == "tilt";
+  }
   std::vector<std::string> keys() const override { return roll_keys(); }
-  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_roll_keys(s, ex); }
+  std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override { return read_roll_keys(s); }
 };
 
 }  // namespace

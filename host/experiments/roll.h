@@ -6,6 +6,7 @@
 
 #include "case/case_spec.h"
 #include "experiments/experiment.h"
+#include "experiments/tilt.h"
 #include "experiments/run_options.h"
 #include "experiments/wall_force_series.h"
 
@@ -34,6 +35,14 @@ struct RollResult {
 // the floor by max_time, unless `require_stop` is false: then L is where it got to by then.
 RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_stop = true);
 
+// The [experiment] keys of a roll case: both methods, so the tilt's and the incline's.
+struct RollSettings : TiltSettings {
+  std::string method = "incline";  // "incline" (release, roll onto the floor) or "tilt"
+  double incline_deg = 10;         // beta
+  double slope_distance = 0.26;    // S, m along the incline from the release point to the foot
+  double stop_speed = 0.005;       // m/s: the body has stopped
+};
+
 // The smallest rolling friction a diagnosis tries (a ball bearing): also what bounds a believable
 // rolling distance in measured data.
 constexpr double kSmallestRollingFriction = 0.002;
@@ -41,7 +50,7 @@ constexpr double kSmallestRollingFriction = 0.002;
 // The [experiment] keys of a roll case (both methods: the tilt keys, method and the incline's),
 // and their reader.
 std::vector<std::string> roll_keys();
-void read_roll_keys(const Section& s, ExperimentSpec& ex);
+std::shared_ptr<const ExperimentSettings> read_roll_keys(const Section& s);
 
 // The incline roll as a registered experiment: `repose experiment roll` writes roll.json,
 // trajectory.csv and wall_forces.csv; a diagnosis fits the body-plate rolling friction to L.
@@ -49,9 +58,12 @@ class RollExperiment : public Experiment {
  public:
   std::string id() const override { return "roll"; }
   std::string description() const override { return "roll (rolling friction: incline + floor)"; }
-  bool handles(const CaseSpec& spec) const override { return spec.experiment.method != "tilt"; }
+  bool handles(const CaseSpec& spec) const override {
+    return settings_of<RollSettings>(spec.experiment).method != "tilt";
+  }
   std::vector<std::string> keys() const override { return roll_keys(); }
-  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_roll_keys(s, ex); }
+  std::vector<std::string> wall_keys() const override { return {"plate"}; }
+  std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override { return read_roll_keys(s); }
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
   const DiagnosisRole* diagnosis() const override;

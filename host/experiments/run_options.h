@@ -2,10 +2,12 @@
 #pragma once
 #include <string>
 
+#include "engine/backend.h"
+
 namespace repose {
 
 struct ExperimentRunOptions {
-  std::string backend = "cpu";
+  std::string backend = kLibraryBackend;
   int device = -1;
   unsigned threads = 1;
   bool progress = false;  // progress with ETA on stderr (host/util/progress.h)

@@ -21,7 +21,7 @@ namespace {
 // The plate's motion replaced by the tilt: about tilt_axis through its point at tilt_rate after
 // settle_time, up to max_angle. Returns the plate.
 const WallSpec& set_tilt(CaseSpec& spec) {
-  const ExperimentSpec& ex = spec.experiment;
+  const TiltSettings& ex = settings_of<TiltSettings>(spec.experiment);
   WallSpec& plate = spec.walls[find_wall(spec, ex.plate, "tilting plate")];
   if (plate.type != WallSpec::Type::Rectangle && plate.type != WallSpec::Type::Plane)
     throw std::runtime_error(spec.path + ": the tilting plate '" + plate.name + "' must be a rectangle or a plane");
@@ -39,12 +39,12 @@ const WallSpec& set_tilt(CaseSpec& spec) {
 // to the plate (rotated back by the tilt so far, exactly, in double), and its turn since the
 // tilt began (w dt summed: rocking cancels).
 struct TiltTracker {
-  const ExperimentSpec& ex;
+  const TiltSettings& ex;
   Vec3d pivot, up;
   double rate, rolling_radius = 0;
   Vec3d start{0, 0, 0}, turned{0, 0, 0};
 
-  TiltTracker(const ExperimentSpec& e, const WallSpec& plate, const HostState& at_rest, double time)
+  TiltTracker(const TiltSettings& e, const WallSpec& plate, const HostState& at_rest, double time)
       : ex(e), pivot(plate.point), up(plate.normal), rate(plate.motion.angular_rate) {
     start = in_plate_frame(body_centre(at_rest), time);
     // The rolling radius: the lowest point of the body below its centre at rest.
@@ -74,13 +74,13 @@ struct TiltTracker {
 // Where the onset criterion was met between samples a and b: the displacement crossing its
 // threshold, or the speed (an interval's mean, taken at its middle) crossing its; a fraction of
 // the interval.
-double onset_fraction(const ExperimentSpec& ex, const TiltSample& a, const TiltSample& b, double speed_a, double speed_b) {
+double onset_fraction(const TiltSettings& ex, const TiltSample& a, const TiltSample& b, double speed_a, double speed_b) {
   if (ex.onset_speed > 0) return std::clamp((ex.onset_speed - speed_a) / (speed_b - speed_a), 0.0, 1.0) - 0.5;
   return (ex.onset_distance - a.displacement) / (b.displacement - a.displacement);
 }
 
 std::string no_motion_message(const CaseSpec& spec, double angle_deg) {
-  const ExperimentSpec& ex = spec.experiment;
+  const TiltSettings& ex = settings_of<TiltSettings>(spec.experiment);
   return spec.path + ": the body did not move by " +
          (ex.onset_speed > 0 ? "a speed of " + std::to_string(ex.onset_speed) + " m/s"
                              : std::to_string(ex.onset_distance) + " m") +
@@ -91,13 +91,13 @@ std::string no_motion_message(const CaseSpec& spec, double angle_deg) {
 
 TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
   CaseSpec spec = input;
-  const ExperimentSpec& ex = spec.experiment;
+  const TiltSettings& ex = settings_of<TiltSettings>(spec.experiment);
   const WallSpec& plate = set_tilt(spec);
   double rate = plate.motion.angular_rate;
   Model model = build_model(spec);
   double sample_dt = std::min(0.01, 0.05 * kPi / 180.0 / rate);  // every 0.05 degrees at most
   uint64_t sample_steps = steps_in(sample_dt, model.dt);
-  double end_time = std::min(ex.max_time, plate.motion.stop_time);
+  double end_time = std::min(spec.experiment.max_time, plate.motion.stop_time);
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
   Progress progress(spec.name + " tilt", uint64_t(end_time / model.dt) + 1, model.dt, options.progress);
 
@@ -141,7 +141,7 @@ std::vector<std::string> tilt_keys() {
   return {"plate", "tilt_rate", "tilt_axis", "settle_time", "onset_distance", "onset_speed", "max_angle"};
 }
 
-void read_tilt_keys(const Section& s, ExperimentSpec& ex) {
+void read_tilt_keys(const Section& s, TiltSettings& ex) {
   ex.plate = s.text("plate").value_or("");
   if (auto r = s.number("tilt_rate")) ex.tilt_rate_deg = positive(s, "tilt_rate", *r);
   if (auto a = s.vector3("tilt_axis")) ex.tilt_axis = unit_vector(s, "tilt_axis", *a);
@@ -157,6 +157,12 @@ void read_tilt_keys(const Section& s, ExperimentSpec& ex) {
 // ---------------------------------------------------------------------------------------------
 // The registered experiments.
 
+std::shared_ptr<const ExperimentSettings> TiltExperiment::read_keys(const Section& s) const {
+  auto settings = std::make_shared<TiltSettings>();
+  read_tilt_keys(s, *settings);
+  return settings;
+}
+
 std::vector<std::string> TiltExperiment::responses() const {
   return {"onset_angle_deg", "tan_alpha", "onset_time", "rolled_fraction"};
 }
@@ -166,7 +172,7 @@ ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun&
   ExperimentOutcome o;
   if (!r->moved) {
     o.status = OutcomeStatus::DidNotMove;
-    o.problem = spec.path + ": the body did not move up to max_angle = " + format_number(spec.experiment.max_angle_deg) +
+    o.problem = spec.path + ": the body did not move up to max_angle = " + format_number(settings_of<TiltSettings>(spec.experiment).max_angle_deg) +
                 " degrees (or max_time)";
     return o;
   }
@@ -176,8 +182,8 @@ ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["experiment"] = spec.experiment.type;
   j["method"] = "tilt";
   j["case"] = spec.path;
-  j["tilt_rate_deg_per_s"] = spec.experiment.tilt_rate_deg;
-  j["onset_distance"] = spec.experiment.onset_distance;
+  j["tilt_rate_deg_per_s"] = settings_of<TiltSettings>(spec.experiment).tilt_rate_deg;
+  j["onset_distance"] = settings_of<TiltSettings>(spec.experiment).onset_distance;
   j["onset_angle_deg"] = r->onset_angle_deg;
   j["onset_time"] = r->onset_time;
   j[quantity_] = r->tan_alpha;
@@ -201,7 +207,7 @@ Interaction& body_plate_contact(CaseSpec& spec) {
   if (!spec.spheres.empty()) a = spec.spheres[0].material;
   else if (!spec.bodies.empty()) a = spec.bodies[0].material;
   else throw std::runtime_error(spec.path + ": the case has no body");
-  const WallSpec& plate = spec.walls.at(find_wall(spec, spec.experiment.plate, "plate"));
+  const WallSpec& plate = spec.walls.at(find_wall(spec, settings_of<TiltSettings>(spec.experiment).plate, "plate"));
   return interaction_between(spec, a, plate.material, "the body and the plate");
 }
 
@@ -232,7 +238,7 @@ DiagnosticOutcome TiltExperiment::simulate_for_diagnosis(CaseSpec spec, const st
                                                          bool strict) const {
   TiltResult r = run_tilt(spec, {}, strict);
   // The body held on up to max_angle: predict max_angle, the most the rig can tell.
-  double angle = r.moved ? r.onset_angle_deg : spec.experiment.max_angle_deg;
+  double angle = r.moved ? r.onset_angle_deg : settings_of<TiltSettings>(spec.experiment).max_angle_deg;
   return {{{role_.measures.front().name, angle}}, {}};
 }
 

@@ -28,6 +28,18 @@ struct TiltResult {
   WallForceSeries wall_forces;
 };
 
+// The [experiment] keys of a tilting plate (slide; roll with method "tilt" adds its own).
+struct TiltSettings : ExperimentSettings {
+  std::string plate;            // wall name; default the first wall
+  double tilt_rate_deg = 1.0;   // deg/s about `tilt_axis` through the plate's centre
+  Vec3d tilt_axis{0, 1, 0};
+  double settle_time = 0.5;     // s at rest before the tilt starts
+  double onset_distance = 1e-3; // m the body moves relative to the plate: it slides (or rolls)
+  double onset_speed = 0;       // m/s > 0: the onset is where its speed relative to the plate first
+                                // reaches this instead (a soft body creeps its first mm early)
+  double max_angle_deg = 60;    // give up beyond this tilt
+};
+
 // The plate is [experiment] plate (default the first wall: a rectangle or a plane); its motion is
 // replaced by the tilt: about tilt_axis through its centre at tilt_rate deg/s after settle_time.
 // Onset: the body centre moved onset_distance relative to the plate. Throws std::runtime_error
@@ -37,7 +49,7 @@ TiltResult run_tilt(const CaseSpec& spec, const ExperimentRunOptions& options = 
 
 // The [experiment] keys of a tilting plate, and their reader.
 std::vector<std::string> tilt_keys();
-void read_tilt_keys(const Section& s, ExperimentSpec& ex);
+void read_tilt_keys(const Section& s, TiltSettings& ex);
 
 // A tilting-plate test as a registered experiment: `repose experiment` writes TYPE.json,
 // trajectory.csv and wall_forces.csv; its outcome is the onset angle, tan(alpha) and how much
@@ -52,7 +64,8 @@ class TiltExperiment : public Experiment {
   std::string type() const override { return type_; }
   std::string description() const override { return type_ + " (" + quantity_ + " on a tilting plate)"; }
   std::vector<std::string> keys() const override { return tilt_keys(); }
-  void read_keys(const Section& s, ExperimentSpec& ex) const override { read_tilt_keys(s, ex); }
+  std::vector<std::string> wall_keys() const override { return {"plate"}; }
+  std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override;
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
   const DiagnosisRole* diagnosis() const override { return &role_; }

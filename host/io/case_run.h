@@ -14,11 +14,12 @@
 #include <vector>
 
 #include "case/case_spec.h"
+#include "engine/backend.h"
 
 namespace repose {
 
 struct CaseRunOptions {
-  std::string backend = "auto";      // auto: a hardware GPU, else cpu (resolve_backend)
+  std::string backend = kUserBackend;  // auto: a hardware GPU, else cpu (resolve_backend)
   int device = -1;
   unsigned threads = 0;                // cpu backend; 0: every core
   std::string variant;                 // kernel variant; empty: the backend's fastest

@@ -100,7 +100,7 @@ double cohesive_slide_angle(double mu_s, double k_coh, CohesionFriction grip) {
   b.four_sphere_body(0.02, grain);
   b.level_plate("plate", 0.6, steel);
   b.spec.experiment.type = "slide";
-  b.spec.experiment.settle_time = 0.3;
+  edit_settings<TiltSettings>(b.spec.experiment).settle_time = 0.3;
   b.spec.experiment.max_time = 60;
   return run_tilt(b.spec).onset_angle_deg;
 }

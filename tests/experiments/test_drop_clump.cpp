@@ -71,9 +71,9 @@ TEST_CASE("cabbage clump drops: one random orientation per seed, reproducible", 
 TEST_CASE("a contact shorter than a camera frame is still the first impact", "[experiments][drop]") {
   // A stiff ball (G 1 GPa): the contact lasts ~0.3 ms, between two 1000 fps frames.
   CaseSpec fast = drop_case(false, "1e9");
-  fast.experiment.camera_fps = 20000;
+  edit_settings<DropSettings>(fast.experiment).camera_fps = 20000;
   CaseSpec slow = drop_case(false, "1e9");
-  slow.experiment.camera_fps = 1000;
+  edit_settings<DropSettings>(slow.experiment).camera_fps = 1000;
   DropResult a = run_drop(fast), b = run_drop(slow);
   INFO("20000 fps: e = " << a.restitution << ", 1000 fps: e = " << b.restitution);
   // Seen or not by a frame, the first bounce is the one measured.

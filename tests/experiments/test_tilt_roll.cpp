@@ -24,8 +24,9 @@ CaseSpec tilt_case(double mu_s, double mu_r, bool four_spheres) {
   else b.sphere({0, 0, r * 0.999}, r, grain);
   b.level_plate("plate", 0.6, steel);
   b.spec.experiment.type = four_spheres ? "slide" : "roll";
-  b.spec.experiment.method = "tilt";
-  b.spec.experiment.settle_time = 0.3;
+  RollSettings& tilt = edit_settings<RollSettings>(b.spec.experiment);  // a slide reads its tilt keys
+  tilt.method = "tilt";
+  tilt.settle_time = 0.3;
   b.spec.experiment.max_time = 60;
   return b.spec;
 }
@@ -67,7 +68,7 @@ TEST_CASE("tilt test with onset_speed: a sphere starts to roll where rigid-body 
     CaseSpec spec = tilt_case(0.5, mu_r, false);
     spec.contact.rolling = model;
     if (model == RollingModel::ElasticPlastic) spec.interactions[0].spinning_friction = mu_r;
-    spec.experiment.onset_speed = v;
+    edit_settings<RollSettings>(spec.experiment).onset_speed = v;
     TiltResult r = run_tilt(spec);
     INFO((model == RollingModel::ElasticPlastic ? "epsd" : "constant torque")
          << ": onset at " << r.onset_angle_deg << " deg, theory " << expected);
