@@ -156,7 +156,7 @@ REPOSE_CONST kWallReduceWorkgroup = 256;
 // place in the table: word k of PairParams. Adding a per-pair constant is a row here and, by its
 // source, either the Interaction field of that name with its case key (interaction) or a member
 // of the same name in DerivedPairConstants, with its formula (derived; model.cpp). Columns:
-//   name, unit (1: dimensionless), source: interaction or derived.
+//   name, unit (1: dimensionless; tests draw values by it), source: interaction or derived.
 #define REPOSE_PAIR_PARAMS(X) \
   X(e_star, Pa, derived)                /* E*: 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b */ \
   X(g_star, Pa, derived)                /* G*: 1/G* = 2 (2 - nu_a)(1 + nu_a)/E_a + the same for b */ \
@@ -164,7 +164,7 @@ REPOSE_CONST kWallReduceWorkgroup = 256;
   X(static_friction, 1, interaction)    /* mu_s: |Ft| <= mu_s |Fn| */ \
   X(rolling_friction, 1, interaction)   /* mu_r: rolling torque mu_r |Fn| R, the EPSD spring's cap */ \
   X(viscoelastic_time, s, interaction)  /* A, extension restitution_velocity (0: off) */ \
-  X(cohesion_pi_k, Pa, derived)         /* pi x cohesion_energy_density, extension cohesion (0: off) */ \
+  X(cohesion_pi_k, J/m^3, derived)      /* pi x cohesion_energy_density, extension cohesion (0: off) */ \
   X(spinning_friction, 1, interaction)  /* mu_spin (0: off) */
 
 struct PairParams {

@@ -96,9 +96,11 @@ std::pair<std::string, std::string> CaseReader::name_pair(const Section& s, std:
 }
 
 void CaseReader::read_interaction(const Section& s) {
-  s.allow_only({"materials", "preset", "restitution", "static_friction", "rolling_friction", "spinning_friction",
-                "viscoelastic_time", "cohesion_energy_density"},
-               "an [[interaction]]");
+  std::vector<std::string> keys{"materials", "preset", "restitution", "static_friction", "rolling_friction"};
+#define REPOSE_INTERACTION_KEY(name, fallback, check) keys.push_back(#name);
+  REPOSE_INTERACTION_OPTIONS(REPOSE_INTERACTION_KEY)
+#undef REPOSE_INTERACTION_KEY
+  s.allow_only(keys, "an [[interaction]]");
   Interaction in;
   in.where = s.where();
   if (!s.has("materials")) s.missing("materials", " (two material names, as [\"a\", \"b\"])");
@@ -137,11 +139,16 @@ void CaseReader::read_interaction(const Section& s) {
   in.rolling_friction = parameter("rolling_friction", preset ? preset->rolling_friction : 0);
   if (in.rolling_friction < 0)
     s.fail("rolling_friction", format_number(in.rolling_friction) + " must not be negative");
-  if (auto mu = s.number("spinning_friction")) in.spinning_friction = non_negative(s, "spinning_friction", *mu);
-  // Extensions restitution_velocity and cohesion (docs/diagnosis.md), off unless given.
-  if (auto a = s.number("viscoelastic_time")) in.viscoelastic_time = non_negative(s, "viscoelastic_time", *a);
-  if (auto k = s.number("cohesion_energy_density"))
-    in.cohesion_energy_density = non_negative(s, "cohesion_energy_density", *k);
+  // The optional keys (REPOSE_INTERACTION_OPTIONS), their defaults unless given.
+#define REPOSE_READ_NonNegative(name) \
+  if (auto v = s.number(#name)) in.name = non_negative(s, #name, *v);
+#define REPOSE_READ_Switch(name) \
+  if (auto v = s.boolean(#name)) in.name = *v ? 1.0 : 0.0;
+#define REPOSE_READ_OPTION(name, fallback, check) REPOSE_READ_##check(name)
+  REPOSE_INTERACTION_OPTIONS(REPOSE_READ_OPTION)
+#undef REPOSE_READ_OPTION
+#undef REPOSE_READ_Switch
+#undef REPOSE_READ_NonNegative
   spec_.interactions.push_back(in);
 }
 

@@ -30,16 +30,26 @@ struct Material {
   SourceRef where;
 };
 
+// The optional keys of an [[interaction]], one row each: the key, also the Interaction field of that
+// name, its default and its check (case_reader_materials.cpp). A per-pair constant of the contact
+// law that a case gives is a row here and a row of the same name in the kernels' pair table
+// (REPOSE_PAIR_PARAMS, shaders/repose_shared.h, source interaction). Checks:
+//   NonNegative  a number >= 0
+//   Switch       true or false (the field holds 1 or 0)
+#define REPOSE_INTERACTION_OPTIONS(X) \
+  X(spinning_friction, 0, NonNegative)        /* torque mu_spin R* |Fn| against the spin about n (0: off) */ \
+  X(viscoelastic_time, 0, NonNegative)        /* s, extension restitution_velocity: damping A Sn vn on top of EDEM's (0: off) */ \
+  X(cohesion_energy_density, 0, NonNegative)  /* J/m^3, extension cohesion: EDEM linear cohesion F = k pi R* dn (0: off) */
+
 // Contact parameters for one pair of materials (symmetric), EDEM's "interaction" table.
 struct Interaction {
   int material_a = 0, material_b = 0;  // indices into CaseSpec::materials
   double restitution = 0;              // (0, 1]
   double static_friction = 0;          // >= 0
   double rolling_friction = 0;         // >= 0
-  double spinning_friction = 0;        // >= 0, torque mu_spin R* |Fn| against the spin about n (0: off)
-  // Model extensions (docs/diagnosis.md), 0 = off:
-  double viscoelastic_time = 0;        // s, restitution_velocity: damping A Sn vn on top of EDEM's
-  double cohesion_energy_density = 0;  // J/m^3, cohesion: EDEM linear cohesion F = k pi R* dn
+#define REPOSE_INTERACTION_FIELD(name, fallback, check) double name = fallback;
+  REPOSE_INTERACTION_OPTIONS(REPOSE_INTERACTION_FIELD)
+#undef REPOSE_INTERACTION_FIELD
   SourceRef where;
 };
 

@@ -4,6 +4,7 @@
 
 #include <cstring>
 #include <random>
+#include <string_view>
 #include <vector>
 
 #include "contact_lanes.h"
@@ -46,15 +47,17 @@ struct Scene {
       bodies.push_back(body);
     }
     for (uint m = 0; m < materials * materials; ++m) {
+      // Every row of the pair table, by its unit, so that a new row is drawn with no edit here: a
+      // modulus, else a number that is 0 (off) in half the pairs.
       PairParams p{};
-      p.e_star = 1e6f + 1e8f * u(rng);
-      p.g_star = 1e6f + 1e7f * u(rng);
-      p.damping = 0.5f * u(rng);
-      p.static_friction = 0.2f + 0.6f * u(rng);
-      p.rolling_friction = u(rng) < 0.5f ? 0.0f : 0.1f * u(rng);
-      u(rng);  // the restitution the table no longer holds: the same draws, the same scene
-      p.viscoelastic_time = u(rng) < 0.5f ? 0.0f : 1e-5f * u(rng);
-      p.cohesion_pi_k = u(rng) < 0.5f ? 0.0f : 1e4f * u(rng);
+      auto draw = [&](std::string_view unit) {
+        if (unit == "Pa") return 1e6f + 1e8f * u(rng);
+        float scale = unit == "s" ? 1e-5f : unit == "J/m^3" ? 1e4f : 0.8f;
+        return u(rng) < 0.5f ? 0.0f : scale * u(rng);
+      };
+#define REPOSE_DRAW_PARAM(name, unit, source) p.name = draw(#unit);
+      REPOSE_PAIR_PARAMS(REPOSE_DRAW_PARAM)
+#undef REPOSE_DRAW_PARAM
       pairs.push_back(p);
     }
     WallState floor{};
