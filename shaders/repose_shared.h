@@ -165,7 +165,8 @@ REPOSE_CONST kWallReduceWorkgroup = 256;
   X(rolling_friction, 1, interaction)   /* mu_r: rolling torque mu_r |Fn| R, the EPSD spring's cap */ \
   X(viscoelastic_time, s, interaction)  /* A, extension restitution_velocity (0: off) */ \
   X(cohesion_pi_k, J/m^3, derived)      /* pi x cohesion_energy_density, extension cohesion (0: off) */ \
-  X(spinning_friction, 1, interaction)  /* mu_spin (0: off) */
+  X(spinning_friction, 1, interaction)  /* mu_spin (0: off) */ \
+  X(tangential_damping, 1, interaction) /* 1: the tangential dashpot on (EDEM), 0: off (LIGGGHTS) */
 
 struct PairParams {
 #define REPOSE_PAIR_FIELD(name, unit, source) float name;

@@ -39,7 +39,8 @@ struct Material {
 #define REPOSE_INTERACTION_OPTIONS(X) \
   X(spinning_friction, 0, NonNegative)        /* torque mu_spin R* |Fn| against the spin about n (0: off) */ \
   X(viscoelastic_time, 0, NonNegative)        /* s, extension restitution_velocity: damping A Sn vn on top of EDEM's (0: off) */ \
-  X(cohesion_energy_density, 0, NonNegative)  /* J/m^3, extension cohesion: EDEM linear cohesion F = k pi R* dn (0: off) */
+  X(cohesion_energy_density, 0, NonNegative)  /* J/m^3, extension cohesion: EDEM linear cohesion F = k pi R* dn (0: off) */ \
+  X(tangential_damping, 1, Switch)            /* the tangential dashpot: on (EDEM) or off (LIGGGHTS tangential_damping off) */
 
 // Contact parameters for one pair of materials (symmetric), EDEM's "interaction" table.
 struct Interaction {

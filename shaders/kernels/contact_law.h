@@ -285,7 +285,9 @@ ContactOut hertz_mindlin(ContactGeometry g, real3 v_rel, real3 w_i, real3 w_j, b
   precise real fn_elastic = (4.0f * pp.e_star * sqrt_rd * g.overlap) / 3.0f;
   // pp.damping = -2 sqrt(5/6) beta >= 0
   precise real gamma_n = pp.damping * sqrt(sn * g.mass_star);
-  precise real gamma_t = pp.damping * sqrt(st * g.mass_star);
+  // The tangential dashpot, unless the pair has it off (LIGGGHTS's `tangential_damping off`).
+  precise real dashpot_t = pp.damping * sqrt(st * g.mass_star);
+  precise real gamma_t = pick(pp.tangential_damping > 0.0f, dashpot_t, 0.0f);
 
   precise real vn = dot3(v_rel, n);
   precise real3 v_t = v_rel - scale3(n, vn);
