@@ -4,23 +4,29 @@
 #include <stdexcept>
 
 #include "case/experiment_keys.h"
-#include "experiments/drop.h"
-#include "experiments/drop_on_bed.h"
-#include "experiments/repose.h"
-#include "experiments/roll.h"
-#include "experiments/tilt.h"
 
 namespace repose {
 
+// Every experiment, in order: the first of a type that handles a case runs it. A row NAME is the
+// experiment's `const Experiment& NAME_experiment()`, defined in its own file. Adding an
+// experiment: its own files in host/experiments, and one row here.
+#define REPOSE_EXPERIMENT_LIST(X) \
+  X(drop_on_bed) /* before drop: it takes the drop cases that hold a fixed bed */ \
+  X(drop)                                                                        \
+  X(slide)                                                                       \
+  X(roll)                                                                        \
+  X(roll_tilt)                                                                   \
+  X(repose)
+
+#define REPOSE_DECLARE_EXPERIMENT(name) const Experiment& name##_experiment();
+REPOSE_EXPERIMENT_LIST(REPOSE_DECLARE_EXPERIMENT)
+#undef REPOSE_DECLARE_EXPERIMENT
+
 const std::vector<const Experiment*>& experiments() {
-  // Adding an experiment: its own file, and one line here.
   static const std::vector<const Experiment*> list = {
-      &drop_on_bed_experiment(),  // before drop: it takes the drop cases that hold a fixed bed
-      &drop_experiment(),
-      &slide_experiment(),
-      &roll_experiment(),
-      &roll_tilt_experiment(),
-      &repose_experiment(),
+#define REPOSE_LIST_EXPERIMENT(name) &name##_experiment(),
+      REPOSE_EXPERIMENT_LIST(REPOSE_LIST_EXPERIMENT)
+#undef REPOSE_LIST_EXPERIMENT
   };
   return list;
 }
