@@ -1,5 +1,6 @@
 #include "measure/heap_png.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -22,9 +23,12 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
   const BinaryImage& image = m.image;
   const double u0 = image.origin_u, u1 = u0 + image.width * image.pixel;
   const double z0 = image.origin_z, z1 = z0 + image.height * image.pixel;
-  // Room above the heap for the legend, a little beside it.
+  // Room above the heap for the legend, a little beside it; a heap taller than wide (what stays in
+  // a drained box) is drawn in a picture as wide as the chart's 1400 x 1000, so its title fits.
   const double margin = 0.03 * (u1 - u0);
-  Chart chart = Chart::equal_scale(1400, 1000, u0 - margin, u1 + margin, z0, z1 + 0.3 * (z1 - z0));
+  const double top = z1 + 0.3 * (z1 - z0);
+  const double widen = std::max(0.0, 0.5 * (1.4 * (top - z0) - (u1 - u0)) - margin);
+  Chart chart = Chart::equal_scale(1400, 1000, u0 - margin - widen, u1 + margin + widen, z0, top);
   // The silhouette, then its top outline, the floor, the fitted lines and the points they used.
   chart.raster(image.width, image.height, u0, z0, image.pixel, [&](int c, int r) -> std::optional<Colour> {
     if (image.at(c, r)) return Colour{205, 205, 205};
