@@ -16,7 +16,8 @@ namespace repose {
   X(slide)                                                                       \
   X(roll)                                                                        \
   X(roll_tilt)                                                                   \
-  X(repose)
+  X(repose)                                                                      \
+  X(drain)
 
 #define REPOSE_DECLARE_EXPERIMENT(name) const Experiment& name##_experiment();
 REPOSE_EXPERIMENT_LIST(REPOSE_DECLARE_EXPERIMENT)
