@@ -318,88 +318,98 @@ void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
     if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
 }
 
-int run_heap_angle(int argc, char** argv) {
-  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
-  std::string file, view = "y", png, json;
-  bool axisymmetric = false;
-  int views = 1;
+// What `repose heap-angle` was asked for, as its options give it.
+struct HeapAngleRequest {
+  std::string file, view = "y", png, json, side = "both";
+  bool axisymmetric = false, light_heap = false, data_rows = false;
+  int views = 1, threshold = 128;
   HeapAngleOptions options;
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
   std::optional<double> floor_z;
-  int threshold = 128;
-  bool light_heap = false;
-  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+};
+
+void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
+  app.add_option("file", q.file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
       ->required();
-  app.add_option("--threshold", threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
+  app.add_option("--threshold", q.threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
       ->check(CLI::Range(1, 255));
-  app.add_flag("--light-heap", light_heap, "PNG: the heap is the lighter part of the picture");
-  std::string side = "both";
-  bool data_rows = false;
-  app.add_option("--side", side, "the slope a lab measures: left, right or both (their mean; default)")
+  app.add_flag("--light-heap", q.light_heap, "PNG: the heap is the lighter part of the picture");
+  app.add_option("--side", q.side, "the slope a lab measures: left, right or both (their mean; default)")
       ->check(CLI::IsMember({"left", "right", "both"}));
-  app.add_flag("--measures", data_rows,
+  app.add_flag("--measures", q.data_rows,
                "print only the diagnosis measures of --side as 'measure,value' lines, for a measured-data CSV "
                "(repose_angle, heap_height, runout, profile_convexity; bed_height of a sphere CSV: a bed before the lift)");
-  app.add_option("--view", view, "camera looks along x or y (image horizontal = the other one)")
+  app.add_option("--view", q.view, "camera looks along x or y (image horizontal = the other one)")
       ->check(CLI::IsMember({"x", "y"}));
-  app.add_option("--png", png, "write the picture: silhouette, boundary, fitted lines");
-  app.add_option("--json", json, "write the results as JSON to this file");
-  app.add_flag("--axisymmetric", axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
-  app.add_option("--views", views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
+  app.add_option("--png", q.png, "write the picture: silhouette, boundary, fitted lines");
+  app.add_option("--json", q.json, "write the results as JSON to this file");
+  app.add_flag("--axisymmetric", q.axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
+  app.add_option("--views", q.views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
-  app.add_option("--pixel", options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)")
+  app.add_option("--pixel", q.options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)")
       ->check(finite_positive());
-  app.add_option("--band", band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
+  app.add_option("--band", q.band, "fit band as fractions of the heap height: LOW,HIGH (default 0.1,0.8)")
       ->expected(2)
       ->delimiter(',');
-  app.add_option("--floor", floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
-                                     "z from the picture's bottom edge)")
+  app.add_option("--floor", q.floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
+                                       "z from the picture's bottom edge)")
       ->check(finite_number());
-  app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
-  app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
-  app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--sectors", q.axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
+  app.add_option("--bin", q.axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
+  app.add_option("--centre,--center", q.centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
+}
 
+// Reads the heap (a sphere CSV or a PNG silhouette) and measures what was asked.
+HeapAngleRun measure_request(HeapAngleRequest& q) {
   HeapAngleRun r;
-  r.file = file;
-  r.view = view;
-  r.photo = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
-  if (r.photo && !(options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
-  if (r.photo && (views > 1 || axisymmetric))
-    throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
-  if (!r.photo) r.spheres = read_sphere_csv(file);
-  options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
-  options.floor_z = floor_z;
-  axi.floor_z = floor_z;
-  if (band.size() == 2) {
-    options.band_low = axi.band_low = band[0];
-    options.band_high = axi.band_high = band[1];
+  r.file = q.file;
+  r.view = q.view;
+  r.photo = q.file.size() > 4 && q.file.compare(q.file.size() - 4, 4, ".png") == 0;
+  if (r.photo && !(q.options.pixel > 0)) throw std::runtime_error(q.file + ": a PNG silhouette needs --pixel (m per pixel)");
+  if (r.photo && (q.views > 1 || q.axisymmetric))
+    throw std::runtime_error(q.file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  if (!r.photo) r.spheres = read_sphere_csv(q.file);
+  HeapAngleOptions& options = q.options;
+  options.view = q.view == "x" ? ViewAxis::X : ViewAxis::Y;
+  options.floor_z = q.floor_z;
+  q.axi.floor_z = q.floor_z;
+  if (q.band.size() == 2) {
+    options.band_low = q.axi.band_low = q.band[0];
+    options.band_high = q.axi.band_high = q.band[1];
   }
-  if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
+  if (q.centre.size() == 2) q.axi.centre = glm::dvec2(q.centre[0], q.centre[1]);
   r.options = options;
   if (r.photo) {
-    BinaryImage image = read_silhouette_png(file, options.pixel, threshold, light_heap);
-    double floor = floor_z ? *floor_z : lowest_foreground(image);
+    BinaryImage image = read_silhouette_png(q.file, options.pixel, q.threshold, q.light_heap);
+    double floor = q.floor_z ? *q.floor_z : lowest_foreground(image);
     r.m = measure_heap_image(std::move(image), floor, options);
   } else {
     r.m = measure_heap_angle(r.spheres, options);
-    r.bed = uniform_bed_height(r.spheres, floor_z);
+    r.bed = uniform_bed_height(r.spheres, q.floor_z);
   }
   r.profile = measure_heap_profile(r.m);
-  if (views > 1)
-    r.around = measure_heap_angle_views(r.spheres, views, options, centre.size() == 2 ? axi.centre : std::nullopt);
-  if (axisymmetric) r.axisymmetric = measure_axisymmetric_heap_angle(r.spheres, axi);
+  if (q.views > 1)
+    r.around = measure_heap_angle_views(r.spheres, q.views, options, q.centre.size() == 2 ? q.axi.centre : std::nullopt);
+  if (q.axisymmetric) r.axisymmetric = measure_axisymmetric_heap_angle(r.spheres, q.axi);
+  return r;
+}
 
-  if (data_rows) print_measure_rows(r, side);
+int run_heap_angle(int argc, char** argv) {
+  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
+  HeapAngleRequest q;
+  add_heap_angle_options(app, q);
+  CLI11_PARSE(app, argc, argv);
+  HeapAngleRun r = measure_request(q);
+  if (q.data_rows) print_measure_rows(r, q.side);
   else print_heap_text(r);
-  if (!png.empty()) {
-    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
-    if (!data_rows) std::printf("picture      %s\n", png.c_str());
+  if (!q.png.empty()) {
+    write_heap_angle_png(q.png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    if (!q.data_rows) std::printf("picture      %s\n", q.png.c_str());
   }
-  if (!json.empty()) {
-    write_file_atomically(json, heap_angle_json(r).dump(2) + "\n");
-    if (!data_rows) std::printf("results      %s\n", json.c_str());
+  if (!q.json.empty()) {
+    write_file_atomically(q.json, heap_angle_json(r).dump(2) + "\n");
+    if (!q.data_rows) std::printf("results      %s\n", q.json.c_str());
   }
   return 0;
 }

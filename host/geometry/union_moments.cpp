@@ -198,11 +198,19 @@ std::vector<std::vector<int>> overlapping_pairs(const std::vector<LocalSphere>& 
   return result;
 }
 
-}  // namespace
+// The integration grid: lines along the axis l (the longest extent unless given), cells in the
+// plane (p, q) across it, everything relative to the bounding box's centre `reference`.
+struct Grid {
+  glm::dvec3 reference{0.0};
+  int axis_p = 1, axis_q = 2, axis_l = 0;
+  int np = 1, nq = 1;
+  double hp = 0, hq = 0, p_origin = 0, q_origin = 0;
+  std::vector<LocalSphere> local;        // the spheres in grid coordinates
+  std::vector<std::vector<int>> rows;    // spheres per grid row (a band in q), in input order
+};
 
-// One integration in one function (92 lines): the grid's axes, origin and spacing are shared by
-// the set-up, the sweep over cells and the moments; split, each part would take them all.
-UnionMoments union_moments(const std::vector<Sphere>& spheres, const UnionIntegration& options) {
+// Checks the spheres and options and lays the grid over them.
+Grid integration_grid(const std::vector<Sphere>& spheres, const UnionIntegration& options) {
   if (spheres.empty()) throw std::invalid_argument("union_moments: no spheres");
   if (!(options.cells_per_min_radius > 0) || options.max_cells_per_side < 1 || options.refine_depth < 0 ||
       options.refine_depth > 20 || options.line_axis < -1 || options.line_axis > 2)
@@ -219,60 +227,74 @@ UnionMoments union_moments(const std::vector<Sphere>& spheres, const UnionIntegr
     hi = glm::max(hi, s.centre + s.radius);
     min_radius = std::min(min_radius, s.radius);
   }
-  const glm::dvec3 reference = 0.5 * (lo + hi);
+  Grid g;
+  g.reference = 0.5 * (lo + hi);
   const glm::dvec3 extent = hi - lo;
 
   // Lines run along the longest extent: that gives the fewest lines for elongated bodies.
-  int axis_l = options.line_axis;
-  if (axis_l < 0) {
-    axis_l = 0;
+  g.axis_l = options.line_axis;
+  if (g.axis_l < 0) {
+    g.axis_l = 0;
     for (int a = 1; a < 3; ++a)
-      if (extent[a] > extent[axis_l]) axis_l = a;
+      if (extent[a] > extent[g.axis_l]) g.axis_l = a;
   }
-  const int axis_p = (axis_l + 1) % 3, axis_q = (axis_l + 2) % 3;
+  g.axis_p = (g.axis_l + 1) % 3;
+  g.axis_q = (g.axis_l + 2) % 3;
 
-  std::vector<LocalSphere> local;
-  local.reserve(spheres.size());
+  g.local.reserve(spheres.size());
   for (const Sphere& s : spheres) {
-    glm::dvec3 c = s.centre - reference;
-    local.push_back({c[axis_p], c[axis_q], c[axis_l], s.radius, s.radius * s.radius,
-                     s.radius / (options.cells_per_min_radius * std::ldexp(1.0, options.refine_depth))});
+    glm::dvec3 c = s.centre - g.reference;
+    g.local.push_back({c[g.axis_p], c[g.axis_q], c[g.axis_l], s.radius, s.radius * s.radius,
+                       s.radius / (options.cells_per_min_radius * std::ldexp(1.0, options.refine_depth))});
   }
 
   double cell = min_radius / options.cells_per_min_radius;
-  cell = std::max(cell, std::max(extent[axis_p], extent[axis_q]) / options.max_cells_per_side);
-  const int np = std::max(1, static_cast<int>(std::ceil(extent[axis_p] / cell)));
-  const int nq = std::max(1, static_cast<int>(std::ceil(extent[axis_q] / cell)));
-  const double hp = extent[axis_p] / np, hq = extent[axis_q] / nq;
-  const double p_origin = -0.5 * extent[axis_p], q_origin = -0.5 * extent[axis_q];
+  cell = std::max(cell, std::max(extent[g.axis_p], extent[g.axis_q]) / options.max_cells_per_side);
+  g.np = std::max(1, static_cast<int>(std::ceil(extent[g.axis_p] / cell)));
+  g.nq = std::max(1, static_cast<int>(std::ceil(extent[g.axis_q] / cell)));
+  g.hp = extent[g.axis_p] / g.np;
+  g.hq = extent[g.axis_q] / g.nq;
+  g.p_origin = -0.5 * extent[g.axis_p];
+  g.q_origin = -0.5 * extent[g.axis_q];
 
-  // Spheres per grid row (a band in q), in input order.
-  std::vector<std::vector<int>> rows(static_cast<size_t>(nq));
-  for (size_t i = 0; i < local.size(); ++i) {
-    int j0 = static_cast<int>(std::floor((local[i].q - local[i].r - q_origin) / hq));
-    int j1 = static_cast<int>(std::floor((local[i].q + local[i].r - q_origin) / hq));
-    for (int j = std::max(0, j0); j <= std::min(nq - 1, j1); ++j)
-      rows[static_cast<size_t>(j)].push_back(static_cast<int>(i));
+  g.rows.assign(static_cast<size_t>(g.nq), {});
+  for (size_t i = 0; i < g.local.size(); ++i) {
+    int j0 = static_cast<int>(std::floor((g.local[i].q - g.local[i].r - g.q_origin) / g.hq));
+    int j1 = static_cast<int>(std::floor((g.local[i].q + g.local[i].r - g.q_origin) / g.hq));
+    for (int j = std::max(0, j0); j <= std::min(g.nq - 1, j1); ++j)
+      g.rows[static_cast<size_t>(j)].push_back(static_cast<int>(i));
   }
+  return g;
+}
 
-  Integrator integrator(local, overlapping_pairs(local));
+// The sums over the union, cell by cell, each grid row summed on its own and then added in order.
+Sums integrate_cells(const Grid& g) {
+  Integrator integrator(g.local, overlapping_pairs(g.local));
   Sums total;
   std::vector<int> in_cell;
-  for (int j = 0; j < nq; ++j) {
-    const double q0 = q_origin + j * hq, q1 = q_origin + (j + 1) * hq;
+  for (int j = 0; j < g.nq; ++j) {
+    const double q0 = g.q_origin + j * g.hq, q1 = g.q_origin + (j + 1) * g.hq;
     Sums row_sum;
-    for (int i = 0; i < np; ++i) {
-      const double p0 = p_origin + i * hp, p1 = p_origin + (i + 1) * hp;
+    for (int i = 0; i < g.np; ++i) {
+      const double p0 = g.p_origin + i * g.hp, p1 = g.p_origin + (i + 1) * g.hp;
       in_cell.clear();
-      for (int index : rows[static_cast<size_t>(j)]) {
-        const LocalSphere& s = local[static_cast<size_t>(index)];
+      for (int index : g.rows[static_cast<size_t>(j)]) {
+        const LocalSphere& s = g.local[static_cast<size_t>(index)];
         if (s.p + s.r > p0 && s.p - s.r < p1) in_cell.push_back(index);
       }
       if (!in_cell.empty()) integrator.rectangle(p0, p1, q0, q1, in_cell, row_sum);
     }
     total.add(row_sum);
   }
+  return total;
+}
 
+}  // namespace
+
+UnionMoments union_moments(const std::vector<Sphere>& spheres, const UnionIntegration& options) {
+  const Grid g = integration_grid(spheres, options);
+  const Sums total = integrate_cells(g);
+  const int axis_p = g.axis_p, axis_q = g.axis_q, axis_l = g.axis_l;
   UnionMoments result;
   result.volume = total.v;
   glm::dvec3 first(0.0);
@@ -280,7 +302,7 @@ UnionMoments union_moments(const std::vector<Sphere>& spheres, const UnionIntegr
   first[axis_q] = total.q;
   first[axis_l] = total.l;
   const glm::dvec3 offset = first / total.v;  // centroid relative to the reference point
-  result.centroid = reference + offset;
+  result.centroid = g.reference + offset;
 
   double raw[3][3];
   raw[axis_p][axis_p] = total.pp;

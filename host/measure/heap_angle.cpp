@@ -157,6 +157,78 @@ glm::dvec2 heap_centre(const std::vector<Sphere>& spheres) {
   return {weighted_median(xs), weighted_median(ys)};
 }
 
+namespace {
+
+// The highest sphere top per (sector, radial bin) about the heap's axis, with the radius where it
+// occurs.
+struct SectorCell {
+  double top = -HUGE_VAL, radius = 0;
+  bool used = false;
+};
+
+std::vector<SectorCell> highest_tops(const std::vector<Sphere>& spheres, glm::dvec2 centre, int sectors, int bins,
+                                     double bin) {
+  std::vector<SectorCell> cells(static_cast<size_t>(sectors) * bins);
+  for (const Sphere& s : spheres) {
+    const double dx = s.centre.x - centre.x, dy = s.centre.y - centre.y;
+    const double radius = std::hypot(dx, dy);
+    double azimuth = std::atan2(dy, dx);
+    if (azimuth < 0) azimuth += 2 * kPi;
+    int sector = static_cast<int>(std::floor(azimuth / (2 * kPi) * sectors));
+    sector = std::min(sector, sectors - 1);
+    const int b = std::min(bins - 1, static_cast<int>(std::floor(radius / bin)));
+    SectorCell& cell = cells[static_cast<size_t>(sector) * bins + b];
+    const double sphere_top = s.centre.z + s.radius;
+    if (!cell.used || sphere_top > cell.top) {
+      cell.top = sphere_top;
+      cell.radius = radius;
+      cell.used = true;
+    }
+  }
+  return cells;
+}
+
+// One sector's slope: its bins outwards from the axis until two empty ones running, those whose
+// top lies in the band [z_low, z_high] fitted.
+SlopeFit fit_sector(const SectorCell* bins_of_sector, int bins, double z_low, double z_high) {
+  std::vector<double> radius, height;
+  int empty_run = 0;
+  bool started = false;
+  for (int b = 0; b < bins; ++b) {
+    const SectorCell& cell = bins_of_sector[b];
+    if (!cell.used) {
+      if (started && ++empty_run >= 2) break;
+      continue;
+    }
+    started = true;
+    empty_run = 0;
+    if (cell.top >= z_low && cell.top <= z_high) {
+      radius.push_back(cell.radius);
+      height.push_back(cell.top);
+    }
+  }
+  return fit_slope(radius, height, true, z_high - z_low);
+}
+
+// Mean, sample spread, least and greatest of the valid sectors' angles (NaN without one).
+void summarise_sectors(const std::vector<double>& fitted_angles, AxisymmetricHeapAngle& out) {
+  out.valid_sectors = static_cast<int>(fitted_angles.size());
+  if (fitted_angles.empty()) {
+    out.mean_deg = out.spread_deg = out.min_deg = out.max_deg = kNaN;
+    return;
+  }
+  double sum = 0;
+  for (double a : fitted_angles) sum += a;
+  out.mean_deg = sum / fitted_angles.size();
+  double squares = 0;
+  for (double a : fitted_angles) squares += (a - out.mean_deg) * (a - out.mean_deg);
+  out.spread_deg = fitted_angles.size() > 1 ? std::sqrt(squares / (fitted_angles.size() - 1)) : 0.0;
+  out.min_deg = *std::min_element(fitted_angles.begin(), fitted_angles.end());
+  out.max_deg = *std::max_element(fitted_angles.begin(), fitted_angles.end());
+}
+
+}  // namespace
+
 AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>& spheres,
                                                       const AxisymmetricOptions& options) {
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");
@@ -180,68 +252,17 @@ AxisymmetricHeapAngle measure_axisymmetric_heap_angle(const std::vector<Sphere>&
   const double z_low = out.floor_z + options.band_low * out.heap_height;
   const double z_high = out.floor_z + options.band_high * out.heap_height;
 
-  // Highest top per (sector, bin), with the radius where it occurs.
-  struct Cell {
-    double top = -HUGE_VAL, radius = 0;
-    bool used = false;
-  };
-  std::vector<Cell> cells(static_cast<size_t>(options.sectors) * bins);
-  for (const Sphere& s : spheres) {
-    const double dx = s.centre.x - out.centre.x, dy = s.centre.y - out.centre.y;
-    const double radius = std::hypot(dx, dy);
-    double azimuth = std::atan2(dy, dx);
-    if (azimuth < 0) azimuth += 2 * kPi;
-    int sector = static_cast<int>(std::floor(azimuth / (2 * kPi) * options.sectors));
-    sector = std::min(sector, options.sectors - 1);
-    const int b = std::min(bins - 1, static_cast<int>(std::floor(radius / bin)));
-    Cell& cell = cells[static_cast<size_t>(sector) * bins + b];
-    const double sphere_top = s.centre.z + s.radius;
-    if (!cell.used || sphere_top > cell.top) {
-      cell.top = sphere_top;
-      cell.radius = radius;
-      cell.used = true;
-    }
-  }
-
+  std::vector<SectorCell> cells = highest_tops(spheres, out.centre, options.sectors, bins, bin);
   std::vector<double> fitted_angles;
   for (int sector = 0; sector < options.sectors; ++sector) {
     SectorFit result;
     result.from_deg = 360.0 * sector / options.sectors;
     result.to_deg = 360.0 * (sector + 1) / options.sectors;
-    std::vector<double> radius, height;
-    int empty_run = 0;
-    bool started = false;
-    for (int b = 0; b < bins; ++b) {
-      const Cell& cell = cells[static_cast<size_t>(sector) * bins + b];
-      if (!cell.used) {
-        if (started && ++empty_run >= 2) break;
-        continue;
-      }
-      started = true;
-      empty_run = 0;
-      if (cell.top >= z_low && cell.top <= z_high) {
-        radius.push_back(cell.radius);
-        height.push_back(cell.top);
-      }
-    }
-    result.fit = fit_slope(radius, height, true, z_high - z_low);
+    result.fit = fit_sector(&cells[static_cast<size_t>(sector) * bins], bins, z_low, z_high);
     if (result.fit.valid) fitted_angles.push_back(result.fit.angle_deg);
     out.sectors.push_back(result);
   }
-
-  out.valid_sectors = static_cast<int>(fitted_angles.size());
-  if (fitted_angles.empty()) {
-    out.mean_deg = out.spread_deg = out.min_deg = out.max_deg = kNaN;
-    return out;
-  }
-  double sum = 0;
-  for (double a : fitted_angles) sum += a;
-  out.mean_deg = sum / fitted_angles.size();
-  double squares = 0;
-  for (double a : fitted_angles) squares += (a - out.mean_deg) * (a - out.mean_deg);
-  out.spread_deg = fitted_angles.size() > 1 ? std::sqrt(squares / (fitted_angles.size() - 1)) : 0.0;
-  out.min_deg = *std::min_element(fitted_angles.begin(), fitted_angles.end());
-  out.max_deg = *std::max_element(fitted_angles.begin(), fitted_angles.end());
+  summarise_sectors(fitted_angles, out);
   return out;
 }
 
