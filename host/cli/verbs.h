@@ -15,7 +15,8 @@ struct Verb {
 };
 
 std::vector<Verb> engine_verbs();    // verbs_engine.cpp: devices, run, bench
-std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, optimize, curve
+std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, curve
+std::vector<Verb> optimize_verbs();  // verbs_optimize.cpp: optimize
 std::vector<Verb> geometry_verbs();  // verbs_geometry.cpp: clump, stl, heap-angle
 std::vector<Verb> experiment_verbs();  // verbs_experiments.cpp: experiment
 std::vector<Verb> calibrate_verbs();   // verbs_calibrate.cpp: calibrate
