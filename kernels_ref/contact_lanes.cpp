@@ -95,7 +95,7 @@ VI gather_int(const void* base, VI index, int stride, int word) {
 }
 
 // The pair parameters of materials mi and mj in each lane, gathered row by row from the table.
-LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
+HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
   const PairParams* pairs = k.B_pairs;
   VI pair = hn::Add(hn::Mul(mi, hn::Set(DI(), int(k.PC.n_materials))), mj);
   int32_t first = hn::GetLane(pair);
@@ -141,16 +141,22 @@ V4 rows(const vec4* base, const uint* index) {
   return r;
 }
 
-// contacts.h sphere_state for the lanes' particles.
-LaneLaw::SphereState sphere_state(Kernels& k, const uint* index) {
-  V4 p = rows(k.B_pos, index), v = rows(k.B_vel, index);
-  LaneLaw::SphereState s;
-  s.x = p.xyz();
-  s.radius = p.w;
-  s.v = v.xyz();
-  s.inv_mass = v.w;
-  s.w = rows(k.B_omega, index).xyz();
-  return s;
+// contacts.h sphere_state for the lanes' owners i and partners p, the rows loaded as the pairs
+// need them (i's and p's positions, velocities, spins): the partners' rows miss the cache, and
+// their loads start early.
+HWY_INLINE void sphere_states(Kernels& k, const uint* i, const uint* p, LaneLaw::SphereState& si, LaneLaw::SphereState& sj) {
+  V4 pos_i = rows(k.B_pos, i), pos_j = rows(k.B_pos, p);
+  V4 vel_i = rows(k.B_vel, i), vel_j = rows(k.B_vel, p);
+  si.x = pos_i.xyz();
+  si.radius = pos_i.w;
+  sj.x = pos_j.xyz();
+  sj.radius = pos_j.w;
+  si.v = vel_i.xyz();
+  si.inv_mass = vel_i.w;
+  sj.v = vel_j.xyz();
+  sj.inv_mass = vel_j.w;
+  si.w = rows(k.B_omega, i).xyz();
+  sj.w = rows(k.B_omega, p).xyz();
 }
 
 void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
@@ -162,7 +168,8 @@ void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) 
   const DI di;
   LaneLaw law;
   const uint flags = k.PC.flags;
-  LaneLaw::SphereState si = sphere_state(k, i_at), sj = sphere_state(k, p_at);
+  LaneLaw::SphereState si, sj;
+  sphere_states(k, i_at, p_at, si, sj);
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
