@@ -83,7 +83,7 @@ Figure main_effects(const CampaignPlan& plan, const CalibrationResult& res, cons
   r.add(plan.measured);
   r.pad(0.08);
   Chart chart(860, 560, -e, e, r.lo, r.hi);
-  std::vector<std::pair<std::string, Colour>> legend;
+  std::vector<LegendEntry> legend;
   for (int j = 0; j < k; ++j) {
     Colour c = colours::series()[j % colours::series().size()];
     chart.polyline(xs, ys[j], c, 3);
@@ -135,7 +135,7 @@ Figure calibration_curve(const CampaignPlan& plan, const CalibrationResult& res,
   chart.vertical(res.chosen[j], colours::red, 2);
   chart.title("Calibration curve: " + plan.response + " vs " + f.name);
   chart.labels(factor_label(f) + ", " + f.key, quantity_label(plan.response));
-  std::vector<std::pair<std::string, Colour>> legend = {{"model", colours::blue}, {"measured +- tolerance", colours::green},
+  std::vector<LegendEntry> legend = {{"model", colours::blue}, {"measured +- tolerance", colours::green},
                                                         {"calibrated " + f.name, colours::red}};
   if (!shown.empty()) legend.push_back({"simulated runs", colours::black});
   chart.legend(legend);
