@@ -67,6 +67,8 @@ say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}"
 step "nvidia-smi" 30 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
 [ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" 60 "$bin/vulkaninfo" --summary
 step "repose devices" 60 "$bin/repose" devices
+# Each kernel alone from the twin's buffers first: the table of kernels whose own arithmetic differs.
+TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
 # Every twin test: the GPU against the CPU twin after each dispatch, whole runs, split dispatches.
 TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
 TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" -d yes
@@ -78,8 +80,10 @@ cmp_runs() {  # a case on the GPU and on the cpu backend: the same state bytes?
       --out "$out/$name-cpu" --state-out "$out/$name-cpu.state" &&
     cmp "$out/$name-gpu.state" "$out/$name-cpu.state" && echo "$name: identical state after $steps steps"
 }
-step "settle_box: GPU and cpu backend byte for byte" 200 cmp_runs settle_box 2000
-step "cabbage_settle: GPU and cpu backend byte for byte" 300 cmp_runs cabbage_settle 2000
+export -f cmp_runs
+export bin out
+step "settle_box: GPU and cpu backend byte for byte" 200 bash -c 'cmp_runs settle_box 2000'
+step "cabbage_settle: GPU and cpu backend byte for byte" 300 bash -c 'cmp_runs cabbage_settle 2000'
 for n in $sizes; do
   steps=$([ "$n" -ge 10000000 ] && echo 100 || echo 300)
   TAIL=30 step "bench, $n spheres" 600 "$bin/repose" bench --n "$n" --backend vulkan cpu --steps "$steps" \

@@ -29,6 +29,7 @@ class VulkanBackend : public Backend {
   vk::Context& context() { return ctx_; }
   // The first `bytes` of binding b's buffer (kernel tests compare raw buffers with the twin).
   void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
+  void write_binding(uint32_t binding, const void* src, size_t bytes) { buffers_[binding].upload(src, bytes); }
   uint64_t validation_messages() const { return ctx_.validation_messages(); }
 
  private:

@@ -6,6 +6,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "repose_shared.h"
+#include "vk/buffer.h"
 #include "vk/vk_check.h"
 
 namespace repose::vk {
@@ -83,6 +85,10 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
       info.device_local_bytes = std::max<uint64_t>(info.device_local_bytes, mem.memoryHeaps[h].size);
   info.max_storage_buffers = props.properties.limits.maxPerStageDescriptorStorageBuffers;
   info.max_storage_range = props.properties.limits.maxStorageBufferRange;
+  VkPhysicalDeviceFeatures features;
+  vkGetPhysicalDeviceFeatures(pd, &features);
+  info.float64 = features.shaderFloat64 == VK_TRUE;
+  info.rounds_like_ieee = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
   for (int k = 0; k < 3; ++k) info.max_groups[k] = props.properties.limits.maxComputeWorkGroupCount[k];
   info.max_allocation = maintenance3.maxMemoryAllocationSize;
   info.subgroup_size = subgroup.subgroupSize;
@@ -96,16 +102,34 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   return info;
 }
 
+uint32_t choose_rounding(const DeviceInfo& d) {
+  const char* v = std::getenv("REPOSE_ROUNDING");
+  std::string asked = v ? v : "";
+  uint32_t mode = d.rounds_like_ieee ? gpu::kRoundingDevice : gpu::kRoundingCorrected;
+  if (asked == "device") mode = gpu::kRoundingDevice;
+  else if (asked == "corrected") mode = gpu::kRoundingCorrected;
+  else if (asked == "test") mode = gpu::kRoundingTest;
+  else if (!asked.empty())
+    throw VulkanError("REPOSE_ROUNDING = '" + asked + "': give device, corrected or test");
+  if (mode != gpu::kRoundingDevice && !d.float64)
+    throw VulkanError("'" + d.name + "' has no 64-bit floats, which the kernels need to round / and sqrt as the "
+                      "cpu backend does; REPOSE_ROUNDING=device runs without (results then differ from the cpu "
+                      "backend's in the last bits), or use --backend cpu");
+  return mode;
+}
+
 }  // namespace
 
 std::string DeviceInfo::limits_text() const {
   char line[256];
   std::snprintf(line, sizeof line,
                 "workgroups %u x %u x %u, storage buffer range %.3g GiB, allocation %.3g GiB, %u storage buffers "
-                "per stage, subgroup %u, device-local memory %s",
+                "per stage, subgroup %u, device-local memory %s, / and sqrt %s",
                 max_groups[0], max_groups[1], max_groups[2], max_storage_range / 1073741824.0,
                 max_allocation / 1073741824.0, max_storage_buffers, subgroup_size,
-                device_local_mappable ? "mapped directly" : "reached through staging copies");
+                device_local_mappable ? "mapped directly" : "reached through staging copies",
+                rounds_like_ieee ? "rounded as IEEE" : float64 ? "corrected to IEEE in double precision"
+                                                          : "not correctable (no 64-bit floats)");
   return line;
 }
 
@@ -185,7 +209,11 @@ Context::Context(int device_index) {
     qi.queueFamilyIndex = queue_family_;
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
+    rounding_ = choose_rounding(info_);
+    VkPhysicalDeviceFeatures enabled{};
+    enabled.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
     VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    di.pEnabledFeatures = &enabled;
     di.queueCreateInfoCount = 1;
     di.pQueueCreateInfos = &qi;
     VK_CHECK(vkCreateDevice(physical_, &di, nullptr, &device_));
@@ -208,6 +236,8 @@ Context::~Context() { release(); }
 void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    upload_staging_.reset();
+    download_staging_.reset();
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
@@ -233,6 +263,17 @@ uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required
       if ((type_bits & (1u << t)) && (memory_.memoryTypes[t].propertyFlags & want) == want) return t;
   }
   throw VulkanError("no Vulkan memory type with the required properties");
+}
+
+Buffer& Context::staging(Memory direction, size_t bytes) {
+  std::unique_ptr<Buffer>& kept = direction == Memory::Upload ? upload_staging_ : download_staging_;
+  if (!kept || kept->size() < bytes) {
+    size_t size = size_t(1) << 20;
+    while (size < bytes) size *= 2;
+    kept.reset();  // free the smaller one first
+    kept = std::make_unique<Buffer>(*this, size, 0, direction);
+  }
+  return *kept;
 }
 
 VkCommandBuffer Context::begin_commands() {

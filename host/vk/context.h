@@ -3,11 +3,15 @@
 // validation layer is enabled and every message it sends is counted and printed.
 #pragma once
 #include <atomic>
+#include <memory>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
 namespace repose::vk {
+
+class Buffer;
+enum class Memory;
 
 struct DeviceInfo {
   uint32_t index = 0;
@@ -22,6 +26,8 @@ struct DeviceInfo {
   uint64_t max_allocation = 0;           // maxMemoryAllocationSize
   uint32_t subgroup_size = 0;            // for the record: no kernel depends on it
   bool device_local_mappable = false;    // a device-local type the host can map (no staging)
+  bool float64 = false;                  // shaderFloat64 (the rounding correction needs it)
+  bool rounds_like_ieee = false;         // / and sqrt correctly rounded (lavapipe: LLVM's own)
   std::string limits_text() const;       // one line for `repose devices` and error messages
 };
 
@@ -42,6 +48,9 @@ class Context {
   VkQueue queue() const { return queue_; }
   VkCommandPool command_pool() const { return pool_; }
   const DeviceInfo& info() const { return info_; }
+  // How the kernels round / and sqrt on this device (gpu::kRounding*): as the device does where it
+  // rounds like IEEE, corrected elsewhere; REPOSE_ROUNDING=device|corrected|test overrides.
+  uint32_t rounding() const { return rounding_; }
   // Memory type with all `required` flags, preferring `preferred`; throws if none.
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                        VkMemoryPropertyFlags preferred) const;
@@ -59,6 +68,9 @@ class Context {
   }
   VkCommandBuffer begin_commands();
   void end_and_submit(VkCommandBuffer cb);
+  // A host buffer of at least `bytes` for transfers one way (Memory::Upload or Memory::Download),
+  // kept and grown as needed: a transfer allocates nothing.
+  Buffer& staging(Memory direction, size_t bytes);
 
  private:
   void release();
@@ -75,6 +87,8 @@ class Context {
   VkFence fence_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
   DeviceInfo info_;
+  uint32_t rounding_ = 0;
+  std::unique_ptr<Buffer> upload_staging_, download_staging_;
   VkPhysicalDeviceMemoryProperties memory_{};
   std::atomic<uint64_t> validation_messages_{0};
 };

@@ -71,13 +71,14 @@ VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall
   uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
                 : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
                                              : workgroup_;
-  // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds
-  // (kernels/glsl_prelude.glsl).
-  const uint32_t values[3] = {wg, flags, absent_wall_kinds};
-  const VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(uint32_t)},
+  // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds; 3: how / and
+  // sqrt are rounded (kernels/glsl_prelude.glsl).
+  const uint32_t values[4] = {wg, flags, absent_wall_kinds, ctx_.rounding()};
+  const VkSpecializationMapEntry entries[4] = {{0, 0, sizeof(uint32_t)},
                                                {1, sizeof(uint32_t), sizeof(uint32_t)},
-                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
-  VkSpecializationInfo spec{3, entries, sizeof(values), values};
+                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)},
+                                               {3, 3 * sizeof(uint32_t), sizeof(uint32_t)}};
+  VkSpecializationInfo spec{4, entries, sizeof(values), values};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

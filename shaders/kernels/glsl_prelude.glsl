@@ -13,6 +13,60 @@ uint invocation_index() {
   return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
 }
 
+// Correctly rounded division and square root on every device (docs/engineering.md, determinism).
+// The device's result is checked exactly in double precision (a float times a float fits a
+// double, and the difference of two nearly equal doubles is exact) against its neighbours, and
+// the one nearest the true value is kept. With kRoundingDevice the device's result stands.
+layout(constant_id = 3) const uint kRounding = kRoundingDevice;
+
+float step_ulps(float v, int k) { return uintBitsToFloat(uint(int(floatBitsToUint(v)) + k)); }
+
+// kRoundingTest: `v` moved by -2 ... +2 ULP, by a hash of the operands.
+float nudged(float v, uint seed) {
+  float c = step_ulps(v, int((seed * 2654435761u) >> 29u) % 5 - 2);
+  return (isnan(c) || isinf(c) || sign(c) != sign(v)) ? v : c;
+}
+
+float div_rn(float a, float b) {
+  precise float q = a / b;
+  if (kRounding == kRoundingDevice || isnan(q) || isinf(q) || q == 0.0f) return q;
+  if (kRounding == kRoundingTest) q = nudged(q, floatBitsToUint(a) ^ (floatBitsToUint(b) << 7u));
+  // The nearest float to a/b has the smallest |a - c b| (ties cannot happen).
+  precise double da = double(a), db = double(b);
+  float best = q;
+  precise double least = abs(da - double(q) * db);
+  for (int k = -3; k <= 3; ++k) {
+    float c = step_ulps(q, k);
+    if (k == 0 || isnan(c) || isinf(c) || sign(c) != sign(q)) continue;
+    precise double e = abs(da - double(c) * db);
+    if (e < least) {
+      least = e;
+      best = c;
+    }
+  }
+  return best;
+}
+
+float sqrt_rn(float x) {
+  precise float s = sqrt(x);
+  if (kRounding == kRoundingDevice || !(s > 0.0f) || isinf(s)) return s;
+  if (kRounding == kRoundingTest) s = nudged(s, floatBitsToUint(x));
+  // s is the nearest float to sqrt(x) when x lies between the squares of the midpoints to its
+  // neighbours (a midpoint has 25 bits, its square 50: exact in double).
+  precise double dx = double(x);
+  for (int k = 0; k < 4; ++k) {
+    precise double up = 0.5lf * (double(s) + double(step_ulps(s, 1)));
+    if (dx <= up * up) break;
+    s = step_ulps(s, 1);
+  }
+  for (int k = 0; k < 4; ++k) {
+    precise double down = 0.5lf * (double(s) + double(step_ulps(s, -1)));
+    if (dx >= down * down) break;
+    s = step_ulps(s, -1);
+  }
+  return s;
+}
+
 #define INOUT(T) inout T
 #define OUT(T) out T
 
