@@ -18,6 +18,9 @@ done | sort -u | while read -r lib; do
     *) cp -L "$lib" "$dir/lib/" ;;
   esac
 done
-# The tests find their cases under the source folder compiled into them.
-grep -o 'REPOSE_SOURCE_DIR=[^ ]*' build/CMakeFiles/test_engine.dir/flags.make | head -1 | cut -d= -f2- | tr -d '"\\' > "$dir/source_dir"
+# The tests find their cases under the source folder compiled into them, and run the binary
+# whose path is compiled into them.
+flags=build/CMakeFiles/test_engine.dir/flags.make
+grep -o 'REPOSE_SOURCE_DIR=[^ ]*' $flags | head -1 | cut -d= -f2- | tr -d '"\\' > "$dir/source_dir"
+grep -o 'REPOSE_BINARY=[^ ]*' $flags | head -1 | cut -d= -f2- | tr -d '"\\' > "$dir/binary_path"
 du -sh "$dir"

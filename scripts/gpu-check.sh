@@ -29,6 +29,8 @@ if [ -n "$bundle" ]; then
   src=$(cat "$bundle/source_dir")
   # The tests read cases from the source folder compiled into them: point it here.
   if [ "$src" != "$PWD" ] && [ ! -e "$src" ]; then mkdir -p "$(dirname "$src")" && ln -s "$PWD" "$src"; fi
+  exe=$(cat "$bundle/binary_path")
+  if [ ! -e "$exe" ]; then mkdir -p "$(dirname "$exe")" && ln -s "$bin/repose" "$exe"; fi
 else
   bin="build"
 fi
@@ -71,7 +73,7 @@ step "repose devices" 60 "$bin/repose" devices
 TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
 # Every twin test: the GPU against the CPU twin after each dispatch, whole runs, split dispatches.
 TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
-TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" -d yes
+TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" "~repose devices lists lavapipe" -d yes
 cmp_runs() {  # a case on the GPU and on the cpu backend: the same state bytes?
   local name=$1 steps=$2
   "$bin/repose" run "cases/$name.toml" --backend vulkan --steps "$steps" --quiet --overwrite \

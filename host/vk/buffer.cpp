@@ -73,6 +73,7 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
     std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
     return;
   }
+  std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());  // the staging buffer is shared
   Buffer& staging = ctx_->staging(Memory::Upload, bytes);
   std::memcpy(staging.mapped(), data, bytes);
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
@@ -87,6 +88,7 @@ void Buffer::download(void* data, size_t bytes, size_t offset) const {
     std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
     return;
   }
+  std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());
   Buffer& staging = ctx_->staging(Memory::Download, bytes);
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     VkBufferCopy region{offset, 0, bytes};

@@ -4,6 +4,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include "repose_shared.h"
@@ -102,6 +105,48 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   return info;
 }
 
+// The process's Vulkan instance, with or without the validation layer: created on first use
+// and kept until the process ends (never destroyed, see Context::open).
+struct ProcessInstance {
+  VkInstance handle = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  std::atomic<uint64_t> messages{0};
+};
+
+VkBool32 VKAPI_PTR count_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                 const VkDebugUtilsMessengerCallbackDataEXT* data, void* instance) {
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    static_cast<ProcessInstance*>(instance)->messages++;
+    std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+std::mutex registry_mutex;
+
+ProcessInstance& process_instance(bool validation) {
+  static ProcessInstance* kept[2] = {nullptr, nullptr};
+  std::lock_guard<std::mutex> hold(registry_mutex);
+  ProcessInstance*& p = kept[validation ? 1 : 0];
+  if (p) return *p;
+  auto made = std::make_unique<ProcessInstance>();
+  made->handle = create_instance(validation);
+  if (validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(made->handle, "vkCreateDebugUtilsMessengerEXT"));
+    if (!create) throw VulkanError("validation requested but VK_EXT_debug_utils is unavailable");
+    VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mi.pfnUserCallback = &count_message;
+    mi.pUserData = made.get();
+    VK_CHECK(create(made->handle, &mi, nullptr, &made->messenger));
+  }
+  p = made.release();
+  return *p;
+}
+
 uint32_t choose_rounding(const DeviceInfo& d) {
   const char* v = std::getenv("REPOSE_ROUNDING");
   std::string asked = v ? v : "";
@@ -134,16 +179,10 @@ std::string DeviceInfo::limits_text() const {
 }
 
 std::vector<DeviceInfo> Context::list_devices() {
-  VkInstance instance = create_instance(false);
+  VkInstance instance = process_instance(validation_requested()).handle;
+  auto devices = physical_devices(instance);
   std::vector<DeviceInfo> out;
-  try {
-    auto devices = physical_devices(instance);
-    for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
-  } catch (...) {
-    vkDestroyInstance(instance, nullptr);
-    throw;
-  }
-  vkDestroyInstance(instance, nullptr);
+  for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
   return out;
 }
 
@@ -154,45 +193,30 @@ int Context::default_device_index(const std::vector<DeviceInfo>& devices) {
   return devices.empty() ? -1 : 0;
 }
 
-VkBool32 Context::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                             VkDebugUtilsMessageTypeFlagsEXT, 
-                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
-  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-    static_cast<Context*>(self)->validation_messages_++;
-    std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
-  }
-  return VK_FALSE;
+std::shared_ptr<Context> Context::open(int device_index) {
+  bool validation = validation_requested();
+  VkInstance instance = process_instance(validation).handle;
+  auto devices = physical_devices(instance);
+  if (devices.empty()) throw VulkanError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+  if (device_index < 0) device_index = default_device_index(infos);
+  if (device_index >= static_cast<int>(devices.size()))
+    throw VulkanError("--device " + std::to_string(device_index) + ": only " + std::to_string(devices.size()) +
+                      " Vulkan device(s); see `repose devices`");
+  static auto* opened = new std::map<std::pair<bool, int>, std::shared_ptr<Context>>();
+  std::lock_guard<std::mutex> hold(registry_mutex);
+  auto& slot = (*opened)[{validation, device_index}];
+  if (!slot) slot = std::make_shared<Context>(instance, devices[device_index], infos[device_index], validation);
+  return slot;
 }
 
-Context::Context(int device_index) {
-  bool validation = validation_requested();
-  instance_ = create_instance(validation);
+uint64_t Context::validation_messages() const { return validation_ ? process_instance(true).messages.load() : 0; }
+bool Context::validation_enabled() const { return validation_ && process_instance(true).messenger != VK_NULL_HANDLE; }
+
+Context::Context(VkInstance instance, VkPhysicalDevice physical, const DeviceInfo& info, bool validation)
+    : instance_(instance), physical_(physical), info_(info), validation_(validation) {
   try {
-    if (validation) {
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-      VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-      mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-      mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-      mi.pfnUserCallback = &Context::on_message;
-      mi.pUserData = this;
-      if (!create) throw VulkanError("validation requested but VK_EXT_debug_utils is unavailable");
-      VK_CHECK(create(instance_, &mi, nullptr, &messenger_));
-    }
-    auto devices = physical_devices(instance_);
-    if (devices.empty())
-      throw VulkanError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
-    std::vector<DeviceInfo> infos;
-    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
-    if (device_index < 0) device_index = default_device_index(infos);
-    if (device_index >= static_cast<int>(devices.size()))
-      throw VulkanError("--device " + std::to_string(device_index) + ": only " +
-                        std::to_string(devices.size()) + " Vulkan device(s); see `repose devices`");
-    physical_ = devices[device_index];
-    info_ = infos[device_index];
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
     uint32_t nq = 0;
@@ -242,16 +266,6 @@ void Context::release() {
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
-  }
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-    messenger_ = VK_NULL_HANDLE;
-  }
-  if (instance_) {
-    vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
   }
 }
 

@@ -1,9 +1,10 @@
-// A Vulkan instance, one chosen physical device, its compute queue and a command pool.
-// Owns the handles (RAII, non-copyable). With REPOSE_VALIDATION=1 in the environment the Khronos
-// validation layer is enabled and every message it sends is counted and printed.
+// One chosen Vulkan device, its compute queue, a command pool and staging buffers, on the
+// process's Vulkan instance. With REPOSE_VALIDATION=1 in the environment the Khronos validation
+// layer is enabled and every message it sends is counted and printed.
 #pragma once
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
@@ -33,8 +34,14 @@ struct DeviceInfo {
 
 class Context {
  public:
-  // device_index < 0: the first discrete GPU, else the first device (lavapipe on CPU machines).
-  explicit Context(int device_index = -1);
+  // The device `device_index` (< 0: the first discrete GPU, else the first device, which is
+  // lavapipe on CPU machines), opened once per process and shared by every simulation that asks:
+  // a calibration runs hundreds of simulations in one process, and a GPU driver (NVIDIA's, seen on
+  // an H100 and an H200) refuses new instances after a few dozen have been created and destroyed.
+  // The instance and devices live until the process ends. Thread-safe.
+  static std::shared_ptr<Context> open(int device_index = -1);
+  // Use open(); public for make_shared.
+  Context(VkInstance instance, VkPhysicalDevice physical, const DeviceInfo& info, bool validation);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -55,13 +62,17 @@ class Context {
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                        VkMemoryPropertyFlags preferred) const;
   VkMemoryPropertyFlags memory_flags(uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
-  // Messages from the validation layer so far (0 when it is off).
-  uint64_t validation_messages() const { return validation_messages_.load(); }
-  bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+  // Messages from the validation layer so far in this process (0 when it is off).
+  uint64_t validation_messages() const;
+  bool validation_enabled() const;
 
+  // Held while the queue, the command pool or the staging buffers are in use: simulations on
+  // several threads share one context.
+  std::recursive_mutex& mutex() { return mutex_; }
   // Records with `record`, submits, and waits.
   template <class F>
   void submit_and_wait(F&& record) {
+    std::lock_guard<std::recursive_mutex> hold(mutex_);
     VkCommandBuffer cb = begin_commands();
     record(cb);
     end_and_submit(cb);
@@ -74,12 +85,7 @@ class Context {
 
  private:
   void release();
-  static VkBool32 VKAPI_PTR on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                       VkDebugUtilsMessageTypeFlagsEXT types,
-                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                       void* self);
-  VkInstance instance_ = VK_NULL_HANDLE;
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkInstance instance_ = VK_NULL_HANDLE;  // the process's, not owned
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
@@ -87,10 +93,11 @@ class Context {
   VkFence fence_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
   DeviceInfo info_;
+  bool validation_ = false;
   uint32_t rounding_ = 0;
   std::unique_ptr<Buffer> upload_staging_, download_staging_;
   VkPhysicalDeviceMemoryProperties memory_{};
-  std::atomic<uint64_t> validation_messages_{0};
+  std::recursive_mutex mutex_;
 };
 
 }  // namespace repose::vk
