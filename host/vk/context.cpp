@@ -66,7 +66,9 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 }
 
 DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
+  VkPhysicalDeviceFloatControlsProperties float_controls{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  subgroup.pNext = &float_controls;
   VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
   maintenance3.pNext = &subgroup;
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -92,6 +94,7 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   vkGetPhysicalDeviceFeatures(pd, &features);
   info.float64 = features.shaderFloat64 == VK_TRUE;
   info.rounds_like_ieee = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  info.denorm_preserve32 = float_controls.shaderDenormPreserveFloat32 == VK_TRUE;
   for (int k = 0; k < 3; ++k) info.max_groups[k] = props.properties.limits.maxComputeWorkGroupCount[k];
   info.max_allocation = maintenance3.maxMemoryAllocationSize;
   info.subgroup_size = subgroup.subgroupSize;
@@ -166,15 +169,16 @@ uint32_t choose_rounding(const DeviceInfo& d) {
 }  // namespace
 
 std::string DeviceInfo::limits_text() const {
-  char line[256];
+  char line[384];
   std::snprintf(line, sizeof line,
                 "workgroups %u x %u x %u, storage buffer range %.3g GiB, allocation %.3g GiB, %u storage buffers "
-                "per stage, subgroup %u, device-local memory %s, / and sqrt %s",
+                "per stage, subgroup %u, device-local memory %s, / and sqrt %s, denormals %s",
                 max_groups[0], max_groups[1], max_groups[2], max_storage_range / 1073741824.0,
                 max_allocation / 1073741824.0, max_storage_buffers, subgroup_size,
                 device_local_mappable ? "mapped directly" : "reached through staging copies",
                 rounds_like_ieee ? "rounded as IEEE" : float64 ? "corrected to IEEE in double precision"
-                                                          : "not correctable (no 64-bit floats)");
+                                                          : "not correctable (no 64-bit floats)",
+                rounds_like_ieee || denorm_preserve32 ? "kept" : "maybe flushed to zero");
   return line;
 }
 

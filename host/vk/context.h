@@ -29,6 +29,7 @@ struct DeviceInfo {
   bool device_local_mappable = false;    // a device-local type the host can map (no staging)
   bool float64 = false;                  // shaderFloat64 (the rounding correction needs it)
   bool rounds_like_ieee = false;         // / and sqrt correctly rounded (lavapipe: LLVM's own)
+  bool denorm_preserve32 = false;        // shaderDenormPreserveFloat32 (vk/spirv_patch.h)
   std::string limits_text() const;       // one line for `repose devices` and error messages
 };
 

@@ -7,6 +7,7 @@
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/embedded_shaders.h"
+#include "vk/spirv_patch.h"
 #include "vk/vk_check.h"
 
 namespace repose::vk {
@@ -54,9 +55,11 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
 
   for (uint32_t k = 0; k < static_cast<uint32_t>(KernelId::Count); ++k) {
     const EmbeddedShader& spv = embedded_shader(kernel_shader_name(static_cast<KernelId>(k)));
+    std::vector<uint32_t> patched;
+    if (ctx.info().denorm_preserve32) patched = with_denormals_preserved(spv.words, spv.bytes / 4);
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = spv.bytes;
-    mi.pCode = spv.words;
+    mi.codeSize = patched.empty() ? spv.bytes : patched.size() * 4;
+    mi.pCode = patched.empty() ? spv.words : patched.data();
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(dev, &mi, nullptr, &module));
     modules_.push_back(module);
