@@ -27,24 +27,26 @@ float nudged(float v, uint seed) {
   return (isnan(c) || isinf(c) || sign(c) != sign(v)) ? v : c;
 }
 
+// The float next to v, above it in value (up) or below.
+float next_float(float v, bool up) { return step_ulps(v, up == (v > 0.0f) ? 1 : -1); }
+
 float div_rn(float a, float b) {
   precise float q = a / b;
   if (kRounding == kRoundingDevice || isnan(q) || isinf(q) || q == 0.0f) return q;
   if (kRounding == kRoundingTest) q = nudged(q, floatBitsToUint(a) ^ (floatBitsToUint(b) << 7u));
-  // The nearest float to a/b has the smallest |a - c b| (ties cannot happen).
+  // a/b = q + r/b with r = a - q b exact: step towards a/b while the next float has a smaller
+  // |r| (the nearest float to a/b has the smallest; ties cannot happen). Usually one check.
   precise double da = double(a), db = double(b);
-  float best = q;
-  precise double least = abs(da - double(q) * db);
-  for (int k = -3; k <= 3; ++k) {
-    float c = step_ulps(q, k);
-    if (k == 0 || isnan(c) || isinf(c) || sign(c) != sign(q)) continue;
-    precise double e = abs(da - double(c) * db);
-    if (e < least) {
-      least = e;
-      best = c;
-    }
+  precise double r = da - double(q) * db;
+  bool up = (r > 0.0lf) == (b > 0.0f);
+  for (int k = 0; k < 4; ++k) {
+    float c = next_float(q, up);
+    precise double rc = da - double(c) * db;
+    if (isnan(c) || isinf(c) || !(abs(rc) < abs(r))) break;
+    q = c;
+    r = rc;
   }
-  return best;
+  return q;
 }
 
 float sqrt_rn(float x) {
