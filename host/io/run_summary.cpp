@@ -37,7 +37,7 @@ void write_run_summary(const std::string& path, const Simulation& sim, const Run
       info.wall_seconds > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / info.wall_seconds : 0.0;
   if (!info.restart.file.empty()) j["restarted_from"] = {{"file", info.restart.file}, {"step", info.restart.step}};
   j["provenance"] = info.provenance;
-  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  write_status_file(path, j.dump(2) + "\n");  // a failed run still says so on a full disk
 }
 
 }  // namespace repose
