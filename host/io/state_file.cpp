@@ -138,7 +138,7 @@ void check_length(StateReader& in, const Header& h, uint64_t file_bytes) {
             (h.version >= 4 ? " + 4 per transposed contact" : "") + ": truncated, or bytes appended");
 }
 
-void read_arrays(StateReader& in, const Header& h, HostState& s) {
+void read_arrays(StateReader& in, const Header& h, uint64_t file_bytes, HostState& s) {
   for_each_file_array(s, [&](const BufferSpec& spec, auto& v) {
     if (h.version == 2 && spec.binding == gpu::kBindBodies) {
       std::vector<char> raw;
@@ -155,10 +155,11 @@ void read_arrays(StateReader& in, const Header& h, HostState& s) {
   in.array(s.pos_at_build, h.n);
   in.array(s.owner, h.c);
   in.array(s.trans_start, h.n + 1ull);
-  uint64_t transposed = (in.left() - (h.version >= 5 ? 8 : 0)) / 4;
+  uint64_t tail = h.version >= 5 ? 8 : 0, transposed = (in.left() - tail) / 4;
   if (s.trans_start[h.n] != transposed)
-    in.fail("damaged: trans_start[N] = " + std::to_string(s.trans_start[h.n]) + ", but the file holds " +
-            std::to_string(transposed) + " transposed entries");
+    in.fail("is " + std::to_string(file_bytes) + " bytes, but its header and trans_start[N] = " +
+            std::to_string(s.trans_start[h.n]) + " need " + std::to_string(file_bytes - 4 * transposed + 4ull * s.trans_start[h.n]) +
+            ": truncated, or bytes appended");
   in.array(s.trans_list, transposed);
 }
 
@@ -204,7 +205,7 @@ HostState read_state_file(const std::string& path, StateFileInfo& info) {
   Header h = read_header(in, info);
   check_length(in, h, file_bytes);
   HostState s;
-  read_arrays(in, h, s);
+  read_arrays(in, h, file_bytes, s);
   if (h.version >= 5) {
     uint64_t computed = in.hash(), stored = 0;
     in.value(stored);

@@ -65,7 +65,8 @@ std::string bad_rows(const HostState& s) {
         return at("partner", k) + " = " + std::to_string(s.partner[k]) + " in the row of particle " + std::to_string(i) +
                ": a row holds partners after its owner";
       if (k > s.row_start[i] && s.partner[k] <= s.partner[k - 1])
-        return "the row of particle " + std::to_string(i) + " is not in ascending partner order at " + at("partner", k);
+        return at("partner", k) + " = " + std::to_string(s.partner[k]) + " after " + at("partner", k - 1) + " = " +
+               std::to_string(s.partner[k - 1]) + ": the row of particle " + std::to_string(i) + " is not in ascending order";
       if (!s.owner.empty() && s.owner[k] != i)
         return at("owner", k) + " = " + std::to_string(s.owner[k]) + " in the row of particle " + std::to_string(i);
     }

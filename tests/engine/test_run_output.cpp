@@ -148,11 +148,16 @@ TEST_CASE("run --restart continues to the same bytes, frames and wall forces as 
   auto summary = nlohmann::json::parse(slurp(split / "summary.json"));
   CHECK(summary["restarted_from"]["step"] == 130);
   CHECK(summary["steps"] == 300);
-  // Another case's folder is not continued into.
+  // Another case's state is not continued from, and another case's folder not continued into.
   auto other = run_repose(kRun + " --set simulation.seed=2 --steps 10 --restart " + (dir / "at130.state").string() +
                           " --out " + split.string());
   CHECK(other.status == 2);
-  CHECK(other.output.find("another case (or other --set values)") != std::string::npos);
+  CHECK(other.output.find("at130.state: written by a run of case ") != std::string::npos);
+  CHECK(other.output.find(", not of this case (") != std::string::npos);
+  REQUIRE(run_repose(kRun + " --set simulation.seed=2 --steps 10 --out " + (dir / "seed2").string()).status == 0);
+  auto into = run_repose(kRun + " --steps 10 --restart " + (dir / "at130.state").string() + " --out " + (dir / "seed2").string());
+  CHECK(into.status == 2);
+  CHECK(into.output.find("another case (or other --set values)") != std::string::npos);
 }
 
 TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; provenance in summary.json",
