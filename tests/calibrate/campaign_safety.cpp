@@ -58,7 +58,7 @@ TEST_CASE("a plan's identity: the case as parsed and its files by content, not i
   CHECK(change.find("`interaction.0.static_friction = 0.31` -> `interaction.0.static_friction = 0.32`") != std::string::npos);
 }
 
-TEST_CASE("a second campaign on a busy database is refused; the first finishes") {
+TEST_CASE("a second campaign on a busy database is refused, the first finishes") {
   std::string dir = test::scratch_dir("busy");
   test::write_text(dir + "/plan.toml", test::small_ccd_plan());
   pid_t first = test::spawn_repose({"calibrate", dir + "/plan.toml", "--out", dir + "/out", "--jobs", "1", "--quiet"},
@@ -88,7 +88,7 @@ TEST_CASE("a second campaign on a busy database is refused; the first finishes")
   CHECK(test::count_runs(dir + "/out/campaign.sqlite") == 13);
 }
 
-TEST_CASE("a run that cannot be stored ends the campaign cleanly; every other finished run is kept") {
+TEST_CASE("a run that cannot be stored ends the campaign cleanly, every other finished run is kept") {
   std::string dir = test::scratch_dir("insert_fails");
   test::write_text(dir + "/plan.toml", test::small_ccd_plan());
   const std::string db = dir + "/out/campaign.sqlite";

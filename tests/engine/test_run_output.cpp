@@ -160,7 +160,7 @@ TEST_CASE("run --restart continues to the same bytes, frames and wall forces as 
   CHECK(into.output.find("another case (or other --set values)") != std::string::npos);
 }
 
-TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; provenance in summary.json",
+TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read, provenance in summary.json",
           "[engine][cli][output]") {
   fs::path dir = fresh_dir("vtk_series");
   auto r = run_repose(std::string("run ") + REPOSE_SOURCE_DIR + "/cases/drop_cabbage.toml --backend cpu --quiet --steps 40 "
@@ -193,7 +193,7 @@ TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; prove
   CHECK(p["device"].get<std::string>().find("thread") != std::string::npos);
 }
 
-TEST_CASE("run: SIGTERM and SIGINT stop cleanly; the checkpoint continues to the bytes of a whole run",
+TEST_CASE("run: SIGTERM and SIGINT stop cleanly, the checkpoint continues to the bytes of a whole run",
           "[engine][cli][restart]") {
   for (int signal : {SIGTERM, SIGINT}) {
     fs::path dir = fresh_dir("signal");

@@ -180,7 +180,7 @@ void mutate_once(const Base& b, std::mt19937_64& rng, Tally& t) {
 
 }  // namespace
 
-TEST_CASE("checkpoint fuzz: every changed file is refused; forged ones are refused or harmless", "[engine][io][restart]") {
+TEST_CASE("checkpoint fuzz: every changed file is refused, forged ones are refused or harmless", "[engine][io][restart]") {
   CaseSpec cloud = seeded_cloud(40, 5, 2.3, 0.2);  // spheres, a floor and a side wall
   cloud.identity = "cloud";
   CaseSpec clumps = epsd_clump_pairs();  // bodies and EPSD rolling springs
