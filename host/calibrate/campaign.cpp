@@ -127,6 +127,7 @@ CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& op
   const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
   const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
   OutputFolder folder(out_dir);  // two campaigns never write one folder (each its report and figures)
+  folder.remove_leftovers();     // what a killed campaign left half-written
   RunStore store(db_path, plan, options.fresh);
   Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
   executor.set_picture_dir(out_dir);

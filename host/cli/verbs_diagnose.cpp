@@ -86,6 +86,7 @@ int run_diagnose(int argc, char** argv) {
       if (!id.empty()) options.candidates.push_back(id);
     Observations obs = group_observations(read_measured_data(data_path));
     OutputFolder folder(out_dir);  // ours alone until the diagnosis is written
+    folder.remove_leftovers();
     Diagnosis d = diagnose(obs, options);
     write_diagnosis(obs, d, out_dir);
     std::printf("verdict: %s", d.verdict.c_str());
