@@ -19,21 +19,11 @@
 #include "util/file_output.h"
 
 namespace fs = std::filesystem;
+using repose::test::fresh_dir;
 using repose::test::run_repose;
+using repose::test::slurp;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("repose_test_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
 
 const std::string kBox = std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml";
 const std::string kRun = "run " + kBox + " --backend cpu --threads 1 --quiet --set output.interval=0.002";
