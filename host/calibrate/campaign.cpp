@@ -14,6 +14,7 @@
 #include "calibrate/executor.h"
 #include "calibrate/report_figures.h"
 #include "calibrate/run_store.h"
+#include "io/output_dir.h"
 
 namespace repose::calibrate {
 
@@ -125,7 +126,8 @@ void print_summary(const CampaignPlan& plan, const CampaignRecord& record, int s
 CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi) {
   const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
   const std::string db_path = options.db_path.empty() ? out_dir + "/campaign.sqlite" : options.db_path;
-  std::filesystem::create_directories(out_dir);
+  OutputFolder folder(out_dir);  // two campaigns never write one folder (each its report and figures)
+  folder.remove_leftovers();     // what a killed campaign left half-written
   RunStore store(db_path, plan, options.fresh);
   Executor executor(plan, store, mpi, options.jobs, options.quiet, options.threads);
   executor.set_picture_dir(out_dir);

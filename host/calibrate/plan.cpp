@@ -23,6 +23,7 @@
 #include "util/hash.h"
 #include "util/input_file.h"
 #include "util/number_text.h"
+#include "util/path_name.h"
 
 namespace repose::calibrate {
 
@@ -94,6 +95,7 @@ void read_campaign(const PlanTable& t, CampaignPlan& plan) {
   if (!fs::is_regular_file(case_path)) t.fail("case", "no case file " + plan.case_path);
   plan.case_text = read_text(plan.case_path);
   plan.name = t.text("name").value_or(fs::path(plan.path).stem().string());
+  if (std::string why = why_not_path_name(plan.name); !why.empty() && t.has("name")) t.fail("name", why);  // out/calibrate/NAME
   if (auto mode = t.text("mode")) {
     if (*mode == "design") plan.mode = CampaignMode::design;
     else if (*mode == "adaptive") plan.mode = CampaignMode::adaptive;

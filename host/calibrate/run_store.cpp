@@ -8,9 +8,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
+
+#include "util/file_lock.h"
 
 namespace repose::calibrate {
 
@@ -52,25 +51,15 @@ std::string utc_now() {
   return buf;
 }
 
-// Takes DB.lock for as long as the process holds it (the kernel drops it when the process ends,
-// even by kill -9); returns the descriptor. Two campaigns on one database would run the same
+// DB.lock for as long as the store is open: two campaigns on one database would run the same
 // runs twice and collide on inserting them.
-int lock_database(const std::string& path) {
-  std::string lock_path = path + ".lock";
-  int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(lock_path + ": cannot create the campaign's lock file");
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    char holder[64] = {0};
-    ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
-    ::close(fd);
-    std::string who = n > 0 ? std::string(holder, size_t(n)) : "another process";
-    while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
-    throw std::runtime_error(path + " is in use by another campaign (" + who +
-                             "): wait for it to finish, or give this one another --db");
+std::unique_ptr<FileLock> lock_database(const std::string& path) {
+  try {
+    return std::make_unique<FileLock>(path + ".lock");
+  } catch (const FileBusy& busy) {
+    throw FileBusy(path + " is in use by another campaign (" + busy.holder() +
+                       "): wait for it to finish, or give this one another --db", busy.holder());
   }
-  std::string me = "process " + std::to_string(::getpid()) + ", since " + utc_now() + "\n";
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) < 0) { /* the lock holds without the note */ }
-  return fd;
 }
 
 }  // namespace
@@ -79,12 +68,11 @@ RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh
     : path_(path), factor_names_(plan.factor_names()) {
   namespace fs = std::filesystem;
   if (fs::path(path).has_parent_path()) fs::create_directories(fs::path(path).parent_path());
-  lock_fd_ = lock_database(path);
+  lock_ = lock_database(path);
   try {
     open(plan, fresh);
   } catch (...) {
     sqlite3_close(db_);
-    ::close(lock_fd_);
     throw;
   }
 }
@@ -128,10 +116,7 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
   load_runs();
 }
 
-RunStore::~RunStore() {
-  sqlite3_close(db_);
-  ::close(lock_fd_);
-}
+RunStore::~RunStore() { sqlite3_close(db_); }
 
 // Databases made before the plan hashed its parsed base case (they hashed the case's text as
 // campaign.case_content_hash) are adopted when that text is unchanged: their runs are the same.

@@ -9,6 +9,7 @@
 
 #include "calibrate/plan.h"
 #include "calibrate/run_spec.h"
+#include "util/file_lock.h"
 
 struct sqlite3;
 
@@ -41,7 +42,7 @@ class RunStore {
   std::string hash_;
   std::vector<std::string> factor_names_;
   sqlite3* db_ = nullptr;
-  int lock_fd_ = -1;  // flock on PATH.lock while this store is open
+  std::unique_ptr<FileLock> lock_;  // PATH.lock while this store is open
   std::map<std::string, RunRecord> runs_;
 };
 

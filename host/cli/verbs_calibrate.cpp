@@ -28,8 +28,10 @@ int run_calibrate(int argc, char** argv) {
   int jobs = -1;
   bool check_only = false;
   app.add_option("plan", plan_path, "campaign plan (TOML, docs/calibration.md)")->required();
-  app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)");
-  app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)");
+  app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)")
+      ->check(non_empty_path());
+  app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)")
+      ->check(non_empty_path());
   app.add_flag("--new", options.fresh, "discard an existing database and start over");
   app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun; "
                  "0 under mpirun: rank 0 only coordinates)")
@@ -43,7 +45,7 @@ int run_calibrate(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     mpi.stop_workers();
-    return app.exit(e);
+    return parse_exit_code(app, e);
   }
   CampaignPlan plan;
   try {
@@ -74,7 +76,7 @@ int run_calibrate(int argc, char** argv) {
     mpi.stop_workers();
     std::fprintf(stderr, "repose calibrate: %s\n(every finished run is kept: run the same command again to resume)\n",
                  e.what());
-    return 1;
+    return failure_exit_code(e);
   }
 }
 

@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 
 int run_devices(int argc, char** argv) {
   CLI::App app{"List the Vulkan devices, and the backend `repose run` and the experiments use by default, and why."};
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   auto devices = vk::Context::list_devices();
   if (devices.empty()) {
     std::fprintf(stderr, "no Vulkan device found (install mesa-vulkan-drivers for lavapipe)\n");
@@ -69,16 +69,19 @@ int run_case(int argc, char** argv) {
                         ->check(whole_number(0, 1000000000000LL));
   auto* time_opt = app.add_option("--time", sim_time, "run this much simulated time, s (with --restart: this much more)")
                        ->excludes(steps_opt)->check(finite_positive());
-  app.add_option("--out", o.out_dir, "output folder, new or empty (default out/CASE_NAME)");
+  app.add_option("--out", o.out_dir, "output folder, new or empty (default out/CASE_NAME)")
+      ->check(non_empty_path());
   app.add_flag("--overwrite", o.overwrite, "delete what --out holds before the run");
-  app.add_option("--state-out", o.state_out, "write the final state here (docs/state-format.md)");
+  app.add_option("--state-out", o.state_out, "write the final state here (docs/state-format.md)")
+      ->check(non_empty_path());
   app.add_option("--restart", o.restart,
-                 "continue from a state file (--state-out or a checkpoint): same bytes as a run that never stopped");
+                 "continue from a state file (--state-out or a checkpoint): same bytes as a run that never stopped")
+      ->check(non_empty_path());
   app.add_option("--set", o.overrides, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N (default: vulkan contact,lean; cpu contact)");
   app.add_flag("--quiet", o.quiet, "no progress output");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (o.backend == "vulkan" && app.count("--threads"))
     return usage_error("--threads applies to the cpu backend (the vulkan backend uses the device)");
   if (o.backend == "cpu" && app.count("--device")) return usage_error("--device applies to the vulkan backend");
@@ -98,7 +101,7 @@ int run_case(int argc, char** argv) {
   o.device = chosen.device;
   try {
     return run_case_to_folder(*loaded, o);
-  } catch (const OutputError& e) {
+  } catch (const BadInput& e) {  // a folder, a restart state or a step count: nothing was written
     std::fprintf(stderr, "repose run: %s\n", e.what());
     return 2;
   }
@@ -197,11 +200,12 @@ int run_bench(int argc, char** argv) {
   app.add_option("--steps", steps, "timed steps per backend and variant (default 200)");
   app.add_option("--settle", settle, "simulated seconds to settle a new bed (default 0.6)");
   app.add_option("--skin", skin, "neighbour skin (m; default the case's): results do not depend on it");
-  app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
+  app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)")
+      ->check(non_empty_path());
   app.add_option("--case", case_path, "benchmark this case instead of the bed, after --settle simulated seconds of it");
   app.add_flag("--scalar-contacts", scalar_contacts,
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_contact_lanes(false);
   std::vector<KernelVariant> named;  // checked before a bed is settled
   try {

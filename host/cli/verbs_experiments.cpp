@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
@@ -73,7 +74,8 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--threads", threads, "cpu backend threads (default all cores)")->check(thread_count());
   app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)");
+  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)")
+      ->check(non_empty_path());
   app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
   app.add_flag("--quiet", quiet, "no progress output");
   bool profile = false;
@@ -82,7 +84,7 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--replicates", replicates,
                  "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
       ->check(whole_number(1, 1000));
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   const std::vector<std::string> with_replicates = types_where([](const Experiment& e) { return e.takes_replicates(); });
   if (replicates > 1 && std::find(with_replicates.begin(), with_replicates.end(), type) == with_replicates.end())
     return usage_error("--replicates applies to the " + listed(with_replicates) + " experiment");
@@ -106,8 +108,10 @@ int run_experiment(int argc, char** argv) {
   }
   // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
   if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
+  std::optional<OutputFolder> folder;  // ours alone until the experiment ends
   try {
-    prepare_output_dir(out_dir, overwrite, {case_path});
+    folder.emplace(out_dir);
+    folder->make_ready(overwrite, {case_path});
   } catch (const OutputError& e) {
     std::fprintf(stderr, "repose experiment: %s\n", e.what());
     return 2;
@@ -128,7 +132,7 @@ int run_experiment(int argc, char** argv) {
       std::printf("%s\n", line.c_str());
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
-    return 1;
+    return failure_exit_code(e);
   }
   return 0;
 }

@@ -92,9 +92,9 @@ int run_template(int argc, char** argv) {
   std::string name, out;
   bool list = false;
   app.add_option("name", name, "template name (see --list)");
-  app.add_option("--out", out, "CSV file to write (x,y,z,radius)");
+  app.add_option("--out", out, "CSV file to write (x,y,z,radius)")->check(non_empty_path());
   app.add_flag("--list", list, "list the shipped templates");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (list) {
     for (const ShippedTemplate& t : shipped_templates()) std::printf("%-22s %s\n", t.name.c_str(), t.summary.c_str());
     return 0;
@@ -130,7 +130,7 @@ int run_clump(int argc, char** argv) {
   app.add_option("--inertia", inertia, "explicit inertia Ixx,Iyy,Izz,Ixy,Ixz,Iyz about the centre of mass (kg m^2)")
       ->expected(6)
       ->delimiter(',');
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   ClumpTemplate clump;
   clump.name = file;
@@ -184,7 +184,7 @@ int run_stl(int argc, char** argv) {
   bool json = false;
   app.add_option("file", file, "STL file")->required();
   app.add_flag("--json", json, "print JSON instead of text");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   const StlFile stl = read_stl(file);
   const MeshSummary s = summarize_mesh(stl.mesh);
@@ -359,7 +359,7 @@ int run_heap_angle(int argc, char** argv) {
   app.add_option("--sectors", axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
   app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   HeapAngleRun r;
   r.file = file;

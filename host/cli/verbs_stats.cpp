@@ -139,8 +139,8 @@ int run_design(int argc, char** argv) {
   app.add_option("--steps", steps, "path: number of steps (default 5)")->check(whole_number(1, 1000));
   app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)")->check(finite_positive());
   app.add_flag("--descent", descent, "path: descend instead of ascend");
-  app.add_option("--out", out, "output CSV (default: standard output)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--out", out, "output CSV (default: standard output)")->check(non_empty_path());
+  REPOSE_PARSE(app, argc, argv);
 
   Design d = type == "path" ? path_design(fit_path, step, steps, descent)
                             : factor_design(type, factor_list, centre, alpha, generators, fraction);
@@ -241,7 +241,7 @@ int run_fit(int argc, char** argv) {
   app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
       ->check(CLI::IsMember({"partial", "sequential"}));
   app.add_option("--json", json_out, "write the fit (for repose optimize) to this file");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
 
   Table table = read_csv(table_path);
@@ -536,7 +536,7 @@ int run_optimize(int argc, char** argv) {
   app.add_option("--tolerance", q.tolerance, "width of the reported near-optimal set, in response units")->check(finite_positive());
   app.add_option("--compare", q.compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
   app.add_option("--json", q.json_out, "write the optimum and the near-optimal set to this file");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   OptimizeOutcome o = find_optimum(q);
   print_optimum(o);
@@ -562,7 +562,7 @@ int run_curve(int argc, char** argv) {
   app.add_option("--y", ycol, "response column")->required();
   app.add_option("--at", at, "measured response to invert")->required()->check(finite_number());
   app.add_option("--degree", degree, "polynomial degree (default 3)")->check(whole_number(1, 9));
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   Table t = read_csv(path);
   std::vector<double> x = t.numeric_column(xcol), y = t.numeric_column(ycol);
   CalibrationCurve c;

@@ -27,8 +27,9 @@ const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome) {
 
 std::vector<std::string> write_outcome(const ExperimentOutcome& outcome, const std::string& json_name,
                                        const std::string& dir) {
-  write_file_atomically(dir + "/" + json_name, [&](std::ostream& o) { o << outcome.json.dump(2) << "\n"; });
+  // The result last: a failed series leaves no complete-looking JSON beside it.
   for (const OutputFile& f : outcome.files) f.write(dir + "/" + f.name);
+  write_file_atomically(dir + "/" + json_name, [&](std::ostream& o) { o << outcome.json.dump(2) << "\n"; });
   std::vector<std::string> lines = outcome.lines;
   if (outcome.written) lines.push_back(outcome.written(dir));
   return lines;

@@ -149,7 +149,8 @@ class Experiment {
 // could not take the reading.
 const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome);
 
-// Writes ID.json, every file, and returns the lines to print (the outcome's and "wrote ...").
+// Writes every file, then ID.json (each whole or not at all; the JSON last, so a failed file leaves
+// no result beside it), and returns the lines to print (the outcome's and "wrote ...").
 std::vector<std::string> write_outcome(const ExperimentOutcome& outcome, const std::string& json_name,
                                        const std::string& dir);
 

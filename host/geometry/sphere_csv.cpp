@@ -11,6 +11,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
 #include "util/input_error.h"
 #include "util/input_file.h"
 
@@ -160,11 +161,7 @@ void write_sphere_csv(std::ostream& out, const std::vector<Sphere>& spheres) {
 }
 
 void write_sphere_csv(const std::string& path, const std::vector<Sphere>& spheres) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  write_sphere_csv(out, spheres);
-  out.flush();
-  if (!out) throw std::runtime_error(path + ": write failed");
+  write_file_atomically(path, [&](std::ostream& out) { write_sphere_csv(out, spheres); });
 }
 
 }  // namespace repose

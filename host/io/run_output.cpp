@@ -2,7 +2,7 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <fstream>
 
 #include "io/state_file.h"
 #include "util/atomic_file.h"
@@ -11,8 +11,9 @@ namespace repose {
 
 namespace fs = std::filesystem;
 
-RunOutput::RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk)
-    : dir_(std::move(dir)), name_(std::move(name)), model_(model), frame_every_(frame_every),
+RunOutput::RunOutput(std::string dir, std::string name, std::string case_hash, const Model& model, uint64_t frame_every,
+                     bool vtk)
+    : dir_(std::move(dir)), name_(std::move(name)), case_hash_(std::move(case_hash)), model_(model), frame_every_(frame_every),
       vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)) {
   for (const auto& sub : model.subs) body_ids_.push_back(sub.info.x);
 }
@@ -30,16 +31,18 @@ void RunOutput::begin(uint64_t step, bool continuing) {
   if (vtk_) fs::create_directories(dir_ + "/frames");
   if (continuing) remove_frames_from(next_frame_);
   if (!walls_) return;
-  if (continuing && fs::exists(dir_ + "/wall_forces.csv")) {
+  std::string csv = dir_ + "/wall_forces.csv";
+  if (continuing && fs::exists(csv)) {
     keep_wall_force_rows(next_frame_);
-    wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::app);
-  } else {
-    wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::trunc);
-    wall_csv_ << "time";
-    for (const auto& name : model_.wall_group_names()) wall_csv_ << "," << name << ".fx," << name << ".fy," << name << ".fz";
-    wall_csv_ << "\n";
+    wall_csv_ = std::make_unique<FileOutput>(csv, FileOutput::Mode::Append);
+    return;
   }
-  if (!wall_csv_) throw std::runtime_error("cannot write " + dir_ + "/wall_forces.csv");
+  wall_csv_ = std::make_unique<FileOutput>(csv, FileOutput::Mode::Truncate);
+  std::ostream& out = wall_csv_->stream();
+  out << "time";
+  for (const auto& name : model_.wall_group_names()) out << "," << name << ".fx," << name << ".fy," << name << ".fz";
+  out << "\n";
+  wall_csv_->flush();
 }
 
 void RunOutput::remove_frames_from(uint64_t index) const {
@@ -72,12 +75,12 @@ void RunOutput::frame(Simulation& sim) {
     write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), body_ids_);
     if (walls_) write_wall_frame(dir_ + "/" + frame_file("walls_", index), model_, sim.time(), bounds_);
   }
-  if (wall_csv_.is_open()) {
-    wall_csv_ << sim.time();
-    for (const auto& w : sim.wall_forces()) wall_csv_ << "," << w.fx << "," << w.fy << "," << w.fz;
-    wall_csv_ << "\n";
-    wall_csv_.flush();  // a killed run keeps every row up to its last frame
-    if (!wall_csv_) throw std::runtime_error("error while writing " + dir_ + "/wall_forces.csv");
+  if (wall_csv_) {
+    std::ostream& out = wall_csv_->stream();
+    out << sim.time();
+    for (const auto& w : sim.wall_forces()) out << "," << w.fx << "," << w.fy << "," << w.fz;
+    out << "\n";
+    wall_csv_->flush();  // a killed run keeps every row up to its last frame
   }
 }
 
@@ -94,7 +97,7 @@ void RunOutput::write_series() const {
 }
 
 void RunOutput::checkpoint(const Simulation& sim) const {
-  write_state_file(checkpoint_path(), sim.state(), sim.step(), sim.time());
+  write_state_file(checkpoint_path(), sim.state(), sim.step(), sim.time(), case_hash_);
   write_series();
 }
 

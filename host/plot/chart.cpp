@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <map>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
 #include "util/number_text.h"
 
 namespace repose {
@@ -442,10 +442,15 @@ void Chart::save(const std::string& path) {
   text((w_ - text_width(subtitle_, kTickText)) / 2, 40, subtitle_, colours::black, kTickText);
   text((pl + pr - text_width(x_label_, kLabelText)) / 2, h_ - 30, x_label_, colours::black, kLabelText);
   text(12, (pt + pb + text_width(y_label_, kLabelText)) / 2, y_label_, colours::black, kLabelText, true);
-  // Written beside the target and renamed over it: a reader never sees half a picture.
-  const std::string partial = path + ".partial";
-  if (!stbi_write_png(partial.c_str(), w_, h_, 3, pixels_.data(), w_ * 3)) throw std::runtime_error(path + ": cannot write PNG");
-  std::filesystem::rename(partial, path);
+  // Encoded in memory, then written whole or not at all: a reader never sees half a picture, and a
+  // failed write says why (stb's own file writer ignores failed writes).
+  std::string png;
+  auto append = [](void* to, void* data, int bytes) {
+    static_cast<std::string*>(to)->append(static_cast<char*>(data), size_t(bytes));
+  };
+  if (!stbi_write_png_to_func(append, &png, w_, h_, 3, pixels_.data(), w_ * 3))
+    throw std::runtime_error(path + ": cannot encode PNG");
+  write_file_atomically(path, png);
   if (kept_records) (*kept_records)[path] = record_;
 }
 

@@ -14,21 +14,11 @@
 #include "tests/cli_support.h"
 
 namespace fs = std::filesystem;
+using repose::test::fresh_dir;
 using repose::test::run_repose;
+using repose::test::slurp;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("repose_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
 
 const std::string kBox = std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml";
 // The settling box with a frame every ~21 steps, on the cpu backend.
@@ -148,14 +138,19 @@ TEST_CASE("run --restart continues to the same bytes, frames and wall forces as 
   auto summary = nlohmann::json::parse(slurp(split / "summary.json"));
   CHECK(summary["restarted_from"]["step"] == 130);
   CHECK(summary["steps"] == 300);
-  // Another case's folder is not continued into.
+  // Another case's state is not continued from, and another case's folder not continued into.
   auto other = run_repose(kRun + " --set simulation.seed=2 --steps 10 --restart " + (dir / "at130.state").string() +
                           " --out " + split.string());
   CHECK(other.status == 2);
-  CHECK(other.output.find("another case (or other --set values)") != std::string::npos);
+  CHECK(other.output.find("at130.state: written by a run of case ") != std::string::npos);
+  CHECK(other.output.find(", not of this case (") != std::string::npos);
+  REQUIRE(run_repose(kRun + " --set simulation.seed=2 --steps 10 --out " + (dir / "seed2").string()).status == 0);
+  auto into = run_repose(kRun + " --steps 10 --restart " + (dir / "at130.state").string() + " --out " + (dir / "seed2").string());
+  CHECK(into.status == 2);
+  CHECK(into.output.find("another case (or other --set values)") != std::string::npos);
 }
 
-TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; provenance in summary.json",
+TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read, provenance in summary.json",
           "[engine][cli][output]") {
   fs::path dir = fresh_dir("vtk_series");
   auto r = run_repose(std::string("run ") + REPOSE_SOURCE_DIR + "/cases/drop_cabbage.toml --backend cpu --quiet --steps 40 "
@@ -188,7 +183,7 @@ TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; prove
   CHECK(p["device"].get<std::string>().find("thread") != std::string::npos);
 }
 
-TEST_CASE("run: SIGTERM and SIGINT stop cleanly; the checkpoint continues to the bytes of a whole run",
+TEST_CASE("run: SIGTERM and SIGINT stop cleanly, the checkpoint continues to the bytes of a whole run",
           "[engine][cli][restart]") {
   for (int signal : {SIGTERM, SIGINT}) {
     fs::path dir = fresh_dir("signal");

@@ -39,7 +39,7 @@ TEST_CASE("repose experiment with the wrong type or a bad [experiment] key fails
   CHECK(bad.output.find("plate") != std::string::npos);
 }
 
-TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance; a replicate that does not rebound "
+TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance, a replicate that does not rebound "
           "is reported and the others go on", "[experiments][cli]") {
   fs::path out = fs::temp_directory_path() / "repose_test_experiment_drop";
   fs::remove_all(out);
