@@ -1,7 +1,9 @@
 // A Gaussian-process surrogate of one response over coded factors (squared-exponential kernel,
-// one length scale per factor, a nugget for replicate noise). Hyperparameters maximise the
-// marginal likelihood over a fixed grid (the signal variance profiled out), so a fit is
-// deterministic and needs no random start.
+// one length scale per factor, a nugget for run-to-run noise). Hyperparameters maximise the
+// marginal likelihood: length scales over a fixed grid, the signal and noise variances over a
+// fine grid for each (one eigendecomposition per length scale), so a fit is deterministic and
+// needs no random start. The noise can be held inside bounds measured from replicates, so a
+// curve is never drawn through noisy runs as if they were exact.
 #pragma once
 #include <Eigen/Dense>
 
@@ -17,15 +19,23 @@ struct GaussianProcess {
   Eigen::LLT<Eigen::MatrixXd> chol;
   double log_likelihood = 0;
 
-  // Posterior mean and standard deviation of the latent response at a coded point.
+  // Posterior mean and standard deviation of the latent (noise-free mean) response at a coded point.
   double mean(const Eigen::VectorXd& at) const;
   double sd(const Eigen::VectorXd& at) const;
   // d mean / d x (coded), by central differences of the mean.
   Eigen::VectorXd gradient(const Eigen::VectorXd& at) const;
+  // The run-to-run noise sd the fit settled on (the nugget), in the response's units.
+  double noise_sd() const;
+};
+
+// Bounds on the run-to-run noise sd, in the response's units (from replicates: their confidence
+// interval). The default leaves the noise free, from noise-free up.
+struct NoiseBounds {
+  double low = 0, high = INFINITY;
 };
 
 // Throws std::runtime_error with fewer than two runs.
-GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y);
+GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const NoiseBounds& noise = {});
 
 // Expected improvement for hitting a target: E[max(0, best - |Y - target|)] with
 // Y ~ N(mean, sd^2) and `best` the smallest |y - target| seen so far (closed form).
