@@ -89,7 +89,13 @@ void add_posterior(const CampaignPlan& plan, CalibrationResult& res) {
                 "The posterior extends most along %s (coded units): sd %.3g along it, %.3g across it; a flat prior has %.3g. ",
                 direction_text(post.ridge, plan.factor_names()).c_str(), post.ridge_sd, post.across_sd, kFlatPriorSd);
   res.ridge_text = buf;
-  if (post.ridge_sd > 0.5 * kFlatPriorSd && post.across_sd < 0.5 * post.ridge_sd)
+  int axis = 0;
+  for (int j = 1; j < post.ridge.size(); ++j)
+    if (std::abs(post.ridge[j]) > std::abs(post.ridge[axis])) axis = j;
+  if (post.ridge_sd > 0.5 * kFlatPriorSd && post.across_sd < 0.5 * post.ridge_sd && std::abs(post.ridge[axis]) > 0.95)
+    res.ridge_text += "The data leave " + plan.factors[size_t(axis)].name +
+                      " free: the measured response hardly depends on it (not identifiable from this response).";
+  else if (post.ridge_sd > 0.5 * kFlatPriorSd && post.across_sd < 0.5 * post.ridge_sd)
     res.ridge_text += "The measurement fixes a combination of the parameters, not each one: along this ridge the data "
                       "leave them free (not identifiable from this response).";
   else if (post.ridge_sd > 0.5 * kFlatPriorSd)

@@ -130,6 +130,9 @@ void print_summary(const CampaignPlan& plan, const CampaignRecord& record, int s
   std::printf("calibrate %s: %s, %d simulations (%d run now)\n", plan.name.c_str(), res.method.c_str(), record.simulations,
               simulated_now);
   std::printf("  %s\n", verdict_line(plan, res).c_str());
+  if (!res.model_on_target && plan.mode == CampaignMode::design)
+    std::printf("  the model does not reach the measured value within the tolerance anywhere in the factor box: the closest it "
+                "gets is below; widen the ranges or check the measured value\n");
   for (const auto& p : res.parameters)
     std::printf("  %s = %.6g%s  (model within tolerance for %.6g .. %.6g)\n", p.name.c_str(), p.value, interval_text(p).c_str(),
                 p.set_low, p.set_high);

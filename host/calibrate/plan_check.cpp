@@ -52,7 +52,8 @@ double probe_cost(const CampaignPlan& plan, int rig, double seconds, std::string
 
 std::string duration_text(double s) {
   char buf[64];
-  if (s < 120) std::snprintf(buf, sizeof buf, "%.0f s", s);
+  if (s < 10) std::snprintf(buf, sizeof buf, "%.2g s", s);
+  else if (s < 120) std::snprintf(buf, sizeof buf, "%.0f s", s);
   else if (s < 7200) std::snprintf(buf, sizeof buf, "%.1f min", s / 60);
   else std::snprintf(buf, sizeof buf, "%.1f h", s / 3600);
   return buf;

@@ -48,8 +48,13 @@ Figure posterior_2d(const CampaignPlan& plan, const CalibrationResult& res, cons
   const int a = post.free[0], b = post.free[1];
   const PlanFactor &fa = plan.factors[size_t(a)], &fb = plan.factors[size_t(b)];
   const Marginal2 m = marginal2(post, a, b);
-  Chart chart(900, 720, fa.low, fa.high, fb.low, fb.high, true);
-  auto density = [&](double x, double y) { return m.at(fa.to_coded(x), fb.to_coded(y)); };
+  // The runs beyond the box (axial points) stay in view; the prior, and so the posterior, is zero there.
+  const double e = std::max(1.0, res.coded_extent) * 1.04;
+  Chart chart(900, 720, fa.to_actual(-e), fa.to_actual(e), fb.to_actual(-e), fb.to_actual(e), true);
+  auto density = [&](double x, double y) {
+    const double ca = fa.to_coded(x), cb = fb.to_coded(y);
+    return std::abs(ca) > 1 || std::abs(cb) > 1 ? 0.0 : m.at(ca, cb);
+  };
   // The region's edge: halfway between the last bin inside and the next one out.
   chart.response_map(density, {}, {m.threshold * 0.999}, "posterior mass per cell");
   // The ridge through the posterior mean, in actual units.
@@ -60,15 +65,15 @@ Figure posterior_2d(const CampaignPlan& plan, const CalibrationResult& res, cons
     rx.push_back(fa.to_actual(ma + 0.1 * t * d[a]));
     ry.push_back(fb.to_actual(mb + 0.1 * t * d[b]));
   }
-  std::vector<LegendEntry> legend = {{"90 % credible region", colours::black, Mark::Line}};
+  std::vector<LegendEntry> legend = {{"90 % region", colours::black, Mark::Line}};
   if (std::abs(d[a]) + std::abs(d[b]) > 1e-9) {
     chart.polyline(rx, ry, colours::orange, 3);
-    legend.push_back({"ridge (widest direction)", colours::orange, Mark::Line});
+    legend.push_back({"ridge", colours::orange, Mark::Line});
   }
   for (const auto& run : res.primary().runs) chart.marker(run.spec.x[size_t(a)], run.spec.x[size_t(b)], colours::black, 5);
   chart.cross(res.chosen[size_t(a)], res.chosen[size_t(b)], colours::red, 9);
   legend.push_back({"runs", colours::black, Mark::Dot});
-  legend.push_back({"chosen point", colours::red, Mark::Cross});
+  legend.push_back({"chosen", colours::red, Mark::Cross});
   chart.title("Posterior of " + fa.name + " and " + fb.name + " given the measured value");
   chart.labels(factor_label(fa), factor_label(fb));
   chart.legend_above(legend);

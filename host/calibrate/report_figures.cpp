@@ -210,14 +210,14 @@ Figure verification(const CampaignPlan& plan, const CalibrationResult& res, cons
   }
   r.pad(0.1);
   const int n = int(values.size());
-  Chart chart(760, 520, 0.5, run_axis_end(size_t(n)), r.lo, r.hi);
+  Chart chart(860, 540, 0.5, run_axis_end(size_t(n)), r.lo, r.hi);
   chart.horizontal_band(resp.measured - tol, resp.measured + tol, colours::green);
   chart.horizontal(resp.measured, colours::green, 2);
   chart.horizontal(c.mean, colours::red, 1);
   if (std::isfinite(c.se)) chart.error_bar(0.5 * (1 + n), c.mean - c.se, c.mean + c.se, colours::red);
   for (int i = 0; i < n; ++i) chart.marker(i + 1, values[size_t(i)], colours::red, 5);
-  chart.title("Verification of " + resp.label + " at the chosen point: " + agreement_name(c.agreement));
-  chart.subtitle(verdict_line(plan, res));
+  chart.title("Verification of " + resp.label + ": " + agreement_name(c.agreement));
+  chart.subtitle(res.target_reached ? "campaign: target reached" : "campaign: target NOT reached");
   chart.labels("verification run (each its own packing seed)", quantity_label(resp.name));
   chart.legend({{"measured", colours::green, Mark::Line}, {"+- tolerance", colours::green, Mark::Band},
                 {"runs", colours::red, Mark::Dot}, {"their mean (bar: +- 1 SE)", colours::red, Mark::Line}});
