@@ -166,7 +166,9 @@ LoopDecision decide(const CampaignPlan& plan, const std::vector<Observations>& o
   // and is itself known to within it (one sd): a lucky single run of a noisy response does not
   // stop the loop, and a noise-free run on target does (its sd is ~0).
   const bool on_target = within_tolerance(plan, d.models, d.chosen);
-  d.met = on_target;
+  // A surrogate on fewer runs than a plane and two more has no credible uncertainty yet (three
+  // runs in two factors fit any smooth surface): it cannot stop the loop.
+  d.met = on_target && x.rows() >= k + 3;
   for (const auto& m : d.models) d.met = d.met && m.predict_sd(d.chosen) <= plan.responses[size_t(m.response)].absolute_tolerance();
   if (plan.adaptive.seed_per_run && on_target) {
     d.next = d.chosen;  // on target but not yet sure of it: another packing there narrows the sd

@@ -51,8 +51,10 @@ NoiseEstimate noise_among(const std::vector<RunRecord>& runs, const std::string&
 
 void verify_result(const CampaignPlan& plan, RunSource& source, const std::vector<RunSpec>& verify, CalibrationResult& res) {
   const std::vector<int> verified = plan.verified_responses();
-  source.run(on_rigs(plan, verify, plan.rigs_of(verified)), "verify");
   res.checks.clear();
+  res.target_reached = false;
+  if (verify.empty()) return;  // nothing verified: the target cannot be reached
+  source.run(on_rigs(plan, verify, plan.rigs_of(verified)), "verify");
   for (int v : verified) {
     const PlanResponse& r = plan.responses[size_t(v)];
     std::vector<RunRecord> runs;

@@ -320,7 +320,7 @@ Figure write_convergence_figure(const CampaignPlan& plan, const AdaptiveOutcome&
   chart.polyline(xs, best, colours::blue, 3);
   for (size_t i = 0; i < xs.size(); ++i) chart.marker(xs[i], each[i], colours::black, 4);
   chart.title("Adaptive loop: error of each run and best so far");
-  chart.labels("loop run", "|simulated - measured| / measured (%) of " + plan.primary().label);
+  chart.labels("loop run", "error of " + plan.primary().label + " (%)");
   chart.legend(legend);
   chart.save(dir + "/convergence.png");
   return {"convergence.png", std::string("Relative error of each run of the loop (dots) and the best so far (blue)") +

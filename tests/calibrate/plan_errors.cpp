@@ -47,7 +47,7 @@ TEST_CASE("a good plan loads and its hash ignores layout and comments") {
 
 TEST_CASE("an unknown factor key is refused at its plan line") {
   std::string msg = plan_error(replace(test::small_ccd_plan(), "stalk/steel.restitution", "stalk/steel.restitutio"), "key");
-  CHECK(msg.find("plan.toml:17: factor.e.key") != std::string::npos);
+  CHECK(msg.find("plan.toml:18: factor.e.key") != std::string::npos);
   CHECK(msg.find("restitutio") != std::string::npos);
   CHECK(msg.find("unknown key") != std::string::npos);
   // A material the case does not have.
@@ -58,7 +58,7 @@ TEST_CASE("an unknown factor key is refused at its plan line") {
 
 TEST_CASE("a reversed range is refused") {
   std::string msg = plan_error(replace(test::small_ccd_plan(), "low = 0.35\nhigh = 0.55", "low = 0.55\nhigh = 0.35"), "range");
-  CHECK(msg.find("plan.toml:19: factor.e.high: range reversed") != std::string::npos);
+  CHECK(msg.find("plan.toml:20: factor.e.high: range reversed") != std::string::npos);
 }
 
 TEST_CASE("a design with fewer runs than model terms is refused") {
