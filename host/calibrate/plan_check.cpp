@@ -16,10 +16,26 @@ namespace repose::calibrate {
 
 namespace {
 
-// The simulated time a run on this case may take at most: the experiment's max_time, or the case's
-// end_time without an experiment.
-double longest_run(const CaseSpec& spec) {
-  return spec.experiment.type.empty() ? spec.time.end_time : spec.experiment.max_time;
+// The simulated time a run on this case takes, at most: a heap settles about a second after its
+// lifted wall stops (sooner when it ends once the wall is clear); other experiments run to their
+// max_time at most; a case without one to its end_time.
+double longest_run(const CaseSpec& spec, std::string& why) {
+  const ExperimentSpec& ex = spec.experiment;
+  if (ex.type.empty()) {
+    why = "end_time";
+    return spec.time.end_time;
+  }
+  if (ex.type == "repose") {
+    double lift_end = ex.lift_end;
+    for (const auto& w : spec.walls)
+      if (lift_end <= 0 && w.name == ex.lift_wall) lift_end = w.motion.stop_time;
+    if (lift_end > 0 && lift_end + 1 < ex.max_time) {
+      why = ex.end_when_clear ? "the lift's end + 1 s; runs that end once the wall is clear are shorter" : "the lift's end + 1 s";
+      return lift_end + 1;
+    }
+  }
+  why = "max_time; most runs end sooner";
+  return ex.max_time;
 }
 
 // Times steps of the case at the factors' centre on one cpu thread for about `seconds`.
@@ -40,12 +56,13 @@ double probe_cost(const CampaignPlan& plan, int rig, double seconds, std::string
   } while (elapsed < seconds && steps < 200000);
   const double particles = std::max<double>(1, model.n_particles);
   const double per_particle_step = elapsed / (double(steps) * particles);
-  const double total_steps = std::ceil(longest_run(spec) / model.dt);
+  std::string why;
+  const double duration = longest_run(spec, why);
+  const double total_steps = std::ceil(duration / model.dt);
   std::ostringstream s;
-  s << "probe: " << model.n_particles << " particles x " << format_g(total_steps, 4) << " steps (" << format_g(longest_run(spec), 4)
-    << " s at dt " << format_g(model.dt, 3) << " s) x " << format_g(per_particle_step * 1e9, 3)
-    << " ns per particle-step (" << steps << " steps timed at the start; contacts grow as a heap forms and runs may end "
-    << "sooner: an estimate)";
+  s << "probe: " << model.n_particles << " particles x " << format_g(total_steps, 4) << " steps (" << format_g(duration, 4)
+    << " s, " << why << ", at dt " << format_g(model.dt, 3) << " s) x " << format_g(per_particle_step * 1e9, 3)
+    << " ns per particle-step, timed over the first " << steps << " steps: an estimate";
   how = s.str();
   return per_particle_step * particles * total_steps;
 }
@@ -121,17 +138,21 @@ std::string precision_text(const CampaignPlan& plan, const std::map<std::string,
              "(widen the tolerance or give the lab's replicate count, measured_n)\n";
       continue;
     }
-    const double limit = nv > 0 ? std::sqrt(nv * (tol * tol - se_m * se_m)) : 0;
+    if (nv == 0) {
+      unreachable = true;
+      out << "  UNREACHABLE: verification.runs = 0 verifies nothing (the campaign ends with 'nothing verified')\n";
+      continue;
+    }
+    const double limit = std::sqrt(nv * (tol * tol - se_m * se_m));
     std::string source;
     const double sd = known_noise(plan, v, stored, source);
     if (sd < 0) {
       out << "  noise unknown until replicates run (" << (plan.mode == CampaignMode::adaptive ? "the pilot" : "centre points")
           << "; give noise_sd from an earlier pilot to check now): " << nv << " verification runs confirm the tolerance only if "
           << "the run-to-run sd is below " << format_g(limit, 3) << "\n";
-      if (nv == 0) unreachable = true, out << "  UNREACHABLE: verification.runs = 0 verifies nothing\n";
       continue;
     }
-    const double se_d = nv > 0 ? std::sqrt(sd * sd / nv + se_m * se_m) : INFINITY;
+    const double se_d = std::sqrt(sd * sd / nv + se_m * se_m);
     const int needed = runs_for_standard_error(sd, std::sqrt(tol * tol - se_m * se_m));
     out << "  run-to-run sd " << format_g(sd, 3) << " (" << source << "): " << nv << " verification runs give a standard error of "
         << format_g(se_d, 3) << " on the difference; " << needed << " would reach the tolerance\n";
