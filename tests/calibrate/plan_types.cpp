@@ -117,7 +117,7 @@ TEST_CASE("a raised budget resumes the same campaign") {
   CHECK(second.output.find("(" + std::to_string(after.size() - rows.size()) + " run now)") != std::string::npos);
 }
 
-TEST_CASE("--check prints the plan's cost and flags a tolerance the budget cannot reach") {
+TEST_CASE("calibrate --check prints the plan's cost and flags a tolerance the budget cannot reach") {
   std::string plan = drop_plan("[design]\ntype = \"sweep\"\nlevels = 4\ndegree = 1\n\n[verification]\nruns = 2\n");
   plan.replace(plan.find("tolerance = 0.01"), 16, "tolerance = 0.01\nnoise_sd = 0.05");
   std::string dir = test::scratch_dir("check");
