@@ -221,17 +221,20 @@ void Chart::response_map(const std::function<double(double, double)>& f, const s
   for (int r = 0; r < nr; ++r)
     for (int c = 0; c < nc; ++c) set(c0 + c, r0 + r, heat(hi > lo ? (v[size_t(r) * nc + c] - lo) / (hi - lo) : 0.5));
   // A pixel lies on a contour when the level falls between it and its right or lower neighbour.
-  auto draw_level = [&](double level, Colour colour, int thick) {
+  // The highlighted contours are a series of their own (a legend may name them): their pixels count.
+  auto draw_level = [&](double level, Colour colour, int thick, bool counted) {
     for (int r = 0; r + 1 < nr; ++r)
       for (int c = 0; c + 1 < nc; ++c) {
         double a = v[size_t(r) * nc + c] - level, b = v[size_t(r) * nc + c + 1] - level, d = v[size_t(r + 1) * nc + c] - level;
-        if ((a <= 0) != (b <= 0) || (a <= 0) != (d <= 0))
+        if ((a <= 0) != (b <= 0) || (a <= 0) != (d <= 0)) {
           for (int t = 0; t < thick; ++t)
             for (int u = 0; u < thick; ++u) set(c0 + c + t, r0 + r + u, colour);
+          if (counted) count_point(c0 + c, r0 + r, colour, Mark::Line);
+        }
       }
   };
-  for (double l : levels) draw_level(l, colours::grey, 1);
-  for (double l : highlight) draw_level(l, colours::black, 3);
+  for (double l : levels) draw_level(l, colours::grey, 1, false);
+  for (double l : highlight) draw_level(l, colours::black, 3, true);
   bar_lo_ = lo;
   bar_hi_ = hi;
   bar_label_ = bar_label;

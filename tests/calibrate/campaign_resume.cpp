@@ -108,6 +108,13 @@ TEST_CASE("the campaign report holds the calibration, the verification and the f
   CHECK(std::abs(double(summary["verification"]["relative_error"])) <= 0.01);
   CHECK(summary["target_reached"] == true);
   // Centre replicates differ only by their packing seed; one sphere's drop does not depend on it.
-  CHECK(double(summary["replicate_sd"]) == 0.0);
-  CHECK(int(summary["replicate_df"]) == 3);  // 2 from the centre points + 1 from the verification
+  CHECK(double(summary["noise"]["restitution"]["sd"]) == 0.0);
+  CHECK(int(summary["noise"]["restitution"]["df"]) == 2);  // the 3 centre points
+  CHECK(int(summary["verification"]["noise"]["df"]) == 3);  // 2 from the centre points + 1 from the verification
+  CHECK(summary["verification"]["agreement"] == "confirmed");
+  // The posterior: e pinned down, G left free by the drop (its 90 % interval spans most of its range).
+  CHECK(summary["parameters"]["e"]["identified"] == true);
+  CHECK(summary["parameters"]["G"]["identified"] == false);
+  CHECK(std::filesystem::exists(dir + "/out/posterior.png"));
+  CHECK(std::filesystem::exists(dir + "/out/runs.csv"));
 }
