@@ -80,12 +80,9 @@ int run_experiment(int argc, char** argv) {
   app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
   int replicates = 1;
   app.add_option("--replicates", replicates,
-                 "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
+                 "drop, roll (incline): N runs with seeds seed, seed+1, ... (a clump at a random orientation each)")
       ->check(whole_number(1, 1000));
   CLI11_PARSE(app, argc, argv);
-  const std::vector<std::string> with_replicates = types_where([](const Experiment& e) { return e.takes_replicates(); });
-  if (replicates > 1 && std::find(with_replicates.begin(), with_replicates.end(), type) == with_replicates.end())
-    return usage_error("--replicates applies to the " + listed(with_replicates) + " experiment");
   const std::vector<std::string> with_height = types_with_key("drop_height");
   if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
     return usage_error("--height applies to the " + listed(with_height) + " experiment");
@@ -104,6 +101,12 @@ int run_experiment(int argc, char** argv) {
                  spec.experiment.type.c_str(), type.c_str());
     return 2;
   }
+  if (replicates > 1 && !experiment->takes_replicates()) {
+    std::vector<std::string> with;
+    for (const Experiment* e : experiments())
+      if (e->takes_replicates()) with.push_back(e->description());
+    return usage_error("--replicates applies to " + listed(with) + ", not to " + experiment->description());
+  }
   // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
   if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
   try {
@@ -120,14 +123,29 @@ int run_experiment(int argc, char** argv) {
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
+  // Not strict: a reading the rig could not take comes back as a status with what was measured
+  // so far, which is written (TYPE.json with status "failed" and the reason) before exit 1.
+  run.strict = false;
   try {
     ExperimentOutcome outcome = experiment->run(spec, run);
-    measured_or_throw(outcome);
+    outcome.json = with_status(outcome);
     outcome.json["provenance"] = experiment_provenance(spec, sets, run);
     for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
+    if (outcome.status != OutcomeStatus::Measured) {
+      std::fprintf(stderr, "%s\n", outcome.problem.c_str());
+      return 1;
+    }
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
+    ExperimentOutcome failed;
+    failed.status = OutcomeStatus::Failed;
+    failed.problem = e.what();
+    failed.json["experiment"] = type;
+    failed.json["case"] = spec.path;
+    failed.json = with_status(failed);
+    failed.json["provenance"] = experiment_provenance(spec, sets, run);
+    write_outcome(failed, type + ".json", out_dir);
     return 1;
   }
   return 0;

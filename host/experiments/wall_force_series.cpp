@@ -1,5 +1,7 @@
 #include "experiments/wall_force_series.h"
 
+#include "io/csv_columns.h"
+
 namespace repose {
 
 void WallForceSeries::sample(Simulation& sim) {
@@ -10,9 +12,7 @@ void WallForceSeries::sample(Simulation& sim) {
 }
 
 void WallForceSeries::write_csv(std::ostream& out) const {
-  out << "time";
-  for (const auto& n : names) out << "," << n << ".fx," << n << ".fy," << n << ".fz";
-  out << "\n";
+  out << wall_force_csv_header(names) << "\n";
   for (size_t k = 0; k < rows.size(); ++k) {
     out << times[k];
     for (const auto& f : rows[k]) out << "," << f.fx << "," << f.fy << "," << f.fz;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "io/csv_columns.h"
 #include "io/state_file.h"
 #include "util/atomic_file.h"
 
@@ -35,9 +36,7 @@ void RunOutput::begin(uint64_t step, bool continuing) {
     wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::app);
   } else {
     wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::trunc);
-    wall_csv_ << "time";
-    for (const auto& name : model_.wall_group_names()) wall_csv_ << "," << name << ".fx," << name << ".fy," << name << ".fz";
-    wall_csv_ << "\n";
+    wall_csv_ << wall_force_csv_header(model_.wall_group_names()) << "\n";
   }
   if (!wall_csv_) throw std::runtime_error("cannot write " + dir_ + "/wall_forces.csv");
 }
