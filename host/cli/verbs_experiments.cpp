@@ -12,6 +12,7 @@
 #include "cli/verbs.h"
 #include "util/number_text.h"
 #include "engine/backend_factory.h"
+#include "engine/model.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
 #include "io/provenance.h"
@@ -78,6 +79,12 @@ int run_experiment(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress output");
   bool profile = false;
   app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
+  double frames = 0;
+  auto* frames_opt = app.add_option("--frames", frames,
+                                    "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
+                                    "case's [output] interval, else 0.01 s (less often for large cases)")
+                         ->expected(0, 1)
+                         ->check(finite_positive());
   int replicates = 1;
   app.add_option("--replicates", replicates,
                  "drop, roll (incline): N runs with seeds seed, seed+1, ... (a clump at a random orientation each)")
@@ -123,6 +130,13 @@ int run_experiment(int argc, char** argv) {
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
+  if (frames_opt->count() || (spec.output.interval > 0 && spec.output.vtk)) {
+    run.frames.dir = out_dir;
+    run.frames.name = spec.name;
+    run.frames.interval = frames > 0                ? frames
+                          : spec.output.interval > 0 ? spec.output.interval
+                                                     : default_frame_interval(build_model(spec), spec.experiment.max_time);
+  }
   // Not strict: a reading the rig could not take comes back as a status with what was measured
   // so far, which is written (TYPE.json with status "failed" and the reason) before exit 1.
   run.strict = false;
@@ -132,6 +146,10 @@ int run_experiment(int argc, char** argv) {
     outcome.json["provenance"] = experiment_provenance(spec, sets, run);
     for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
+    if (run.frames.wanted())
+      std::printf("VTK frames every %g s in %s/frames, series %s/%s*.pvd for ParaView (*_contacts.pvd: the force "
+                  "network, *_walls.pvd: the walls)\n",
+                  run.frames.interval, out_dir.c_str(), out_dir.c_str(), spec.name.c_str());
     if (outcome.status != OutcomeStatus::Measured) {
       std::fprintf(stderr, "%s\n", outcome.problem.c_str());
       return 1;

@@ -82,6 +82,10 @@ std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
   return std::vector<gpu::vec4>(buf_.wall_force, buf_.wall_force + layout_.n_walls);
 }
 
+std::vector<gpu::vec4> CpuBackend::contact_forces(uint32_t contacts) {
+  return std::vector<gpu::vec4>(buf_.contact_force, buf_.contact_force + std::min(contacts, layout_.capacity));
+}
+
 size_t CpuBackend::memory_bytes() const {
   size_t bytes = 0;
   for (const auto& block : storage_) bytes += block.size();

@@ -123,8 +123,11 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     profile_.contact_steps += double(contacts()) * k;
     profile_.wall_seconds += since(t0);
     if (on_batch) on_batch(*this);
+    if (observer_) observer_(*this);
   }
 }
+
+std::vector<gpu::vec4> Simulation::contact_forces() { return backend_->contact_forces(contacts()); }
 
 RunProfile Simulation::take_profile() {
   RunProfile p = std::move(profile_);

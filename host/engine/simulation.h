@@ -55,6 +55,11 @@ class Simulation {
   // Force of the particles on each named wall (a mesh's triangles summed), from the last step's
   // contacts; names as Model::wall_group_names().
   std::vector<WallForce> wall_forces();
+  // The last step's force on the owner i of each contact-list entry (state().partner, row_start).
+  std::vector<gpu::vec4> contact_forces();
+  // Called after every batch of every advance() from now on, after its on_batch (frames written
+  // as an experiment goes); empty: none.
+  void set_observer(std::function<void(Simulation&)> observer) { observer_ = std::move(observer); }
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
   // Continues from a state written by write_state_file after `step` steps of this same model:
@@ -82,6 +87,7 @@ class Simulation {
   uint32_t retries_ = 0;
   bool profiling_ = false;
   RunProfile profile_;
+  std::function<void(Simulation&)> observer_;
 };
 
 }  // namespace repose

@@ -13,6 +13,7 @@
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/experiment_simulation.h"
 #include "experiments/replicates.h"
 #include "util/atomic_file.h"
 #include "util/math.h"
@@ -84,8 +85,7 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
-  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 KernelVariant::fastest_for(options.backend, model), frame_steps);
+  Simulation sim = experiment_simulation(model, options, frame_steps, frame_steps);
   // The run ends past the rebound's apex: before lift-off at most as long again as the fall
   // (a rebound to the release height), after it when the upward speed is spent.
   Progress progress(spec.name + " " + options.label, uint64_t(ex.max_time / model.dt) + 1, model.dt, options.progress);
@@ -282,6 +282,7 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
     replicate.seed = spec.seed + uint64_t(k);
     DropOptions options = drop_options(run, false);
     options.label = printf_text("drop, replicate %d of %d", k + 1, run.replicates);
+    options.frames.name += printf_text("_replicate%d", k + 1);
     DropResult r = k == 0 ? first : drop(replicate, options);
     if (!r.rebounded) {
       list.push_back({{"seed", replicate.seed}, {"problem", no_rebound(replicate)}});
@@ -315,7 +316,10 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
 
 ExperimentOutcome DropExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
   DropOptions options = drop_options(run, run.strict);
-  if (run.replicates > 1) options.label = printf_text("drop, replicate 1 of %d", run.replicates);
+  if (run.replicates > 1) {
+    options.label = printf_text("drop, replicate 1 of %d", run.replicates);
+    options.frames.name += "_replicate1";
+  }
   DropResult r = drop(spec, options);
   ExperimentOutcome o = outcome(spec, r);
   if (!r.rebounded) {

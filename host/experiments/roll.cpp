@@ -243,6 +243,7 @@ ExperimentOutcome RollExperiment::replicated(const CaseSpec& spec, const Experim
     random_body_orientation(replicate, replicate.seed);
     ExperimentRun one = run;
     one.replicates = 1;
+    one.frames.name += printf_text("_replicate%d", k + 1);
     auto r = std::make_shared<const RollResult>(run_roll(replicate, one, false));
     if (k == 0) o = roll_outcome(spec, r);
     bool stopped = r->ending == RollEnding::Stopped;

@@ -14,9 +14,8 @@ namespace fs = std::filesystem;
 
 RunOutput::RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk)
     : dir_(std::move(dir)), name_(std::move(name)), model_(model), frame_every_(frame_every),
-      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)) {
-  for (const auto& sub : model.subs) body_ids_.push_back(sub.info.x);
-}
+      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)),
+      labels_(particle_labels(model)) {}
 
 std::string RunOutput::frame_file(const char* kind, uint64_t index) const {
   char file[64];
@@ -68,7 +67,9 @@ void RunOutput::frame(Simulation& sim) {
   next_frame_ = index + 1;
   ++frames_written_;
   if (vtk_) {
-    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), body_ids_);
+    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), labels_);
+    write_contact_frame(dir_ + "/" + frame_file("contacts_", index), sim.state(),
+                        touching_pairs(sim.state(), sim.contact_forces(), labels_), sim.time());
     if (walls_) write_wall_frame(dir_ + "/" + frame_file("walls_", index), model_, sim.time(), bounds_);
   }
   if (wall_csv_.is_open()) {
@@ -82,13 +83,15 @@ void RunOutput::frame(Simulation& sim) {
 
 void RunOutput::write_series() const {
   if (!vtk_) return;
-  std::vector<SeriesEntry> particles, walls;
+  std::vector<SeriesEntry> particles, contacts, walls;
   for (uint64_t k = first_frame_; k < next_frame_; ++k) {
     double t = double(k * frame_every_) * model_.dt;
     if (fs::exists(dir_ + "/" + frame_file("", k))) particles.push_back({t, frame_file("", k)});
+    if (fs::exists(dir_ + "/" + frame_file("contacts_", k))) contacts.push_back({t, frame_file("contacts_", k)});
     if (walls_ && fs::exists(dir_ + "/" + frame_file("walls_", k))) walls.push_back({t, frame_file("walls_", k)});
   }
   write_pvd(dir_ + "/" + name_ + ".pvd", particles);
+  write_pvd(dir_ + "/" + name_ + "_contacts.pvd", contacts);
   if (walls_) write_pvd(dir_ + "/" + name_ + "_walls.pvd", walls);
 }
 

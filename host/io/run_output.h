@@ -1,7 +1,8 @@
 // The files of one `repose run` in its output folder, written as the run goes so that an
 // interrupted run leaves everything up to its last frame readable:
-// - frames/NAME_00000.vtp (particles) and frames/NAME_walls_00000.vtp (walls) every output
-//   interval, listed with their times in NAME.pvd and NAME_walls.pvd (ParaView's time series);
+// - frames/NAME_00000.vtp (particles), frames/NAME_contacts_00000.vtp (the force network) and
+//   frames/NAME_walls_00000.vtp (walls) every output interval, listed with their times in
+//   NAME.pvd, NAME_contacts.pvd and NAME_walls.pvd (ParaView's time series);
 // - wall_forces.csv, one row per frame, flushed with every row;
 // - checkpoint.state, the latest restartable state (docs/state-format.md).
 // Frame k is the state after k * frame_every steps; a continued run keeps frames 0 .. k of the
@@ -47,7 +48,7 @@ class RunOutput {
   bool vtk_;
   bool walls_;
   Bounds bounds_;
-  std::vector<uint32_t> body_ids_;
+  ParticleLabels labels_;
   uint64_t first_frame_ = 0, next_frame_ = 0;
   unsigned frames_written_ = 0;
   std::ofstream wall_csv_;
