@@ -9,6 +9,7 @@
 
 #include "calibrate/adaptive_loop.h"
 #include "calibrate/campaign_report.h"
+#include "calibrate/design_export.h"
 #include "calibrate/design_analysis.h"
 #include "calibrate/design_runs.h"
 #include "calibrate/executor.h"
@@ -81,6 +82,9 @@ void count_simulations(CampaignRecord& record, RunStore& store, const std::vecto
 void add_figures(const CampaignPlan& plan, const std::vector<RunSpec>& verify, const std::string& out_dir,
                  CampaignRecord& record) {
   record.figures = write_figures(plan, record.result, record.model_runs, out_dir);
+  if (Figure surface; write_surface_figure(plan, record.result, record.model_runs, out_dir, surface))
+    record.figures.insert(record.figures.begin() + 1, surface);  // beside the contour
+  write_design_expert_csv(plan, record.model_runs, out_dir + "/design_expert.csv");
   if (record.loop) record.figures.push_back(write_convergence_figure(plan, *record.loop, out_dir));
   for (const auto& s : verify)
     if (std::filesystem::exists(out_dir + "/" + s.id + ".png"))
