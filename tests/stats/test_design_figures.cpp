@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iterator>
+#include <sstream>
 
 #include "../figure_checks.h"
 #include "stats/anova.h"
@@ -13,6 +15,7 @@
 #include "stats/dataset.h"
 #include "stats/design_figures.h"
 #include "stats/effects.h"
+#include "stats/report.h"
 
 using namespace repose;
 using namespace repose::stats;
@@ -92,4 +95,28 @@ TEST_CASE("the steepest-ascent plot and the 3D surface show their series and dis
   CHECK(r.points_of(colours::black, Mark::Dot) == 3);
   fs::remove(path);
   fs::remove(surface);
+}
+
+TEST_CASE("the printed ANOVA keeps its columns apart when a value is as wide as its column", "[stats][report]") {
+  // An almost exact straight line: F near 3e5 prints as 2.8...e+05, ten characters in a ten-wide column.
+  Eigen::MatrixXd x(8, 1);
+  Eigen::VectorXd y(8);
+  for (int i = 0; i < 8; ++i) {
+    x(i, 0) = -1 + 2.0 * i / 7;
+    y[i] = 0.45 + 0.1 * x(i, 0) + 2e-4 * ((i * 5) % 3 - 1);
+  }
+  ResponseSurface fit = analyse(x, y, build_model(ModelKind::linear, 1));
+  std::string text = format_anova(fit, {"e"}, "linear");
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);  // the title
+  std::getline(lines, line);  // the header
+  std::getline(lines, line);  // Model: source, SS, df, MS, F, p ("< 0.0001" is two words), significant
+  std::istringstream words(line);
+  std::vector<std::string> w{std::istream_iterator<std::string>(words), {}};
+  INFO(line);
+  REQUIRE(w.size() == 8);
+  CHECK(w[0] == "Model");
+  CHECK(w[4].size() >= 10);  // as wide as its column
+  CHECK(std::stod(w[4]) == Approx(fit.model.f).epsilon(1e-4));
 }
