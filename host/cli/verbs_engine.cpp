@@ -78,6 +78,9 @@ int run_case(int argc, char** argv) {
   app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N (default: vulkan contact,lean; cpu contact)");
   app.add_flag("--quiet", o.quiet, "no progress output");
+  app.add_flag("--wall-impulses", o.wall_impulses,
+               "wall_forces.csv also gives each wall's largest force and its impulse between frames (the walls' "
+               "forces summed every step: one more kernel per step)");
   CLI11_PARSE(app, argc, argv);
   if (o.backend == "vulkan" && app.count("--threads"))
     return usage_error("--threads applies to the cpu backend (the vulkan backend uses the device)");

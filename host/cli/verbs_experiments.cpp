@@ -79,6 +79,10 @@ int run_experiment(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress output");
   bool profile = false;
   app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
+  bool wall_impulses = false;
+  app.add_flag("--wall-impulses", wall_impulses,
+               "wall_forces.csv also gives each wall's largest force and its impulse between samples (the walls' "
+               "forces summed every step: one more kernel per step)");
   double frames = 0;
   auto* frames_opt = app.add_option("--frames", frames,
                                     "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
@@ -130,6 +134,7 @@ int run_experiment(int argc, char** argv) {
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
+  run.wall_impulses = wall_impulses;
   if (frames_opt->count() || (spec.output.interval > 0 && spec.output.vtk)) {
     run.frames.dir = out_dir;
     run.frames.name = spec.name;

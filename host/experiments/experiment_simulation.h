@@ -21,6 +21,7 @@ inline Simulation experiment_simulation(const Model& model, const ExperimentRunO
                                         uint64_t sample_steps, uint64_t max_batch) {
   Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
                  KernelVariant::fastest_for(options.backend, model), uint32_t(std::min(sample_steps, max_batch)));
+  if (options.wall_impulses) sim.sum_wall_forces();
   record_frames(sim, options.frames);
   return sim;
 }

@@ -13,6 +13,7 @@ struct ExperimentRunOptions {
   bool progress = false;  // progress with ETA on stderr (host/util/progress.h)
   bool profile = false;   // time every kernel (results carry per-phase profiles either way)
   FrameRequest frames;    // VTK frames as the experiment goes (`repose experiment --frames`)
+  bool wall_impulses = false;  // wall_forces.csv: each wall's peak and impulse between samples
 };
 
 }  // namespace repose

@@ -191,8 +191,9 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
 
   Simulation sim(std::move(model), std::move(engine), variant, schedule.batch);
   if (start.restarting) sim.restore(start.state, start.info.step);
+  if (o.wall_impulses) sim.sum_wall_forces();
   const Model& m = sim.model();
-  RunOutput output(dir, spec.name, m, schedule.frame_every, m.vtk);
+  RunOutput output(dir, spec.name, m, schedule.frame_every, m.vtk, o.wall_impulses);
   output.begin(sim.step(), continuing);
   auto summary = [&](const char* status) {
     info.status = status;

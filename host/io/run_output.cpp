@@ -12,9 +12,10 @@ namespace repose {
 
 namespace fs = std::filesystem;
 
-RunOutput::RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk)
+RunOutput::RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk,
+                     bool impulses)
     : dir_(std::move(dir)), name_(std::move(name)), model_(model), frame_every_(frame_every),
-      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)),
+      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), impulses_(impulses), bounds_(drawing_bounds(model)),
       labels_(particle_labels(model)) {}
 
 std::string RunOutput::frame_file(const char* kind, uint64_t index) const {
@@ -35,7 +36,7 @@ void RunOutput::begin(uint64_t step, bool continuing) {
     wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::app);
   } else {
     wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::trunc);
-    wall_csv_ << wall_force_csv_header(model_.wall_group_names()) << "\n";
+    wall_csv_ << wall_force_csv_header(model_.wall_group_names(), impulses_) << "\n";
   }
   if (!wall_csv_) throw std::runtime_error("cannot write " + dir_ + "/wall_forces.csv");
 }
@@ -73,9 +74,9 @@ void RunOutput::frame(Simulation& sim) {
     if (walls_) write_wall_frame(dir_ + "/" + frame_file("walls_", index), model_, sim.time(), bounds_);
   }
   if (wall_csv_.is_open()) {
-    wall_csv_ << sim.time();
-    for (const auto& w : sim.wall_forces()) wall_csv_ << "," << w.fx << "," << w.fy << "," << w.fz;
-    wall_csv_ << "\n";
+    wall_csv_ << wall_force_csv_row(sim.time(), sim.wall_forces(),
+                                    impulses_ ? sim.take_wall_impulses() : std::vector<WallImpulse>{})
+              << "\n";
     wall_csv_.flush();  // a killed run keeps every row up to its last frame
     if (!wall_csv_) throw std::runtime_error("error while writing " + dir_ + "/wall_forces.csv");
   }

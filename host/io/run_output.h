@@ -19,8 +19,11 @@ namespace repose {
 
 class RunOutput {
  public:
-  // frame_every: steps between frames (0: none); vtk: write VTK frames (else only wall forces).
-  RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk);
+  // frame_every: steps between frames (0: none); vtk: write VTK frames (else only wall forces);
+  // impulses: wall_forces.csv also has each wall's peak and impulse since the previous row (the
+  // simulation sums them: Simulation::sum_wall_forces).
+  RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk,
+            bool impulses = false);
 
   // Starts the files for a run that begins at `step` (0: a new run). With `continuing`, the
   // folder holds the same run up to at least `step`: frames and wall-force rows after `step`
@@ -47,6 +50,7 @@ class RunOutput {
   uint64_t frame_every_;
   bool vtk_;
   bool walls_;
+  bool impulses_;
   Bounds bounds_;
   ParticleLabels labels_;
   uint64_t first_frame_ = 0, next_frame_ = 0;
