@@ -68,6 +68,19 @@ void Progress::finish() {
   if (enabled_ && tty_ && printed_) std::fprintf(stderr, "\n");
 }
 
+TaskProgress::TaskProgress(std::string label, int total, bool enabled)
+    : label_(std::move(label)), total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+void TaskProgress::next(const std::string& what) {
+  ++done_;
+  if (!enabled_) return;
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  double eta = done_ > 1 ? elapsed / (done_ - 1) * (total_ - done_ + 1) : -1;
+  std::fprintf(stderr, "%s %d/%d %s, %s elapsed, ETA %s\n", label_.c_str(), done_, total_, what.c_str(),
+               format_duration(elapsed).c_str(), format_duration(eta).c_str());
+  std::fflush(stderr);
+}
+
 void FallingTrend::add(double t, double value) {
   if (log_ && !(value > 0)) return;
   t_.push_back(t);

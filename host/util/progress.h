@@ -42,6 +42,20 @@ class Progress {
   uint64_t first_ = 0;
 };
 
+// Progress through a known number of tasks (simulations) on stderr, one line per task as it
+// starts: "LABEL k/N what, elapsed, ETA" (the ETA from the mean time of the tasks done).
+class TaskProgress {
+ public:
+  TaskProgress(std::string label, int total, bool enabled);
+  void next(const std::string& what);
+
+ private:
+  std::string label_;
+  int total_, done_ = 0;
+  bool enabled_;
+  std::chrono::steady_clock::time_point start_;
+};
+
 // "12.3 s", "4m05s", "3h07m", "12d04h", "more than 100 years" (never a negative or wrapped number).
 std::string format_duration(double seconds);
 
