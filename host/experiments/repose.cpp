@@ -89,8 +89,9 @@ struct HeapEta {
       double clear = wall_force.reaches(0.0);
       if (clear > 0) end = std::min(end, clear);
     }
-    progress.expect_end_time(end, phase == 0 ? printf_text("(the lift starts at %g s, then ~%g s of lift and run-out)",
-                                                           lift.motion.start_time, lift_end - lift.motion.start_time)
+    progress.expect_end_time(end, phase == 0 ? printf_text("(filling to %g s, then the lift: at most to %g s%s)",
+                                                           lift.motion.start_time, lift_end,
+                                                           ex.end_when_clear ? ", sooner once clear of the heap" : "")
                                              : "(the lift's end, then the run-out)");
   }
 };
