@@ -266,6 +266,7 @@ ExperimentOutcome RollExperiment::replicated(const CaseSpec& spec, const Experim
   if (L.empty()) {
     o.status = OutcomeStatus::DidNotRoll;
     o.problem = spec.path + ": no replicate stopped on the floor (" + std::to_string(run.replicates) + " orientations)";
+    if (run.strict) throw std::runtime_error(o.problem);
     return o;
   }
   o.status = OutcomeStatus::Measured;
