@@ -22,6 +22,11 @@ using std::max;
 using std::min;
 using std::sqrt;
 
+// The twin's division and square root are IEEE's, correctly rounded; the GLSL kernels make
+// theirs the same on devices that round otherwise (kernels/glsl_prelude.glsl).
+inline float div_rn(float a, float b) { return a / b; }
+inline float sqrt_rn(float x) { return std::sqrt(x); }
+
 inline uint atomicAdd(uint& target, uint value) {
   return std::atomic_ref<uint>(target).fetch_add(value, std::memory_order_relaxed);
 }

@@ -228,6 +228,15 @@ struct ScanPush {
 // more. A dispatch of more groups runs as rows of at most max_groups_x along y; every kernel takes
 // its index from invocation_index() (kernels/glsl_prelude.glsl), which counts across the rows.
 REPOSE_CONST kMaxGroupsX = 65535u;
+
+// How the kernels round a division and a square root (div_rn and sqrt_rn in
+// kernels/glsl_prelude.glsl, a specialisation constant chosen by host/vk/kernel_set.cpp):
+// as the device does (lavapipe and the CPU twin round both correctly), corrected to the correctly
+// rounded result (hardware GPUs: Vulkan allows 2.5 ULP for a division), or, for tests, first put
+// up to 2 ULP off and then corrected, so that lavapipe exercises the correction.
+REPOSE_CONST kRoundingDevice = 0u;
+REPOSE_CONST kRoundingCorrected = 1u;
+REPOSE_CONST kRoundingTest = 2u;
 #ifdef __cplusplus
 inline uint dispatch_rows(uint groups, uint max_x) { return groups == 0u ? 1u : (groups + max_x - 1u) / max_x; }
 inline uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups : max_x; }

@@ -107,7 +107,8 @@ int run_case(int argc, char** argv) {
   }
 }
 
-// The bed or case to benchmark, settled for `settle` simulated seconds on the cpu backend once
+// The bed or case to benchmark, settled for `settle` simulated seconds on the default backend
+// (a hardware GPU when there is one: every backend gives the same bytes) once
 // and cached in `cache_dir` (the file name carries the size, the settling time and the skin).
 Model settled_bench_model(CaseSpec spec, bool own_case, double settle, double skin, unsigned threads,
                           const std::string& cache_dir, double& energy) {
@@ -124,7 +125,7 @@ Model settled_bench_model(CaseSpec spec, bool own_case, double settle, double sk
     std::fprintf(stderr, "bench: settled state of %u particles from %s\n", n, cache.c_str());
   } else {
     std::fprintf(stderr, "bench: settling %u particles for %.2f s (once; cached in %s)\n", n, settle, cache.c_str());
-    Simulation sim(model, make_backend("cpu", -1, threads, gpu::kDefaultWorkgroup));
+    Simulation sim(model, make_backend("auto", -1, threads, gpu::kDefaultWorkgroup));
     uint64_t settle_steps = uint64_t(std::llround(settle / model.dt));
     Progress p("settle", settle_steps, model.dt);
     sim.advance(settle_steps, [&](const Simulation& x) { p.update(x.step()); });

@@ -11,14 +11,14 @@ namespace repose {
 using namespace gpu;
 
 VulkanBackend::VulkanBackend(int device_index, uint32_t workgroup)
-    : ctx_(device_index), kernels_(ctx_, workgroup) {}
+    : ctx_(vk::Context::open(device_index)), kernels_(*ctx_, workgroup) {}
 
 VulkanBackend::~VulkanBackend() {
-  if (queries_) vkDestroyQueryPool(ctx_.device(), queries_, nullptr);
+  if (queries_) vkDestroyQueryPool(ctx_->device(), queries_, nullptr);
 }
 
 std::string VulkanBackend::describe() const {
-  return "vulkan (" + ctx_.info().name + ", " + ctx_.info().driver + ")";
+  return "vulkan (" + ctx_->info().name + ", " + ctx_->info().driver + ")";
 }
 
 template <class T>
@@ -34,7 +34,7 @@ static void down(const vk::Buffer& src, std::vector<T>& dst, size_t count) {
 
 // Refuses a layout the device cannot hold or dispatch, before anything is allocated.
 void VulkanBackend::check_fits(const Layout& l) const {
-  const vk::DeviceInfo& d = ctx_.info();
+  const vk::DeviceInfo& d = ctx_->info();
   auto gib = [](double bytes) { return std::to_string(bytes / 1073741824.0).substr(0, 5) + " GiB"; };
   size_t total = 0;
   for (uint32_t i = 0; i < kBindingCount; ++i) {
@@ -63,11 +63,11 @@ void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
     size_t bytes = binding_bytes(i, l);
     VkBufferUsageFlags extra = i == kBindControl ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
     buffers_[i] = vk::Buffer();
-    buffers_[i] = vk::Buffer(ctx_, std::max<size_t>(bytes, 16), extra);
+    buffers_[i] = vk::Buffer(*ctx_, std::max<size_t>(bytes, 16), extra);
     bound[i] = &buffers_[i];
   }
   // Zero everything once so no kernel ever reads uninitialised memory.
-  ctx_.submit_and_wait([&](VkCommandBuffer cb) {
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     for (auto& buf : buffers_)
       if (buf.handle() != VK_NULL_HANDLE) vkCmdFillBuffer(cb, buf.handle(), 0, VK_WHOLE_SIZE, 0);
   });
@@ -88,15 +88,15 @@ void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBi
 void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
   if (times && needed > query_capacity_) {
-    if (queries_) vkDestroyQueryPool(ctx_.device(), queries_, nullptr);
+    if (queries_) vkDestroyQueryPool(ctx_->device(), queries_, nullptr);
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qi.queryCount = needed;
-    VK_CHECK(vkCreateQueryPool(ctx_.device(), &qi, nullptr, &queries_));
+    VK_CHECK(vkCreateQueryPool(ctx_->device(), &qi, nullptr, &queries_));
     query_capacity_ = needed;
   }
   VkBuffer control = b(kBindControl).handle();
-  ctx_.submit_and_wait([&](VkCommandBuffer cb) {
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     if (times) vkCmdResetQueryPool(cb, queries_, 0, needed);
     uint32_t q = 0;
     for (const Dispatch& d : program) {
@@ -114,11 +114,11 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* t
   });
   if (times) {
     std::vector<uint64_t> stamps(needed);
-    VK_CHECK(vkGetQueryPoolResults(ctx_.device(), queries_, 0, needed, needed * sizeof(uint64_t),
+    VK_CHECK(vkGetQueryPoolResults(ctx_->device(), queries_, 0, needed, needed * sizeof(uint64_t),
                                    stamps.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(ctx_.physical(), &props);
+    vkGetPhysicalDeviceProperties(ctx_->physical(), &props);
     double period = props.limits.timestampPeriod * 1e-9;
     for (size_t i = 0; i < program.size(); ++i)
       (*times)[kernel_shader_name(program[i].kernel)] +=

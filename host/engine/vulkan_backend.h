@@ -28,15 +28,16 @@ class VulkanBackend : public Backend {
   std::vector<gpu::vec4> wall_sums() override;
   size_t memory_bytes() const override;
 
-  vk::Context& context() { return ctx_; }
+  vk::Context& context() { return *ctx_; }
   // The first `bytes` of binding b's buffer (kernel tests compare raw buffers with the twin).
   void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
-  uint64_t validation_messages() const { return ctx_.validation_messages(); }
+  void write_binding(uint32_t binding, const void* src, size_t bytes) { buffers_[binding].upload(src, bytes); }
+  uint64_t validation_messages() const { return ctx_->validation_messages(); }
 
  private:
   vk::Buffer& b(uint32_t binding) { return buffers_[binding]; }
   void check_fits(const Layout& l) const;
-  vk::Context ctx_;
+  std::shared_ptr<vk::Context> ctx_;  // shared by the process's simulations (vk::Context::open)
   vk::KernelSet kernels_;
   Layout layout_;
   std::array<vk::Buffer, gpu::kBindingCount> buffers_;

@@ -18,7 +18,7 @@ vec3 cross3(vec3 a, vec3 b) {
 }
 
 float length3(vec3 a) {
-  precise float r = sqrt(dot3(a, a));
+  precise float r = sqrt_rn(dot3(a, a));
   return r;
 }
 

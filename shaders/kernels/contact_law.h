@@ -41,7 +41,7 @@ vec3 body_torque(vec3 n_x_ft, float r, float roll_arm, float lever, vec3 w, floa
   precise vec3 t = scale3(n_x_ft, -r);
   if (roll_arm >= 0.0f) {
     if (lw > 0.0f) {
-      precise float k = -(roll_arm * lever) / lw;
+      precise float k = div_rn(-(roll_arm * lever), lw);
       t = t + scale3(w, k);
     }
   }
@@ -72,7 +72,7 @@ bool relative_rolling(vec3 w_i, vec3 w_j, float roll_arm, float lever, vec3 n, O
   precise float lw = length3(w);
   tr = vec3(0.0f);
   if (!(lw > 0.0f)) return false;
-  precise float k = -(roll_arm * lever) / lw;
+  precise float k = div_rn(-(roll_arm * lever), lw);
   precise vec3 t = scale3(w, k);
   tr = t - scale3(n, dot3(t, n));
   return true;
@@ -111,7 +111,7 @@ float cohesion_intersection_area(float r1, float r2, float dist, float overlap, 
     return a_wall;
   }
   precise float q = ((overlap * ((dist + r1) - r2)) * ((dist - r1) + r2)) * ((dist + r1) + r2);
-  precise float a = q / ((4.0f * dist) * dist);
+  precise float a = div_rn(q, (4.0f * dist) * dist);
   return a;
 }
 
@@ -121,7 +121,7 @@ vec3 turn_into_tangent_plane(vec3 s, vec3 n) {
   precise vec3 p = s - scale3(n, dot3(s, n));
   precise float new_sq = dot3(p, p);
   if (new_sq > 0.0f) {
-    precise float keep = sqrt(old_sq / new_sq);
+    precise float keep = sqrt_rn(div_rn(old_sq, new_sq));
     p = scale3(p, keep);
   }
   return p;
@@ -149,11 +149,11 @@ vec3 epsd_rolling_torque(vec3 n, vec3 w_i, vec3 w_j, float radius_star, float no
   precise vec3 t;
   if (len > m_max) {
     // Fully mobilised: the spring slips at the cap; no damping (Ai et al.'s f = 0).
-    precise float ratio = m_max / len;
+    precise float ratio = div_rn(m_max, len);
     m = scale3(m, ratio);
     t = m;
   } else {
-    precise float c_r = -((2.0f * eta_r) * sqrt(inertia_r * k_r));
+    precise float c_r = -((2.0f * eta_r) * sqrt_rn(inertia_r * k_r));
     t = m + scale3(w_roll, c_r);
   }
   spring = m;
@@ -174,7 +174,7 @@ vec3 spinning_friction_torque(vec3 n, vec3 w_i, vec3 w_j, float mu_spin, float r
   precise float s = dot3(w, n);
   if (!(s > 0.0f || s < 0.0f)) return vec3(0.0f);
   precise float t_cap = (mu_spin * radius_star) * abs(normal_force);
-  precise float t_stop = abs(s) / ((2.0f * dt) * stop_share);
+  precise float t_stop = div_rn(abs(s), (2.0f * dt) * stop_share);
   precise float t = min(t_cap, t_stop);
   precise float k = s > 0.0f ? -t : t;
   return scale3(n, k);
@@ -213,13 +213,13 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
   float mu_s = pp.a.w;
   float mu_r = pp.b.x;
 
-  precise float sqrt_rd = sqrt(g.radius_star * g.overlap);
+  precise float sqrt_rd = sqrt_rn(g.radius_star * g.overlap);
   precise float sn = 2.0f * e_star * sqrt_rd;
   precise float st = 8.0f * g_star * sqrt_rd;
   // Fn = 4/3 E* sqrt(R*) dn^(3/2), written as dn * sqrt(R* dn)
-  precise float fn_elastic = (4.0f * e_star * sqrt_rd * g.overlap) / 3.0f;
-  precise float gamma_n = damping * sqrt(sn * g.mass_star);
-  precise float gamma_t = damping * sqrt(st * g.mass_star);
+  precise float fn_elastic = div_rn(4.0f * e_star * sqrt_rd * g.overlap, 3.0f);
+  precise float gamma_n = damping * sqrt_rn(sn * g.mass_star);
+  precise float gamma_t = damping * sqrt_rn(st * g.mass_star);
 
   precise float vn = dot3(v_rel, n);
   precise vec3 v_t = v_rel - scale3(n, vn);
@@ -243,7 +243,7 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
     // LIGGGHTS: the cap acts on the spring alone; damping is dropped while sliding.
     precise float fs = length3(f_spring);
     if (fs > ft_max) {
-      precise float ratio = ft_max / fs;
+      precise float ratio = div_rn(ft_max, fs);
       spring = scale3(spring, ratio);
       ft = scale3(spring, -st);
     } else {
@@ -254,9 +254,9 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
     ft = f_spring + f_damp;
     precise float f = length3(ft);
     if (f > ft_max) {
-      precise float ratio = ft_max / f;
+      precise float ratio = div_rn(ft_max, f);
       ft = scale3(ft, ratio);
-      precise float inv_st = -1.0f / st;
+      precise float inv_st = div_rn(-1.0f, st);
       spring = scale3(ft, inv_st);
     }
   }
@@ -271,7 +271,7 @@ ContactOut hertz_mindlin(ContactGeometry g, vec3 v_rel, vec3 w_i, vec3 w_j, bool
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   precise float roll_force = relative ? fn_elastic : abs(fn_grip);
   o.roll_arm = rolling ? mu_r * roll_force : -1.0f;
-  o.normal_stiffness = (4.0f * e_star * sqrt_rd) / 3.0f;
+  o.normal_stiffness = div_rn(4.0f * e_star * sqrt_rd, 3.0f);
   o.torque_i = vec3(0.0f);
   o.torque_j = vec3(0.0f);
   if ((flags & kFlagLeanContacts) == 0u) contact_torques(g, w_i, w_j, j_is_wall, flags, o);

@@ -74,14 +74,14 @@ bool touch_particle(uint i, uint p, OUT(ContactState) s) {
   precise float overlap = rad_i + rad_j - dist;
   if (!(overlap > 0.0f && dist > 0.0f)) return false;
   vec3 wi = xyz(B_omega[i]);
-  precise vec3 n = vec3(d.x / dist, d.y / dist, d.z / dist);
-  precise float radius_star = (rad_i * rad_j) / (rad_i + rad_j);
-  precise float mass_star = 1.0f / (vi.w + vj.w);
+  precise vec3 n = vec3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
+  precise float radius_star = div_rn(rad_i * rad_j, rad_i + rad_j);
+  precise float mass_star = div_rn(1.0f, vi.w + vj.w);
   precise float ri = rad_i - 0.5f * overlap;
   precise float rj = rad_j - 0.5f * overlap;
   precise vec3 spin = scale3(wi, ri) + scale3(s.wj, rj);
   precise vec3 v_rel = (xyz(vi) - xyz(vj)) - cross3(spin, n);
-  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri)) + vj.w / (1.4f * (rj * rj));
+  precise float inv_inertia_r = div_rn(vi.w, 1.4f * (ri * ri)) + div_rn(vj.w, 1.4f * (rj * rj));
   s.g.n = n;
   s.g.overlap = overlap;
   s.g.radius_star = radius_star;
@@ -114,10 +114,10 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   if (!touching) return false;
   vec3 wi = xyz(B_omega[i]);
   precise float ri = rad_i - 0.5f * overlap;
-  precise float mass_star = 1.0f / vi.w;
+  precise float mass_star = div_rn(1.0f, vi.w);
   precise vec3 v_wall = wall_point_velocity(ws, contact_point(xi, n, ri));
   precise vec3 v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
-  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri));
+  precise float inv_inertia_r = div_rn(vi.w, 1.4f * (ri * ri));
   s.g.n = n;
   s.g.overlap = overlap;
   s.g.radius_star = rad_i;
@@ -161,7 +161,7 @@ void process_contact(uint i, uint c) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
     vec3 spring = xyz(B_rolling_spring[c]);
     vec3 tr = epsd_rolling_torque(n, wi, st.w_other, st.g.radius_star, o.grip_force, o.normal_stiffness, pp.b.x,
-                                  1.0f / st.inv_inertia_r, PC.rolling_damping, PC.dt, spring);
+                                  div_rn(1.0f, st.inv_inertia_r), PC.rolling_damping, PC.dt, spring);
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
     if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);

@@ -88,7 +88,7 @@ vec3 stored_contact_normal(uint c) {
   if (p < PC.n_particles) {
     precise vec3 d = xyz(pi) - xyz(B_pos[p]);
     precise float dist = length3(d);
-    n = vec3(d.x / dist, d.y / dist, d.z / dist);
+    n = vec3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
   } else {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
     float overlap;
