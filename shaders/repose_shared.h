@@ -22,7 +22,7 @@ namespace repose::gpu {
 //   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
 //   count:  Particles N, ParticlesPlusOne N+1, Contacts C (the list capacity), ContactsTwice 2C,
 //           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
-//           Pairs M*M, WallRows steps_per_batch*W, Walls W, Bodies B, Control kControlWords,
+//           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
 //           CandidateSlots N*kCandidateSlots,
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
@@ -61,7 +61,7 @@ namespace repose::gpu {
   X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
   X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
   X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, ascending per row */ \
-  X(25, WallForce, wall_force, vec4, Walls, Always, Scratch)  /* force on each wall (output) */ \
+  X(25, WallForce, wall_force, vec4, WallSums, Always, Scratch)  /* force on each wall, its sum, its peak */ \
   X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
   X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
@@ -214,6 +214,7 @@ struct SimPush {
   float rolling_damping;  // kFlagRollingSpring: eta_r, the rolling dashpot's fraction of critical
   uint absent_wall_kinds;  // bit k: no wall of kind k in the run (0: any may be present)
   uint max_groups_x;  // workgroups per dispatch row: more go into rows along y (dispatch_rows)
+  uint wall_sums;     // wall_reduce: 0 the force only; 1 also its sum and peak; 2 those anew
 };
 
 struct ScanPush {

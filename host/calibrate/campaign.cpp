@@ -9,6 +9,7 @@
 
 #include "calibrate/adaptive_loop.h"
 #include "calibrate/campaign_report.h"
+#include "calibrate/design_export.h"
 #include "calibrate/design_analysis.h"
 #include "calibrate/design_runs.h"
 #include "calibrate/executor.h"
@@ -111,6 +112,13 @@ void count_simulations(CampaignRecord& record, const RunStore& store) {
 void add_figures(const CampaignPlan& plan, const std::vector<RunSpec>& verify, const std::string& out_dir,
                  CampaignRecord& record) {
   record.figures = write_figures(plan, record.result, out_dir);
+  // The first calibrating response's runs (a path fits no model: nothing for Design-Expert then).
+  if (!record.result.models.empty()) {
+    const ResponseModel& model = record.result.models.front();
+    if (Figure surface; write_surface_figure(plan, record.result, model, out_dir, surface))
+      record.figures.insert(record.figures.begin() + 1, surface);  // beside the contour
+    write_design_expert_csv(plan, model, out_dir + "/design_expert.csv");
+  }
   if (record.loop) record.figures.push_back(write_convergence_figure(plan, *record.loop, out_dir));
   for (const auto& s : on_rigs(plan, verify, plan.rigs_of(plan.verified_responses())))
     if (std::filesystem::exists(out_dir + "/" + s.id + ".png"))

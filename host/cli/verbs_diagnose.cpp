@@ -143,8 +143,11 @@ int run_synth_data(int argc, char** argv) {
       ->check(CLI::Range(0.0, 0.99));
   app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
   app.add_flag("--sigma", truth.write_sigma, "write a sigma column (the noise SDs): diagnose then scores the replicate scatter too");
+  bool quiet = false;
+  app.add_flag("--quiet", quiet, "no progress lines");
   app.add_option("--out", out, "CSV to write")->check(non_empty_path())->required();
   REPOSE_PARSE(app, argc, argv);
+  truth.progress = !quiet;
   try {
     if (restitution > 0) truth.restitution = restitution;
     if (grain_friction > 0) truth.grain_friction = grain_friction;

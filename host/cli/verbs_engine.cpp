@@ -81,6 +81,9 @@ int run_case(int argc, char** argv) {
   app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N (default: vulkan contact,lean; cpu contact)");
   app.add_flag("--quiet", o.quiet, "no progress output");
+  app.add_flag("--wall-impulses", o.wall_impulses,
+               "wall_forces.csv also gives each wall's largest force and its impulse between frames (the walls' "
+               "forces summed every step: one more kernel per step)");
   REPOSE_PARSE(app, argc, argv);
   if (o.backend == "vulkan" && app.count("--threads"))
     return usage_error("--threads applies to the cpu backend (the vulkan backend uses the device)");
@@ -168,9 +171,9 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
   probe.rolling_springs = (model.flags & gpu::kFlagRollingSpring) != 0;
   size_t per_contact_bytes = bytes_per_contact(probe);
   double bytes_per_particle = double(sim.backend().memory_bytes() - size_t(sim.capacity()) * per_contact_bytes) / n;
-  std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9u %8.3g\n", backend.c_str(), v.name().c_str(),
+  std::printf("%-8s %-20s %14.4g %14.4g %10.0f %9zu %10.0f %10zu %9.3g %8.3g\n", backend.c_str(), v.name().c_str(),
               n * steps / secs, contacts * steps / secs, contacts, touching_contacts(sim.state()),
-              bytes_per_particle, per_contact_bytes, rebuilds, cpu_secs);
+              bytes_per_particle, per_contact_bytes, 1000.0 * rebuilds / steps, cpu_secs);
   sim.set_profiling(true);
   sim.take_profile();
   sim.advance(steps);
@@ -233,9 +236,10 @@ int run_bench(int argc, char** argv) {
     std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
                 settle, n, model.dt, 1e3 * model.skin, energy, steps);
   // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
-  // figure to compare on a shared machine.
+  // figure to compare on a shared machine. rebuild/k: list rebuilds per 1000 steps, as in the
+  // per-kernel table below (which times another run of as many steps).
   std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
-              "contacts", "touching", "B/particle", "B/contact", "rebuilds", "cpu s");
+              "contacts", "touching", "B/particle", "B/contact", "rebuild/k", "cpu s");
   for (const auto& b : backends) {
     if (named.empty()) bench_one(model, b, KernelVariant::fastest_for(b, model), device, threads, steps);
     for (const auto& v : named) bench_one(model, b, v, device, threads, steps);

@@ -13,6 +13,7 @@
 #include "cli/verbs.h"
 #include "util/number_text.h"
 #include "engine/backend_factory.h"
+#include "engine/model.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
 #include "io/provenance.h"
@@ -80,14 +81,21 @@ int run_experiment(int argc, char** argv) {
   app.add_flag("--quiet", quiet, "no progress output");
   bool profile = false;
   app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
+  bool wall_impulses = false;
+  app.add_flag("--wall-impulses", wall_impulses,
+               "wall_forces.csv also gives each wall's largest force and its impulse between samples (the walls' "
+               "forces summed every step: one more kernel per step)");
+  double frames = 0;
+  auto* frames_opt = app.add_option("--frames", frames,
+                                    "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
+                                    "case's [output] interval, else 0.01 s (less often for large cases)")
+                         ->expected(0, 1)
+                         ->check(finite_positive());
   int replicates = 1;
   app.add_option("--replicates", replicates,
-                 "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
+                 "drop, roll (incline): N runs with seeds seed, seed+1, ... (a clump at a random orientation each)")
       ->check(whole_number(1, 1000));
   REPOSE_PARSE(app, argc, argv);
-  const std::vector<std::string> with_replicates = types_where([](const Experiment& e) { return e.takes_replicates(); });
-  if (replicates > 1 && std::find(with_replicates.begin(), with_replicates.end(), type) == with_replicates.end())
-    return usage_error("--replicates applies to the " + listed(with_replicates) + " experiment");
   const std::vector<std::string> with_height = types_with_key("drop_height");
   if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
     return usage_error("--height applies to the " + listed(with_height) + " experiment");
@@ -105,6 +113,12 @@ int run_experiment(int argc, char** argv) {
     std::fprintf(stderr, "%s: [experiment] type is '%s', not '%s'\n", case_path.c_str(),
                  spec.experiment.type.c_str(), type.c_str());
     return 2;
+  }
+  if (replicates > 1 && !experiment->takes_replicates()) {
+    std::vector<std::string> with;
+    for (const Experiment* e : experiments())
+      if (e->takes_replicates()) with.push_back(e->description());
+    return usage_error("--replicates applies to " + listed(with) + ", not to " + experiment->description());
   }
   // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
   if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
@@ -124,14 +138,41 @@ int run_experiment(int argc, char** argv) {
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
+  run.wall_impulses = wall_impulses;
+  if (frames_opt->count() || (spec.output.interval > 0 && spec.output.vtk)) {
+    run.frames.dir = out_dir;
+    run.frames.name = spec.name;
+    run.frames.interval = frames > 0                ? frames
+                          : spec.output.interval > 0 ? spec.output.interval
+                                                     : default_frame_interval(build_model(spec), spec.experiment.max_time);
+  }
+  // Not strict: a reading the rig could not take comes back as a status with what was measured
+  // so far, which is written (TYPE.json with status "failed" and the reason) before exit 1.
+  run.strict = false;
   try {
     ExperimentOutcome outcome = experiment->run(spec, run);
-    measured_or_throw(outcome);
+    outcome.json = with_status(outcome);
     outcome.json["provenance"] = experiment_provenance(spec, sets, run);
     for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
+    if (run.frames.wanted())
+      std::printf("VTK frames every %g s in %s/frames, series %s/%s*.pvd for ParaView (*_contacts.pvd: the force "
+                  "network, *_walls.pvd: the walls)\n",
+                  run.frames.interval, out_dir.c_str(), out_dir.c_str(), spec.name.c_str());
+    if (outcome.status != OutcomeStatus::Measured) {
+      std::fprintf(stderr, "%s\n", outcome.problem.c_str());
+      return 1;
+    }
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
+    ExperimentOutcome failed;
+    failed.status = OutcomeStatus::Failed;
+    failed.problem = e.what();
+    failed.json["experiment"] = type;
+    failed.json["case"] = spec.path;
+    failed.json = with_status(failed);
+    failed.json["provenance"] = experiment_provenance(spec, sets, run);
+    write_outcome(failed, type + ".json", out_dir);
     return failure_exit_code(e);
   }
   return 0;

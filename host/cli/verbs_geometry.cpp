@@ -18,6 +18,7 @@
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
+#include "geometry/stl_shapes.h"
 #include "geometry/templates.h"
 #include "measure/bed_height.h"
 #include "measure/heap_angle.h"
@@ -404,6 +405,27 @@ int run_heap_angle(int argc, char** argv) {
   return 0;
 }
 
+// `repose mesh hopper`: a conical hopper as ASCII STL, in the unit its numbers are given in (a
+// case's `scale` converts: 0.001 for millimetres).
+int run_mesh(int argc, char** argv) {
+  CLI::App app{"Write a wall mesh as ASCII STL. Shapes: hopper (a cone open at both ends, axis z, outlet at z = 0)."};
+  std::string shape, out;
+  double top = 0, outlet = 0, height = 0;
+  int sides = 48;
+  app.add_option("shape", shape, "hopper")->required()->check(CLI::IsMember({"hopper"}));
+  app.add_option("--top-diameter", top, "diameter of the top opening")->required()->check(finite_positive());
+  app.add_option("--outlet-diameter", outlet, "diameter of the outlet")->required()->check(finite_positive());
+  app.add_option("--height", height, "height from the outlet to the top")->required()->check(finite_positive());
+  app.add_option("--sides", sides, "facets around (default 48)")->check(whole_number(3, 100000));
+  app.add_option("--out", out, "the STL file")->required();
+  CLI11_PARSE(app, argc, argv);
+  TriangleMesh mesh = hopper_mesh(0.5 * top, 0.5 * outlet, height, sides);
+  write_file_atomically(out, [&](std::ostream& o) { write_ascii_stl(o, mesh, shape); });
+  std::printf("wrote %s: %s, %zu triangles, top %g, outlet %g, height %g (the case's `scale` makes metres)\n", out.c_str(),
+              shape.c_str(), mesh.triangles.size(), top, outlet, height);
+  return 0;
+}
+
 }  // namespace
 
 std::vector<Verb> geometry_verbs() {
@@ -411,6 +433,7 @@ std::vector<Verb> geometry_verbs() {
       {"template", "write a shipped clump template (cabbage, cotton stalk, groups) as CSV", run_template},
       {"clump", "volume, mass, centre of mass, inertia and principal axes of a clump CSV", run_clump},
       {"stl", "read an STL mesh: triangles, bounds, area, watertightness", run_stl},
+      {"mesh", "write a wall mesh as ASCII STL: a conical hopper", run_mesh},
       {"heap-angle", "angle of repose of a settled heap from its front view (and 3D sectors)", run_heap_angle},
   };
 }

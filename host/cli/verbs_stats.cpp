@@ -1,6 +1,8 @@
 // `repose design`, `repose fit`, `repose optimize`, `repose curve`: the calibration statistics
 // (host/stats) on plain CSV tables. Every output file is written whole or not at all
 // (temporary file + rename), and every error names the file, line and column to fix.
+#include <filesystem>
+#include <map>
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +23,7 @@
 #include "stats/errors.h"
 #include "stats/fit_file.h"
 #include "stats/json.h"
+#include "stats/design_figures.h"
 #include "stats/optimize.h"
 #include "stats/report.h"
 #include "util/number_text.h"
@@ -217,6 +220,45 @@ ChosenFit fit_largest_model(const DataSet& data, const std::string& model, std::
   return out;
 }
 
+// Design-Expert's views of a fit (stats/design_figures.h) into `dir`: the Pareto chart and the
+// half-normal plot of its effects, and with two factors or more its surface over the first two
+// (the others at their centre) in 3D. Returns the files written.
+std::vector<std::string> write_fit_figures(const ResponseSurface& fit, const DataSet& data, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> files;
+  if (fit.residual.df > 0) {
+    std::vector<Effect> effects = standardised_effects(fit, data.factor_names);
+    write_pareto_chart(effects, fit.residual.df, 0.05, data.response, dir + "/pareto.png");
+    write_half_normal_plot(effects, data.response, dir + "/half_normal.png");
+    files = {"pareto.png", "half_normal.png"};
+  }
+  if (data.factor_names.size() >= 2) {
+    auto range = [&](int i) { return data.ranges.empty() ? Factor{data.factor_names[size_t(i)], -1, 1} : data.ranges[size_t(i)]; };
+    Factor a = range(0), b = range(1);
+    // The design's extent in the first two factors (its axial points included).
+    double e = std::max({1.0, data.coded.col(0).cwiseAbs().maxCoeff(), data.coded.col(1).cwiseAbs().maxCoeff()});
+    SurfacePicture s;
+    s.f = [&](double x, double y) {
+      Eigen::VectorXd c = Eigen::VectorXd::Zero(long(data.factor_names.size()));
+      c[0] = a.to_coded(x);
+      c[1] = b.to_coded(y);
+      return fit.predict(c);
+    };
+    s.a0 = a.to_actual(-e), s.a1 = a.to_actual(e), s.b0 = b.to_actual(-e), s.b1 = b.to_actual(e);
+    s.a_label = data.factor_names[0];
+    s.b_label = data.factor_names[1];
+    s.z_label = data.response;
+    s.title = data.response + ": the fitted model over " + s.a_label + " and " + s.b_label +
+              (data.factor_names.size() > 2 ? " (others at their centre)" : "");
+    for (long r = 0; r < data.coded.rows(); ++r)
+      if (data.factor_names.size() == 2 || data.coded.row(r).tail(data.coded.cols() - 2).isZero())
+        s.runs.push_back({a.to_actual(data.coded(r, 0)), b.to_actual(data.coded(r, 1)), data.y[r]});
+    write_surface_3d(s, dir + "/surface_3d.png");
+    files.push_back("surface_3d.png");
+  }
+  return files;
+}
+
 int run_fit(int argc, char** argv) {
   CLI::App app{"Fit a polynomial model to a CSV table and print its ANOVA like Design-Expert."};
   std::string table_path, response, model = "auto", json_out, snap, ss = "partial";
@@ -241,6 +283,10 @@ int run_fit(int argc, char** argv) {
   app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
       ->check(CLI::IsMember({"partial", "sequential"}));
   app.add_option("--json", json_out, "write the fit (for repose optimize) to this file");
+  std::string figures;
+  app.add_option("--figures", figures,
+                 "write Design-Expert's views into this folder: Pareto chart and half-normal plot of the effects, the "
+                 "surface in 3D");
   REPOSE_PARSE(app, argc, argv);
   if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
 
@@ -261,6 +307,11 @@ int run_fit(int argc, char** argv) {
   }
   std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
               format_equations(fit, response, factors, data.ranges).c_str());
+  if (!figures.empty()) {
+    std::printf("wrote");
+    for (const std::string& f : write_fit_figures(fit, data, figures)) std::printf(" %s/%s", figures.c_str(), f.c_str());
+    std::printf("\n");
+  }
   if (!json_out.empty()) {
     Json saved = fit_to_json(fit, data, table_path, chosen, result->removed);
     saved.set("provenance", Json::parse(input_provenance({table_path}).dump(), "provenance"));
@@ -304,7 +355,7 @@ struct OptimizeRequest {
   std::vector<std::string> fit_paths, goals, fixes, fixes_coded, compare;
   bool minimize = false, maximize = false;
   std::optional<double> target, tolerance;
-  std::string within = "data", json_out;
+  std::string within = "cube", json_out;
 };
 
 // The optimum found and what it optimised: one response's goal, or the overall desirability.
@@ -344,14 +395,14 @@ std::vector<SavedFit> read_fits(const OptimizeRequest& q) {
 Box optimisation_box(const OptimizeRequest& q, const SavedFit& first, std::vector<std::string>& fixed_names) {
   const int k = static_cast<int>(first.factor_names.size());
   Box box;
-  if (q.within == "data") {
+  if (q.within == "axial" || q.within == "data") {
     box = Box{first.coded_min, first.coded_max};
   } else if (q.within == "cube") {
     box = Box::cube(k, 1);
   } else {
     double r = 0;
     if (!parse_number(q.within, r) || !(r > 0))
-      throw StatsError("--within '" + q.within + "' is not data, cube or a radius");
+      throw StatsError("--within '" + q.within + "' is not cube, axial or a radius");
     box = Box::cube(k, r);
   }
   for (const auto& s : q.fixes) {
@@ -532,7 +583,9 @@ int run_optimize(int argc, char** argv) {
   app.add_option("--goal", q.goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
   app.add_option("--fix", q.fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
   app.add_option("--fix-coded", q.fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
-  app.add_option("--within", q.within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
+  app.add_option("--within", q.within,
+                 "region: cube (the factorial +-1, default, as Design-Expert), axial (the design's extent: +-alpha of a "
+                 "central composite design) or a coded radius");
   app.add_option("--tolerance", q.tolerance, "width of the reported near-optimal set, in response units")->check(finite_positive());
   app.add_option("--compare", q.compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
   app.add_option("--json", q.json_out, "write the optimum and the near-optimal set to this file");
@@ -548,6 +601,38 @@ int run_optimize(int argc, char** argv) {
     repose::write_file_atomically(q.json_out, out.dump());
     std::printf("\nwrote %s\n", q.json_out.c_str());
   }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// The response along a steepest-ascent path, rows grouped by step (replicates: mean and standard
+// error), against the target.
+int run_ascent_plot(int argc, char** argv) {
+  CLI::App app{"Plot the response along a steepest-ascent (or descent) path against its target."};
+  std::string path, step_column = "step", response, png;
+  double target = 0;
+  app.add_option("table", path, "CSV table of the path's runs (repose design --type path, with the response added)")
+      ->required();
+  app.add_option("--step", step_column, "step column (default step)");
+  app.add_option("--response", response, "response column")->required();
+  app.add_option("--target", target, "the value the path seeks (the measured response)")->required()->check(finite_number());
+  app.add_option("--png", png, "the figure to write")->required();
+  CLI11_PARSE(app, argc, argv);
+  Table t = read_csv(path);
+  std::vector<double> steps = t.numeric_column(step_column), y = t.numeric_column(response);
+  std::map<double, std::vector<double>> by_step;
+  for (size_t r = 0; r < steps.size(); ++r) by_step[steps[r]].push_back(y[r]);
+  std::vector<PathPoint> points;
+  for (const auto& [step, values] : by_step) {
+    double n = double(values.size()), mean = 0, var = 0;
+    for (double v : values) mean += v / n;
+    for (double v : values) var += (v - mean) * (v - mean) / std::max(1.0, n - 1);
+    points.push_back({step, mean, n > 1 ? std::sqrt(var / n) : 0});
+    std::printf("step %s: %s = %s (%zu run%s)\n", num(step).c_str(), response.c_str(), num(mean).c_str(), values.size(),
+                values.size() == 1 ? "" : "s");
+  }
+  write_steepest_ascent_plot(points, target, response, png);
+  std::printf("wrote %s\n", png.c_str());
   return 0;
 }
 
@@ -598,6 +683,7 @@ std::vector<Verb> stats_verbs() {
       {"fit", "fit a model to a CSV table; Design-Expert style ANOVA and equations", run_fit},
       {"optimize", "optimise fitted models; report the set of near-optimal parameters", run_optimize},
       {"curve", "fit a calibration curve to a sweep and invert it at a measured value", run_curve},
+      {"ascent-plot", "plot the response along a steepest-ascent path against its target", run_ascent_plot},
   };
 }
 

@@ -60,11 +60,26 @@ const ModelResult* winner(const Diagnosis& d) {
   return nullptr;
 }
 
-// "rebound_height (m)": a measure with its unit for axis labels.
-std::string with_unit(const std::string& measure) {
+// How a measure is shown in the figures: lengths in millimetres (a residual of 0.004 m reads
+// 4 mm), other units as measured.
+struct Shown {
+  double scale = 1;
+  std::string unit;  // "" for a dimensionless measure
+};
+Shown shown(const std::string& measure) {
   for (const auto& m : known_measures())
-    if (measure == m.name) return measure + (std::string(m.unit) == "1" ? "" : " (" + std::string(m.unit) + ")");
-  return measure;
+    if (measure == m.name) {
+      std::string unit = m.unit;
+      if (unit == "m") return {1e3, "mm"};
+      return {1, unit == "1" ? "" : unit};
+    }
+  return {};
+}
+
+// "rebound_height (mm)": a measure with its unit as shown, for axis labels.
+std::string with_unit(const std::string& measure) {
+  Shown s = shown(measure);
+  return measure + (s.unit.empty() ? "" : " (" + s.unit + ")");
 }
 
 std::string safe(std::string s) {
@@ -91,6 +106,7 @@ void residual_figure(const Observations& obs, const Diagnosis& d, const ModelRes
   p.y_label = with_unit(m) + " residual";
   p.zero_line = true;
   PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  const double k = shown(m).scale;
   // The extended model's points sit a little to the right, so both error bars show.
   double lo = 1e300, hi = -1e300;
   for (const auto& c : obs.conditions)
@@ -100,13 +116,13 @@ void residual_figure(const Observations& obs, const Diagnosis& d, const ModelRes
     const auto& grp = obs.groups[g];
     if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
     double x = obs.conditions[grp.condition].variables.at(v);
-    double se = grp.sd / std::sqrt(double(grp.values.size()));
+    double se = k * grp.sd / std::sqrt(double(grp.values.size()));
     b.x.push_back(x);
-    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    b.y.push_back(k * (grp.mean - d.baseline.predicted[g]));
     b.error.push_back(se);
     if (w) {
       e.x.push_back(x + shift);
-      e.y.push_back(grp.mean - w->predicted[g]);
+      e.y.push_back(k * (grp.mean - w->predicted[g]));
       e.error.push_back(se);
     }
   }
@@ -127,17 +143,19 @@ void measured_vs_simulated_figure(const Observations& obs, const Diagnosis& d, c
   p.x_label = "simulated " + with_unit(m);
   p.y_label = "measured " + with_unit(m);
   p.diagonal = true;
+  p.diagonal_label = "measured = simulated";
   PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  const double k = shown(m).scale;
   for (size_t g = 0; g < obs.groups.size(); ++g) {
     const auto& grp = obs.groups[g];
     if (grp.measure != m) continue;
-    double se = grp.sd / std::sqrt(double(grp.values.size()));
-    b.x.push_back(d.baseline.predicted[g]);
-    b.y.push_back(grp.mean);
+    double se = k * grp.sd / std::sqrt(double(grp.values.size()));
+    b.x.push_back(k * d.baseline.predicted[g]);
+    b.y.push_back(k * grp.mean);
     b.error.push_back(se);
     if (w) {
-      e.x.push_back(w->predicted[g]);
-      e.y.push_back(grp.mean);
+      e.x.push_back(k * w->predicted[g]);
+      e.y.push_back(k * grp.mean);
       e.error.push_back(se);
     }
   }
@@ -165,23 +183,24 @@ void series_figures(const Observations& obs, const Diagnosis& d, const ModelResu
   z.y_label = with_unit(m);
   PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
       ze{wname, {}, {}, {}, kExtended, true, false};
+  const double k = shown(m).scale;
   for (size_t g = 0; g < obs.groups.size(); ++g) {
     const auto& grp = obs.groups[g];
     if (grp.measure != m || !grp.series) continue;
     b.x.push_back(grp.t);
-    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    b.y.push_back(k * (grp.mean - d.baseline.predicted[g]));
     if (w) {
       e.x.push_back(grp.t);
-      e.y.push_back(grp.mean - w->predicted[g]);
+      e.y.push_back(k * (grp.mean - w->predicted[g]));
     }
     if (grp.condition == last) {
       zm.x.push_back(grp.t);
-      zm.y.push_back(grp.mean);
+      zm.y.push_back(k * grp.mean);
       zb.x.push_back(grp.t);
-      zb.y.push_back(d.baseline.predicted[g]);
+      zb.y.push_back(k * d.baseline.predicted[g]);
       if (w) {
         ze.x.push_back(grp.t);
-        ze.y.push_back(w->predicted[g]);
+        ze.y.push_back(k * w->predicted[g]);
       }
     }
   }

@@ -62,6 +62,9 @@ void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* time
                           : d.groups;
     if (d.kernel == KernelId::Scan) {
       if (groups > 0) gpu::run_scan(buf_, d.scan);
+    } else if (d.kernel == KernelId::WallReduce) {  // a fixed tree per wall, as the shader's
+      buf_.push = d.sim;
+      gpu::run_wall_reduce(buf_, layout_.n_walls);
     } else {
       buf_.push = d.sim;
       gpu::run_kernel(d.kernel, buf_, uint64_t(groups) * d.sim.workgroup, pool_);
@@ -80,6 +83,14 @@ std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
   buf_.push = push;
   gpu::run_wall_reduce(buf_, layout_.n_walls);
   return std::vector<gpu::vec4>(buf_.wall_force, buf_.wall_force + layout_.n_walls);
+}
+
+std::vector<gpu::vec4> CpuBackend::wall_sums() {
+  return std::vector<gpu::vec4>(buf_.wall_force + layout_.n_walls, buf_.wall_force + 3 * layout_.n_walls);
+}
+
+std::vector<gpu::vec4> CpuBackend::contact_forces(uint32_t contacts) {
+  return std::vector<gpu::vec4>(buf_.contact_force, buf_.contact_force + std::min(contacts, layout_.capacity));
 }
 
 size_t CpuBackend::memory_bytes() const {

@@ -24,6 +24,8 @@ class CpuBackend : public Backend {
   void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
   std::vector<uint32_t> read_control() override;
   std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;
+  std::vector<gpu::vec4> contact_forces(uint32_t contacts) override;
+  std::vector<gpu::vec4> wall_sums() override;
   size_t memory_bytes() const override;
   // Binding b's array (kernel tests compare raw buffers with the Vulkan backend).
   const gpu::Buffers& buffers() const { return buf_; }

@@ -95,8 +95,54 @@ std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
   for (uint32_t s = 0; s < steps; ++s) {
     auto one = step_program(model_, layout_, variant_, s);
     program.insert(program.end(), one.begin(), one.end());
+    if (summing_walls_) {
+      // After the step's forces: each wall's, summed over the batch from its first step.
+      Dispatch d;
+      d.kernel = KernelId::WallReduce;
+      d.groups = layout_.n_walls;
+      d.sim = base_push(model_, layout_, variant_);
+      d.sim.wall_sums = s == 0 ? 2u : 1u;
+      program.push_back(d);
+    }
   }
   return program;
+}
+
+void Simulation::sum_wall_forces() {
+  if (model_.walls.empty()) return;
+  summing_walls_ = true;
+  wall_sum_.assign(3 * model_.walls.size(), 0.0);
+  wall_peak_.assign(model_.walls.size(), 0.0);
+}
+
+// A batch's sums (each batch starts them anew, so a batch redone after an overflow counts once),
+// added in batch order in double.
+void Simulation::add_batch_wall_sums() {
+  std::vector<gpu::vec4> sums = backend_->wall_sums();
+  size_t n = model_.walls.size();
+  for (size_t w = 0; w < n; ++w) {
+    wall_sum_[3 * w] += sums[w].x;
+    wall_sum_[3 * w + 1] += sums[w].y;
+    wall_sum_[3 * w + 2] += sums[w].z;
+    wall_peak_[w] = std::max(wall_peak_[w], double(sums[n + w].w));
+  }
+}
+
+std::vector<WallImpulse> Simulation::take_wall_impulses() {
+  std::vector<WallImpulse> out;
+  for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0, 0});
+  if (!summing_walls_) return out;
+  auto group = model_.wall_groups();
+  for (size_t w = 0; w < group.size(); ++w) {
+    WallImpulse& g = out[group[w]];
+    g.jx += wall_sum_[3 * w] * model_.dt;
+    g.jy += wall_sum_[3 * w + 1] * model_.dt;
+    g.jz += wall_sum_[3 * w + 2] * model_.dt;
+    g.peak = std::max(g.peak, std::sqrt(wall_peak_[w]));
+  }
+  std::fill(wall_sum_.begin(), wall_sum_.end(), 0.0);
+  std::fill(wall_peak_.begin(), wall_peak_.end(), 0.0);
+  return out;
 }
 
 void Simulation::advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch) {
@@ -117,14 +163,18 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     }
     uint32_t rebuilds_before = rebuilds();
     backend_->download_state(state_);
+    if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;
     profile_.rebuilds += rebuilds() - rebuilds_before;
     profile_.contact_steps += double(contacts()) * k;
     profile_.wall_seconds += since(t0);
     if (on_batch) on_batch(*this);
+    if (observer_) observer_(*this);
   }
 }
+
+std::vector<gpu::vec4> Simulation::contact_forces() { return backend_->contact_forces(contacts()); }
 
 RunProfile Simulation::take_profile() {
   RunProfile p = std::move(profile_);

@@ -19,6 +19,14 @@ struct WallForce {
   double fx = 0, fy = 0, fz = 0;
 };
 
+// What a wall took between two readings: the impulse (the integral of its force over the steps,
+// N s) and the largest force at one step (N; for a mesh, of its most loaded triangle).
+struct WallImpulse {
+  std::string name;
+  double jx = 0, jy = 0, jz = 0;
+  double peak = 0;
+};
+
 struct EnergySummary {
   double translational = 0;
   double rotational = 0;
@@ -55,6 +63,17 @@ class Simulation {
   // Force of the particles on each named wall (a mesh's triangles summed), from the last step's
   // contacts; names as Model::wall_group_names().
   std::vector<WallForce> wall_forces();
+  // From now on every step also sums each wall's force and keeps its peak (one more kernel per
+  // step: opt-in); take_wall_impulses() returns them per named wall since the previous call (or
+  // since this one) and starts anew.
+  void sum_wall_forces();
+  std::vector<WallImpulse> take_wall_impulses();
+  bool sums_wall_forces() const { return summing_walls_; }
+  // The last step's force on the owner i of each contact-list entry (state().partner, row_start).
+  std::vector<gpu::vec4> contact_forces();
+  // Called after every batch of every advance() from now on, after its on_batch (frames written
+  // as an experiment goes); empty: none.
+  void set_observer(std::function<void(Simulation&)> observer) { observer_ = std::move(observer); }
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
   // Continues from a state written by write_state_file after `step` steps of this same model:
@@ -72,6 +91,7 @@ class Simulation {
   void grow(uint32_t needed);
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
+  void add_batch_wall_sums();
   Model model_;
   ConstantData constants_;
   std::unique_ptr<Backend> backend_;
@@ -82,6 +102,9 @@ class Simulation {
   uint32_t retries_ = 0;
   bool profiling_ = false;
   RunProfile profile_;
+  std::function<void(Simulation&)> observer_;
+  bool summing_walls_ = false;
+  std::vector<double> wall_sum_, wall_peak_;  // per wall row: sum x, y, z (N, steps) and peak^2 (N^2)
 };
 
 }  // namespace repose

@@ -144,6 +144,18 @@ std::vector<vec4> VulkanBackend::wall_forces(const SimPush& push) {
   return f;
 }
 
+std::vector<vec4> VulkanBackend::wall_sums() {
+  std::vector<vec4> all;
+  down(b(kBindWallForce), all, 3 * size_t(layout_.n_walls));
+  return std::vector<vec4>(all.begin() + layout_.n_walls, all.end());
+}
+
+std::vector<vec4> VulkanBackend::contact_forces(uint32_t contacts) {
+  std::vector<vec4> f;
+  down(b(kBindContactForce), f, std::min(contacts, layout_.capacity));
+  return f;
+}
+
 size_t VulkanBackend::memory_bytes() const {
   size_t total = 0;
   for (const auto& buf : buffers_) total += buf.size();

@@ -10,16 +10,16 @@
 #include "engine/step_program.h"
 #include "experiments/wall_force_series.h"
 #include "experiments/experiment.h"
+#include "experiments/run_options.h"
 
 namespace repose {
 
-struct DropOptions {
-  std::string backend = "cpu";
-  int device = -1;
-  unsigned threads = 1;
+struct DropOptions : ExperimentRunOptions {
   bool random_orientation = true;  // a clump falls at a random orientation drawn from the seed
   bool require_rebound = true;     // false: a body that never leaves the plate is a result
+  std::string label = "drop";      // the progress line's ("drop, replicate 2 of 3")
 };
+DropOptions drop_options(const ExperimentRunOptions& run, bool require_rebound);
 
 struct DropResult {
   double drop_height = 0;           // H, m

@@ -83,6 +83,8 @@ std::vector<Sphere> parse_sphere_csv(std::istream& in, const std::string& source
     if (!have_header) {
       for (size_t i = 0; i < fields.size(); ++i) {
         std::string name = lower(fields[i].text);
+        // A unit suffix may name the metres the values are in (heap.csv writes x_m ... radius_m).
+        if (name.size() > 2 && name.compare(name.size() - 2, 2, "_m") == 0) name.resize(name.size() - 2);
         if (name == "r") name = "radius";
         for (size_t k = 0; k < kNames.size(); ++k)
           if (name == kNames[k]) {

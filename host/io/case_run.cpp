@@ -118,9 +118,8 @@ void print_result(const Simulation& sim, const RunOutput& output, const RunInfo&
               output.name().c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
               wall > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / wall : 0.0,
               format_duration(wall).c_str());
-  for (const auto& w : info.wall_forces)
-    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
-      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
+  for (const auto& w : info.wall_forces)  // every wall, untouched ones too (0 N)
+    std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
   std::printf("wrote %s/summary.json", output.dir().c_str());
   if (output.frames_written()) std::printf(", %u frames in %s/frames", output.frames_written(), output.dir().c_str());
   if (!state_out.empty()) std::printf(", state %s", state_out.c_str());
@@ -213,8 +212,9 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
   if (restarting) info.restart = {o.restart, start.info.step};
   Simulation sim(std::move(model), std::move(engine), variant, schedule.batch);
   if (restarting) sim.restore(start.state, start.info.step);
+  if (o.wall_impulses) sim.sum_wall_forces();
   const Model& m = sim.model();
-  RunOutput output(dir, spec.name, hash, m, schedule.frame_every, m.vtk);
+  RunOutput output(dir, spec.name, hash, m, schedule.frame_every, m.vtk, o.wall_impulses);
   auto summary = [&](const std::string& status) {
     info.status = status;
     info.frames = output.frames_written();
@@ -225,8 +225,8 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
     output.begin(sim.step(), continuing);
     summary("running");
     if (!o.quiet)
-      std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), steps %llu to %llu on %s\n",
-                   spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
+      std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.2g%% of Rayleigh %.3g s), steps %llu to %llu on %s\n",
+                   spec.name.c_str(), m.n_particles, m.wall_group_names().size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
                    (unsigned long long)sim.step(), (unsigned long long)schedule.target, info.backend.c_str());
     if (!restarting && output.frame_due(0)) output.frame(sim);
     int signal = step_to_target(sim, output, schedule, o, [&] { summary("running"); });

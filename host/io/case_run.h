@@ -31,6 +31,7 @@ struct CaseRunOptions {
   std::string restart;                 // a state file to continue from
   std::vector<std::string> overrides;  // --set KEY=VALUE as given (for the provenance)
   bool quiet = false;
+  bool wall_impulses = false;          // wall_forces.csv also gives each wall's peak and impulse per row
 };
 
 // Returns the exit code: 0 when the run finished, 128 + the signal when one stopped it. Throws

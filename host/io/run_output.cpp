@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/csv_columns.h"
 #include "io/state_file.h"
 #include "util/atomic_file.h"
 
@@ -12,11 +13,10 @@ namespace repose {
 namespace fs = std::filesystem;
 
 RunOutput::RunOutput(std::string dir, std::string name, std::string case_hash, const Model& model, uint64_t frame_every,
-                     bool vtk)
+                     bool vtk, bool impulses)
     : dir_(std::move(dir)), name_(std::move(name)), case_hash_(std::move(case_hash)), model_(model), frame_every_(frame_every),
-      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)) {
-  for (const auto& sub : model.subs) body_ids_.push_back(sub.info.x);
-}
+      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), impulses_(impulses), bounds_(drawing_bounds(model)),
+      labels_(particle_labels(model)) {}
 
 std::string RunOutput::frame_file(const char* kind, uint64_t index) const {
   char file[64];
@@ -39,9 +39,7 @@ void RunOutput::begin(uint64_t step, bool continuing) {
   }
   wall_csv_ = std::make_unique<FileOutput>(csv, FileOutput::Mode::Truncate);
   std::ostream& out = wall_csv_->stream();
-  out << "time";
-  for (const auto& name : model_.wall_group_names()) out << "," << name << ".fx," << name << ".fy," << name << ".fz";
-  out << "\n";
+  out << wall_force_csv_header(model_.wall_group_names(), impulses_) << "\n";
   wall_csv_->flush();
 }
 
@@ -72,27 +70,31 @@ void RunOutput::frame(Simulation& sim) {
   next_frame_ = index + 1;
   ++frames_written_;
   if (vtk_) {
-    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), body_ids_);
+    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), labels_);
+    write_contact_frame(dir_ + "/" + frame_file("contacts_", index), sim.state(),
+                        touching_pairs(sim.state(), sim.contact_forces(), labels_), sim.time());
     if (walls_) write_wall_frame(dir_ + "/" + frame_file("walls_", index), model_, sim.time(), bounds_);
   }
   if (wall_csv_) {
     std::ostream& out = wall_csv_->stream();
-    out << sim.time();
-    for (const auto& w : sim.wall_forces()) out << "," << w.fx << "," << w.fy << "," << w.fz;
-    out << "\n";
+    out << wall_force_csv_row(sim.time(), sim.wall_forces(),
+                              impulses_ ? sim.take_wall_impulses() : std::vector<WallImpulse>{})
+        << "\n";
     wall_csv_->flush();  // a killed run keeps every row up to its last frame
   }
 }
 
 void RunOutput::write_series() const {
   if (!vtk_) return;
-  std::vector<SeriesEntry> particles, walls;
+  std::vector<SeriesEntry> particles, contacts, walls;
   for (uint64_t k = first_frame_; k < next_frame_; ++k) {
     double t = double(k * frame_every_) * model_.dt;
     if (fs::exists(dir_ + "/" + frame_file("", k))) particles.push_back({t, frame_file("", k)});
+    if (fs::exists(dir_ + "/" + frame_file("contacts_", k))) contacts.push_back({t, frame_file("contacts_", k)});
     if (walls_ && fs::exists(dir_ + "/" + frame_file("walls_", k))) walls.push_back({t, frame_file("walls_", k)});
   }
   write_pvd(dir_ + "/" + name_ + ".pvd", particles);
+  write_pvd(dir_ + "/" + name_ + "_contacts.pvd", contacts);
   if (walls_) write_pvd(dir_ + "/" + name_ + "_walls.pvd", walls);
 }
 

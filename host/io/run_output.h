@@ -1,8 +1,9 @@
 // The files of one `repose run` in its output folder, written as the run goes so that an
 // interrupted run leaves everything up to its last frame readable:
-// - frames/NAME_00000.vtp (particles) and frames/NAME_walls_00000.vtp (walls) every output
-//   interval, listed with their times in NAME.pvd and NAME_walls.pvd (ParaView's time series),
-//   each written whole or not at all (util/atomic_file.h);
+// - frames/NAME_00000.vtp (particles), frames/NAME_contacts_00000.vtp (the force network) and
+//   frames/NAME_walls_00000.vtp (walls) every output interval, listed with their times in
+//   NAME.pvd, NAME_contacts.pvd and NAME_walls.pvd (ParaView's time series), each written whole
+//   or not at all (util/atomic_file.h);
 // - wall_forces.csv, one row per frame, flushed with every row (a failed write throws WriteError
 //   with the system's reason);
 // - checkpoint.state, the latest restartable state (docs/state-format.md).
@@ -23,7 +24,10 @@ class RunOutput {
  public:
   // frame_every: steps between frames (0: none); vtk: write VTK frames (else only wall forces);
   // case_hash: recorded in checkpoints (io/state_file.h).
-  RunOutput(std::string dir, std::string name, std::string case_hash, const Model& model, uint64_t frame_every, bool vtk);
+  // impulses: wall_forces.csv also has each wall's peak and impulse since the previous row (the
+  // simulation sums them: Simulation::sum_wall_forces).
+  RunOutput(std::string dir, std::string name, std::string case_hash, const Model& model, uint64_t frame_every, bool vtk,
+            bool impulses = false);
 
   // Starts the files for a run that begins at `step` (0: a new run). With `continuing`, the
   // folder holds the same run up to at least `step`: frames and wall-force rows after `step`
@@ -52,8 +56,9 @@ class RunOutput {
   uint64_t frame_every_;
   bool vtk_;
   bool walls_;
+  bool impulses_;
   Bounds bounds_;
-  std::vector<uint32_t> body_ids_;
+  ParticleLabels labels_;
   uint64_t first_frame_ = 0, next_frame_ = 0;
   unsigned frames_written_ = 0;
   std::unique_ptr<FileOutput> wall_csv_;

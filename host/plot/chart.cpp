@@ -24,22 +24,6 @@ namespace {
 // Text sizes (stb_easy_font's glyphs are 7 pixels tall at scale 1).
 constexpr double kTickText = 2.0, kLabelText = 2.2, kTitleText = 2.6;
 
-// Ticks at 1, 2 or 5 times a power of ten, about `target` of them.
-std::vector<double> nice_ticks(double lo, double hi, int target = 6) {
-  double span = hi - lo, raw = span / target;
-  double mag = std::pow(10.0, std::floor(std::log10(raw)));
-  double step = mag;
-  for (double m : {1.0, 2.0, 5.0, 10.0})
-    if (m * mag >= raw) {
-      step = m * mag;
-      break;
-    }
-  std::vector<double> t;
-  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) t.push_back(std::abs(v) < 1e-12 * span ? 0 : v);
-  return t;
-}
-
-
 Colour heat(double t) {  // 0 blue .. 0.5 white .. 1 red, pale so lines stay visible
   t = std::clamp(t, 0.0, 1.0);
   auto mix = [](double a, double b, double u) { return uint8_t(std::lround(a + (b - a) * u)); };
@@ -60,6 +44,22 @@ bool same_colour(Colour a, Colour b) { return a == b; }
 std::map<std::string, ChartRecord>* kept_records = nullptr;
 
 }  // namespace
+
+// Ticks at 1, 2 or 5 times a power of ten, about `target` of them.
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  double span = hi - lo, raw = span / target;
+  double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double m : {1.0, 2.0, 5.0, 10.0})
+    if (m * mag >= raw) {
+      step = m * mag;
+      break;
+    }
+  std::vector<double> t;
+  for (double v = std::ceil(lo / step) * step; v <= hi + 1e-9 * span; v += step) t.push_back(std::abs(v) < 1e-12 * span ? 0 : v);
+  return t;
+}
+
 
 std::vector<std::string> tick_labels(const std::vector<double>& ticks) {
   std::vector<std::string> out;
@@ -343,6 +343,44 @@ void Chart::cross(double x, double y, Colour c, int size) {
   count_point(cc, rr, c, Mark::Cross);
 }
 
+// Scanline fill between the polygon's edges (pixel centres inside by the even-odd rule), then
+// its outline.
+void Chart::polygon(const std::vector<double>& x, const std::vector<double>& y, Colour fill, Colour edge, Mark mark) {
+  size_t n = std::min(x.size(), y.size());
+  if (n < 3) return;
+  std::vector<double> c(n), r(n);
+  double r_lo = 1e300, r_hi = -1e300, c_mean = 0, r_mean = 0;
+  for (size_t k = 0; k < n; ++k) {
+    c[k] = px(x[k]);
+    r[k] = py(y[k]);
+    r_lo = std::min(r_lo, r[k]);
+    r_hi = std::max(r_hi, r[k]);
+    c_mean += c[k] / double(n);
+    r_mean += r[k] / double(n);
+  }
+  for (int row = int(std::ceil(r_lo)); row <= int(std::floor(r_hi)); ++row) {
+    std::vector<double> crossings;
+    for (size_t k = 0; k < n; ++k) {
+      size_t l = (k + 1) % n;
+      if ((r[k] <= row) != (r[l] <= row)) crossings.push_back(c[k] + (row - r[k]) / (r[l] - r[k]) * (c[l] - c[k]));
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (size_t k = 0; k + 1 < crossings.size(); k += 2)
+      for (int col = int(std::ceil(crossings[k])); col <= int(std::floor(crossings[k + 1])); ++col) set(col, row, fill);
+  }
+  for (size_t k = 0; k < n; ++k) clipped_segment(c[k], r[k], c[(k + 1) % n], r[(k + 1) % n], edge, 1);
+  count_point(c_mean, r_mean, fill, mark);
+}
+
+void Chart::hide_axes(std::vector<std::string> x_ticks, std::vector<std::string> y_ticks, std::string z_label,
+                      std::vector<std::string> z_ticks) {
+  axes_ = false;
+  record_.x_ticks = std::move(x_ticks);
+  record_.y_ticks = std::move(y_ticks);
+  record_.z_label = std::move(z_label);
+  record_.z_ticks = std::move(z_ticks);
+}
+
 void Chart::legend(const std::vector<LegendEntry>& entries) { box_legend_ = entries; }
 
 // The sample of an entry: its line, dot, square or cross, or a patch of its band.
@@ -365,6 +403,10 @@ void Chart::draw_legend_mark(double c, double r, const LegendEntry& e) {
     case Mark::Band:
       for (int dr = -1; dr <= 13; ++dr)
         for (int dc = 0; dc <= 20; ++dc) blend(int(c) + dc, int(r) + dr, e.colour, 0.35);
+      break;
+    case Mark::Bar:
+      for (int dr = 0; dr <= 12; ++dr)
+        for (int dc = 2; dc <= 18; ++dc) set(int(c) + dc, int(r) + dr, e.colour);
       break;
   }
 }
@@ -419,8 +461,8 @@ void Chart::text_at(double x, double y, const std::string& s, Colour c) { text(p
 void Chart::save(const std::string& path) {
   auto [pl, pt, pr, pb] = plot_area();
   std::vector<double> xt = nice_ticks(x0_, x1_), yt = nice_ticks(y0_, y1_);
-  record_.x_ticks = tick_labels(xt);
-  record_.y_ticks = tick_labels(yt);
+  if (!axes_) xt.clear(), yt.clear();
+  else record_.x_ticks = tick_labels(xt), record_.y_ticks = tick_labels(yt);
   for (size_t i = 0; i < xt.size(); ++i) {
     segment(px(xt[i]), pb, px(xt[i]), pb + 6, colours::black, 1);
     const std::string& s = record_.x_ticks[i];
@@ -431,10 +473,12 @@ void Chart::save(const std::string& path) {
     const std::string& s = record_.y_ticks[i];
     text(pl - 12 - text_width(s, kTickText), py(yt[i]) - 6, s, colours::black, kTickText);
   }
-  segment(pl, pt, pr, pt, colours::black, 1);
-  segment(pl, pb, pr, pb, colours::black, 1);
-  segment(pl, pt, pl, pb, colours::black, 1);
-  segment(pr, pt, pr, pb, colours::black, 1);
+  if (axes_) {
+    segment(pl, pt, pr, pt, colours::black, 1);
+    segment(pl, pb, pr, pb, colours::black, 1);
+    segment(pl, pt, pl, pb, colours::black, 1);
+    segment(pr, pt, pr, pb, colours::black, 1);
+  }
   draw_colour_bar();
   draw_legend_box();
   record_.title = title_;
@@ -443,8 +487,10 @@ void Chart::save(const std::string& path) {
   record_.y_label = y_label_;
   text((w_ - text_width(title_, kTitleText)) / 2, 10, title_, colours::black, kTitleText);
   text((w_ - text_width(subtitle_, kTickText)) / 2, 40, subtitle_, colours::black, kTickText);
-  text((pl + pr - text_width(x_label_, kLabelText)) / 2, h_ - 30, x_label_, colours::black, kLabelText);
-  text(12, (pt + pb + text_width(y_label_, kLabelText)) / 2, y_label_, colours::black, kLabelText, true);
+  if (axes_) {  // a picture without axes writes its labels where its own axes are
+    text((pl + pr - text_width(x_label_, kLabelText)) / 2, h_ - 30, x_label_, colours::black, kLabelText);
+    text(12, (pt + pb + text_width(y_label_, kLabelText)) / 2, y_label_, colours::black, kLabelText, true);
+  }
   // Encoded in memory, then written whole or not at all: a reader never sees half a picture, and a
   // failed write says why (stb's own file writer ignores failed writes).
   std::string png;

@@ -20,8 +20,8 @@ const std::vector<Colour>& series();  // distinct colours for several lines
 }  // namespace colours
 
 // How a legend entry shows its series: as the line, the dot, the square or the cross drawn for it,
-// or as a shaded band.
-enum class Mark { Line, Dot, Square, Cross, Band };
+// as a shaded band, or as a filled polygon (a bar).
+enum class Mark { Line, Dot, Square, Cross, Band, Bar };
 struct LegendEntry {
   std::string label;
   Colour colour;
@@ -33,6 +33,8 @@ struct LegendEntry {
 struct ChartRecord {
   std::string title, subtitle, x_label, y_label;
   std::vector<std::string> x_ticks, y_ticks, bar_ticks;  // as printed
+  std::string z_label;                  // a 3D picture's vertical axis (its ticks in z_ticks)
+  std::vector<std::string> z_ticks;
   std::vector<LegendEntry> legend;
   // Data points drawn inside the plot area, by colour and mark (a polyline's vertices count as Line).
   std::vector<std::pair<LegendEntry, int>> points;
@@ -69,6 +71,15 @@ class Chart {
   void square(double x, double y, Colour c, int half = 3);
   void error_bar(double x, double y_low, double y_high, Colour c);
   void cross(double x, double y, Colour c, int size = 8);
+  // A filled polygon in data coordinates (a bar, a facet of a 3D surface), its edge drawn in
+  // `edge`; counted as one data point of `mark` at its centre.
+  void polygon(const std::vector<double>& x, const std::vector<double>& y, Colour fill, Colour edge,
+               Mark mark = Mark::Bar);
+  // A picture whose axes the caller draws itself (a 3D surface): no frame, ticks or axis labels
+  // at save (labels() still names them in the record); the record takes the ticks the caller
+  // printed.
+  void hide_axes(std::vector<std::string> x_ticks, std::vector<std::string> y_ticks, std::string z_label,
+                 std::vector<std::string> z_ticks);
   // Inside the plot, in the corner that hides the fewest data points (drawn last, on top).
   void legend(const std::vector<LegendEntry>& entries);
   void legend_above(const std::vector<LegendEntry>& entries);  // in a row under the title
@@ -104,6 +115,7 @@ class Chart {
   double x0_, x1_, y0_, y1_;
   int left_ = 130, right_ = 30, top_ = 76, bottom_ = 74;
   bool colour_bar_ = false;
+  bool axes_ = true;
   double bar_lo_ = 0, bar_hi_ = 0;
   std::string bar_label_;
   std::string title_, subtitle_, x_label_, y_label_;
@@ -113,6 +125,8 @@ class Chart {
   ChartRecord record_;
 };
 
+// Ticks at 1, 2 or 5 times a power of ten within [lo, hi], about `target` of them.
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
 // Tick labels for `ticks`, with as many digits as it takes to tell neighbours apart.
 std::vector<std::string> tick_labels(const std::vector<double>& ticks);
 

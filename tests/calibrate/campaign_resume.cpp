@@ -100,6 +100,10 @@ TEST_CASE("the campaign report holds the calibration, the verification and the f
     CHECK(md.find(part) != std::string::npos);
   for (const char* png : {"contour.png", "main_effects.png", "calibration_e.png", "predicted_vs_simulated.png", "verification.png"})
     CHECK(std::filesystem::file_size(dir + "/out/" + std::string(png)) > 1000);
+  // Design-Expert's views: the surface in 3D beside the contour, the runs as its table.
+  CHECK(md.find("surface_3d.png") != std::string::npos);
+  std::string table = test::read_text_file(dir + "/out/design_expert.csv");
+  CHECK(table.rfind("Std,Run,Factor 1 A:e,Factor 2 B:G (Pa),Response 1 restitution", 0) == 0);
   auto summary = nlohmann::json::parse(test::read_text_file(dir + "/out/summary.json"));
   // The drop test returns the contact restitution within ~2 % (README: LIGGGHTS comparison),
   // so the calibrated e lies near the measured 0.44 and the verification meets 1 %.

@@ -24,7 +24,7 @@ TEST_CASE("repose experiment slide prints mu_s and writes slide.json, trajectory
   std::ifstream forces(out / "wall_forces.csv");
   std::string header;
   std::getline(forces, header);
-  CHECK(header == "time,plate.fx,plate.fy,plate.fz");
+  CHECK(header == "t_s,plate.fx_N,plate.fy_N,plate.fz_N");
 }
 
 TEST_CASE("repose experiment with the wrong type or a bad [experiment] key fails with exit code 2", "[experiments][cli]") {
@@ -60,7 +60,7 @@ TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance, a r
   std::ifstream forces(out / "wall_forces.csv");
   std::string header, line;
   std::getline(forces, header);
-  CHECK(header == "time,plate.fx,plate.fy,plate.fz");
+  CHECK(header == "t_s,plate.fx_N,plate.fy_N,plate.fz_N");
   int rows = 0;
   double largest = 0;
   while (std::getline(forces, line)) {
