@@ -394,7 +394,7 @@ int run_heap_angle(int argc, char** argv) {
   if (data_rows) print_measure_rows(r, side);
   else print_heap_text(r);
   if (!png.empty()) {
-    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y", slope_caption(r.m, side));
     if (!data_rows) std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {

@@ -270,6 +270,15 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   return j;
 }
 
+// heap.png's title: the headline angle (r.angle_deg) and how it was measured; the front view's
+// slopes that count towards it are drawn.
+HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
+  HeapPictureCaption caption = slope_caption(r.heap, spec.experiment.heap_side);
+  caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
+  if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
+  return caption;
+}
+
 void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r, const CaseSpec& spec) {
   o.files.push_back(text_file("energy.csv", [r](std::ostream& out) {
     out << "t,largest_kinetic_energy\n";
@@ -282,7 +291,10 @@ void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeRe
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   std::string horizontal = spec.experiment.view == "x" ? "y" : "x";  // the picture's horizontal axis
-  o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
+  HeapPictureCaption caption = heap_caption(spec, *r);
+  o.files.push_back({"heap.png", [r, horizontal, caption](const std::string& path) {
+                       write_heap_angle_png(path, r->heap, horizontal, caption);
+                     }});
 }
 
 // With --profile: where each phase's time went, by kernel stage and by kernel.
@@ -328,7 +340,8 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
     o.problem = r->problem;
     return o;
   }
-  if (!run.picture_path.empty()) write_heap_angle_png(run.picture_path, r->heap);
+  if (!run.picture_path.empty())
+    write_heap_angle_png(run.picture_path, r->heap, spec.experiment.view == "x" ? "y" : "x", heap_caption(spec, *r));
   o.values = {{"angle", r->angle_deg}, {"heap_height", r->heap.heap_height}, {"settle_time", r->settle_time},
               {"particles_measured", double(r->particles_measured)}};
   if (r->heap_3d && r->heap_3d->valid_sectors > 0) o.values["angle_3d"] = r->heap_3d->mean_deg;
