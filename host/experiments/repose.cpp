@@ -314,9 +314,12 @@ std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& 
   auto side = [](const SlopeFit& s) { return s.valid ? std::to_string(s.angle_deg).substr(0, 5) + " deg" : std::string("none"); };
   std::vector<std::string> lines;
   std::string angle = std::isfinite(r.angle_deg) ? printf_text("%.2f deg", r.angle_deg) : "not measured (no valid slope)";
-  lines.push_back(printf_text("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles",
-                              spec.name.c_str(), angle.c_str(), side(r.heap.left).c_str(), side(r.heap.right).c_str(),
-                              r.heap.heap_height, r.particles_measured));
+  // The headline as heap.png's title states it: the number, how it was measured, then the front view.
+  lines.push_back(printf_text("repose %s: angle of repose %s (%s; front view: left %s, right %s), heap %.3g m high, "
+                              "%zu particles",
+                              spec.name.c_str(), angle.c_str(), heap_caption(spec, r).measured_as.c_str(),
+                              side(r.heap.left).c_str(), side(r.heap.right).c_str(), r.heap.heap_height,
+                              r.particles_measured));
   for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
     lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
                                 p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));

@@ -28,7 +28,7 @@ std::string view_words(const HeapAngle& m, const HeapPictureCaption& caption) {
 }  // namespace
 
 HeapPictureCaption front_view_caption(const HeapAngle& m) {
-  return {m.mean_deg, "the mean of this view's slopes", true, true};
+  return {m.mean_deg, "the mean of both slopes", true, true};
 }
 
 HeapPictureCaption slope_caption(const HeapAngle& m, const std::string& side) {
