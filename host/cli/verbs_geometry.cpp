@@ -339,10 +339,14 @@ void print_heap_scatter(const std::vector<std::string>& files, const HeapReading
   std::printf("over %zu heaps (side %s, fit band %g-%g of the height):\n", readings.size(), options.side.c_str(),
               options.angle.band_low, options.angle.band_high);
   row("front view (one photograph)", s.front, "deg");
-  if (options.views > 1) row(printf_text("mean of %d views", options.views).c_str(), s.views_mean, "deg");
+  if (options.views > 1) {
+    std::printf("%-34s sd %8.3g deg (each view's sd between heaps, pooled over the %d views)\n", "any one view", s.one_view_sd,
+                options.views);
+    row(printf_text("mean of %d views", options.views).c_str(), s.views_mean, "deg");
+  }
   row("heap height", s.height, "m  ");
   row("run-out", s.runout, "m  ");
-  std::printf("the front view's sd by cause: line fit on a few bodies %.3g deg (cameras turned +-%g deg), camera side %s, "
+  std::printf("one photograph's sd by cause: line fit on a few bodies %.3g deg (cameras turned +-%g deg), camera side %s, "
               "packing (heap to heap) %.3g deg\n",
               s.fit_sd, options.turn_deg,
               options.views > 1 ? printf_text("%.3g deg (%d views)", s.camera_sd, options.views).c_str() : "not measured (--views 1)",

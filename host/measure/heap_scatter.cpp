@@ -1,5 +1,6 @@
 #include "measure/heap_scatter.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -75,6 +76,7 @@ HeapReading read_heap(const std::vector<Sphere>& heap, const HeapReadingOptions&
 
   if (options.views == 1) {
     r.views_mean = r.front;
+    r.per_view = {r.front};
     return r;
   }
   const HeapViewsAngle views = measure_heap_angle_views(heap, options.views, options.angle, centre);
@@ -87,9 +89,26 @@ HeapReading read_heap(const std::vector<Sphere>& heap, const HeapReadingOptions&
     else per_view.push_back(std::isfinite(left) ? left : right);
   }
   const SampleSpread s = spread_of(per_view);
+  r.per_view = per_view;
   r.views_mean = s.mean;
   r.views_sd = s.n > 1 ? s.sd : 0.0;
   return r;
+}
+
+// The fill-to-fill variance of one view's reading, pooled over the views: the mean over views k of
+// the variance of reading k between heaps.
+double pooled_view_variance(const std::vector<HeapReading>& readings) {
+  const size_t views = readings.empty() ? 0 : readings.front().per_view.size();
+  std::vector<double> variances;
+  for (size_t k = 0; k < views; ++k) {
+    std::vector<double> view_k;
+    for (const HeapReading& r : readings) {
+      if (r.per_view.size() != views) throw std::invalid_argument("heap scatter: the heaps were read with different views");
+      view_k.push_back(r.per_view[k]);
+    }
+    variances.push_back(variance_of(view_k));
+  }
+  return spread_of(variances).mean;
 }
 
 HeapScatter heap_scatter(const std::vector<HeapReading>& readings) {
@@ -107,11 +126,13 @@ HeapScatter heap_scatter(const std::vector<HeapReading>& readings) {
   out.views_mean = spread_of(views);
   out.height = spread_of(height);
   out.runout = spread_of(runout);
-  const double fit = mean_or_zero(turned_var), camera = mean_or_zero(views_var);
+  const double fit = mean_or_zero(turned_var), within = mean_or_zero(views_var);
+  const double one_view = pooled_view_variance(readings);
+  out.one_view_sd = std::sqrt(one_view);
   out.fit_sd = std::sqrt(fit);
-  out.camera_sd = std::sqrt(std::max(0.0, camera - fit));
-  const double total = variance_of(front);
-  out.packing_sd = std::isfinite(total) ? std::sqrt(std::max(0.0, total - std::max(camera, fit))) : kNaN;
+  out.camera_sd = std::sqrt(std::max(0.0, within - fit));
+  // Within a heap the views' readings vary by camera and fit; with one view only the turns show the fit.
+  out.packing_sd = std::isfinite(one_view) ? std::sqrt(std::max(0.0, one_view - std::max(within, fit))) : kNaN;
   return out;
 }
 

@@ -27,6 +27,7 @@ struct HeapReading {
   double views_mean = 0.0;  // the reading of every view, averaged (the front's own with views 1)
   double views_sd = 0.0;    // sd of one camera's reading between the views of this heap (0 for views 1)
   double turned_sd = 0.0;   // sd of the reading between the front camera and its four small turns
+  std::vector<double> per_view;  // each view's reading, views 0 .. views - 1 (the front alone for views 1)
   double height = 0.0;      // front view's heap height, m
   double runout = 0.0;      // front view's crest-to-toe distance on `side` (both: the two sides' mean), m
 };
@@ -42,12 +43,16 @@ struct SampleSpread {
 };
 SampleSpread spread_of(const std::vector<double>& values);  // NaNs are left out
 
-// The readings of refilled heaps of one rig, and their front reading's variance split by cause:
-// fit^2 (the mean within-heap variance between small turns), camera^2 (the mean within-heap
-// variance between views, less the fit's), packing^2 (the front's fill-to-fill variance, less
-// both), each floored at 0. views 1: camera is 0.
+// The readings of refilled heaps of one rig (all with the same views), and one photograph's
+// variance split by cause. one_view: the fill-to-fill variance of one camera's reading, pooled
+// over the views (each view of a rig without a preferred side is a front view; the front's own sd
+// rests on one camera and is far less certain); the front alone for views 1. fit^2: the mean
+// within-heap variance between small turns; camera^2: the mean within-heap variance between
+// views, less the fit's; packing^2 (the heap itself, refill to refill): one_view^2 less both.
+// Each floored at 0; views 1: camera 0.
 struct HeapScatter {
   SampleSpread front, views_mean, height, runout;
+  double one_view_sd = 0.0;
   double fit_sd = 0.0, camera_sd = 0.0, packing_sd = 0.0;
 };
 HeapScatter heap_scatter(const std::vector<HeapReading>& readings);

@@ -41,6 +41,7 @@ TEST_CASE("smooth cones of three slopes: the whole scatter is heap to heap", "[h
   const HeapScatter s = heap_scatter(readings);
   CHECK(s.front.n == 3);
   CHECK(s.front.sd == Approx(4.0).margin(0.3));  // the slopes' own sd
+  CHECK(s.one_view_sd == Approx(4.0).margin(0.3));  // every view of a cone reads its slope
   CHECK(s.packing_sd == Approx(4.0).margin(0.3));
   CHECK(s.fit_sd < 0.3);
   CHECK(s.camera_sd < 0.3);
@@ -76,4 +77,7 @@ TEST_CASE("heap reading refuses bad options", "[heap]") {
   options.turn_deg = 0;
   CHECK_THROWS_WITH(read_heap(heap, options), Catch::Contains("(0, 45]"));
   CHECK_THROWS_WITH(read_heap({}, {}), Catch::Contains("no spheres"));
+  HeapReadingOptions one;
+  one.views = 1;
+  CHECK_THROWS_WITH(heap_scatter({read_heap(heap, one), read_heap(heap, {})}), Catch::Contains("different views"));
 }
