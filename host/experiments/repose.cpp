@@ -243,12 +243,22 @@ void read_repose_keys(const Section& s, ExperimentSpec& ex) {
 
 namespace {
 
+// heap.png's title: the headline angle (r.angle_deg) and how it was measured; the front view's
+// slopes that count towards it are drawn.
+HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
+  HeapPictureCaption caption = slope_caption(r.heap, spec.experiment.heap_side);
+  caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
+  if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
+  return caption;
+}
+
 OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   OrderedJson j;
   j["experiment"] = "repose";
   j["case"] = spec.path;
   j["heap_side"] = spec.experiment.heap_side;
   j["angle_deg"] = r.angle_deg;
+  j["angle_measured_as"] = heap_caption(spec, r).measured_as;  // as heap.png's title and the console say
   j["left"] = slope_json(r.heap.left);
   j["right"] = slope_json(r.heap.right);
   j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? OrderedJson(r.heap.mean_deg) : OrderedJson(nullptr);
@@ -268,15 +278,6 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
                       {"wall_s", p.wall_seconds}, {"rebuilds", p.rebuilds}});
   j["phases"] = phases;
   return j;
-}
-
-// heap.png's title: the headline angle (r.angle_deg) and how it was measured; the front view's
-// slopes that count towards it are drawn.
-HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
-  HeapPictureCaption caption = slope_caption(r.heap, spec.experiment.heap_side);
-  caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
-  if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
-  return caption;
 }
 
 void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r, const CaseSpec& spec) {
