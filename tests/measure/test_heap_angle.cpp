@@ -19,6 +19,17 @@ namespace {
 
 constexpr double kTolerance = 0.5;  // degrees
 
+// Half a 30 degree wedge against a wall: its crest stands at the wall and, beside it, a stack of
+// spheres along the wall face drops straight to the floor (a few columns, as in the bucket rig).
+std::vector<Sphere> heap_against_wall() {
+  std::vector<Sphere> heap;
+  for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
+    if (s.centre.x >= 0) heap.push_back(s);
+  for (double z = 0.004; z < 0.09; z += 0.008)
+    for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
+  return heap;
+}
+
 }  // namespace
 
 TEST_CASE("front view of a cone: left and right slopes within 0.5 degree", "[heap]") {
@@ -54,14 +65,8 @@ TEST_CASE("front view of an asymmetric wedge: each side its own slope", "[heap]"
 }
 
 TEST_CASE("a heap leaning on a wall: the wall face is no slope and does not enter the mean", "[heap]") {
-  // Half a wedge against a wall: its crest stands at the wall and, beside it, a stack of
-  // spheres along the wall face drops straight to the floor (a few columns, as in the bucket
-  // rig, where this face measured 76 degrees); only the 30 degree slope counts.
-  std::vector<Sphere> heap;
-  for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
-    if (s.centre.x >= 0) heap.push_back(s);
-  for (double z = 0.004; z < 0.09; z += 0.008)
-    for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
+  // The wall face (in the bucket rig it measured 76 degrees) is no slope; only the 30 degree one counts.
+  const std::vector<Sphere> heap = heap_against_wall();
   const HeapAngle m = measure_heap_angle(heap, {});
   INFO("left " << m.left.angle_deg << " (" << m.left.problem << "), right " << m.right.angle_deg);
   CHECK_FALSE(m.left.valid);
@@ -209,12 +214,7 @@ TEST_CASE("heap.png: the title states the headline angle, the legend only what i
                                       cone.right.angle_deg)) == 0);
   }
   SECTION("a heap against a wall, measured on its right slope: no left fit drawn or listed") {
-    std::vector<Sphere> heap;
-    for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
-      if (s.centre.x >= 0) heap.push_back(s);
-    for (double z = 0.004; z < 0.09; z += 0.008)
-      for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
-    const HeapAngle m = measure_heap_angle(heap, {});
+    const HeapAngle m = measure_heap_angle(heap_against_wall(), {});
     const ChartRecord r = heap_picture(m, slope_caption(m, "right"), "repose_test_heap_wall.png");
     CHECK(labels(r) == std::vector<std::string>{"outline", "right fit", "fitted points", "floor"});
     CHECK(r.points_of(colours::red, Mark::Line) == 0);
