@@ -410,6 +410,8 @@ int run_heap_angle(int argc, char** argv) {
     options.band_high = band[1];
   }
   if (files.size() > 1) {
+    if (!png.empty() || !json.empty() || axisymmetric || data_rows)
+      return usage_error("--png, --json, --axisymmetric and --measures take one heap; several heaps give their spread");
     print_heap_scatter(files, {options, side, views, turn});
     return 0;
   }
