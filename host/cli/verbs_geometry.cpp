@@ -26,6 +26,7 @@
 #include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
+#include "measure/heap_scatter.h"
 
 namespace repose::cli {
 
@@ -319,8 +320,44 @@ void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
     if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
 }
 
+// Several saved heaps of one rig: each one's readings, then their fill-to-fill spread and the
+// front view's variance split by cause (measure/heap_scatter.h).
+void print_heap_scatter(const std::vector<std::string>& files, const HeapReadingOptions& options) {
+  std::vector<HeapReading> readings;
+  std::printf("%-40s %8s %10s %9s %9s %8s %8s\n", "heap", "front", "views", "views sd", "turned sd", "height", "run-out");
+  for (const std::string& file : files) {
+    if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0)
+      throw std::runtime_error(file + ": several heaps are re-measured from their spheres (CSV), not from pictures");
+    readings.push_back(read_heap(read_sphere_csv(file), options));
+    const HeapReading& r = readings.back();
+    std::printf("%-40s %8.3f %10.3f %9.3f %9.3f %8.4f %8.4f\n", file.c_str(), r.front, r.views_mean, r.views_sd,
+                r.turned_sd, r.height, r.runout);
+  }
+  const HeapScatter s = heap_scatter(readings);
+  auto row = [](const char* what, const SampleSpread& v, const char* unit) {
+    std::printf("%-34s mean %9.4g %s, sd %8.3g, SE %8.3g (n %d)\n", what, v.mean, unit, v.sd, v.se(), v.n);
+  };
+  std::printf("over %zu heaps (side %s, fit band %g-%g of the height):\n", readings.size(), options.side.c_str(),
+              options.angle.band_low, options.angle.band_high);
+  row("front view (one photograph)", s.front, "deg");
+  if (options.views > 1) {
+    std::printf("%-34s sd %8.3g deg (each view's sd between heaps, pooled over the %d views)\n", "any one view", s.one_view_sd,
+                options.views);
+    row(printf_text("mean of %d views", options.views).c_str(), s.views_mean, "deg");
+  }
+  row("heap height", s.height, "m  ");
+  row("run-out", s.runout, "m  ");
+  std::printf("one photograph's sd by cause: line fit on a few bodies %.3g deg (cameras turned +-%g deg), camera side %s, "
+              "packing (heap to heap) %.3g deg\n",
+              s.fit_sd, options.turn_deg,
+              options.views > 1 ? printf_text("%.3g deg (%d views)", s.camera_sd, options.views).c_str() : "not measured (--views 1)",
+              s.packing_sd);
+}
+
 int run_heap_angle(int argc, char** argv) {
-  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
+  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit); several "
+               "heaps of one rig: their readings, spread and its causes."};
+  std::vector<std::string> files;
   std::string file, view = "y", png, json;
   bool axisymmetric = false;
   int views = 1;
@@ -330,8 +367,14 @@ int run_heap_angle(int argc, char** argv) {
   std::optional<double> floor_z;
   int threshold = 128;
   bool light_heap = false;
-  app.add_option("file", file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+  app.add_option("file", files,
+                 "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph). Several CSVs "
+                 "(refilled heaps of one rig): each one's front view, --views mean and small camera turns, then "
+                 "their mean, sd and the sd's causes")
       ->required();
+  double turn = 2.0;
+  app.add_option("--turn", turn, "several heaps: the front camera is also turned by +-TURN and +-TURN/2 degrees (default 2)")
+      ->check(CLI::Range(0.01, 45.0));
   app.add_option("--threshold", threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
       ->check(CLI::Range(1, 255));
   app.add_flag("--light-heap", light_heap, "PNG: the heap is the lighter part of the picture");
@@ -361,6 +404,19 @@ int run_heap_angle(int argc, char** argv) {
   app.add_option("--bin", axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
   REPOSE_PARSE(app, argc, argv);
+  options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
+  options.floor_z = floor_z;
+  if (band.size() == 2) {
+    options.band_low = band[0];
+    options.band_high = band[1];
+  }
+  if (files.size() > 1) {
+    if (!png.empty() || !json.empty() || axisymmetric || data_rows)
+      return usage_error("--png, --json, --axisymmetric and --measures take one heap; several heaps give their spread");
+    print_heap_scatter(files, {options, side, views, turn});
+    return 0;
+  }
+  file = files.front();
 
   HeapAngleRun r;
   r.file = file;
@@ -370,13 +426,9 @@ int run_heap_angle(int argc, char** argv) {
   if (r.photo && (views > 1 || axisymmetric))
     throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
   if (!r.photo) r.spheres = read_sphere_csv(file);
-  options.view = view == "x" ? ViewAxis::X : ViewAxis::Y;
-  options.floor_z = floor_z;
   axi.floor_z = floor_z;
-  if (band.size() == 2) {
-    options.band_low = axi.band_low = band[0];
-    options.band_high = axi.band_high = band[1];
-  }
+  axi.band_low = options.band_low;
+  axi.band_high = options.band_high;
   if (centre.size() == 2) axi.centre = glm::dvec2(centre[0], centre[1]);
   r.options = options;
   if (r.photo) {
@@ -395,7 +447,7 @@ int run_heap_angle(int argc, char** argv) {
   if (data_rows) print_measure_rows(r, side);
   else print_heap_text(r);
   if (!png.empty()) {
-    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    write_heap_angle_png(png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y", slope_caption(r.m, side));
     if (!data_rows) std::printf("picture      %s\n", png.c_str());
   }
   if (!json.empty()) {

@@ -277,12 +277,22 @@ void read_repose_keys(const Section& s, ExperimentSpec& ex) {
 
 namespace {
 
+// heap.png's title: the headline angle (r.angle_deg) and how it was measured; the front view's
+// slopes that count towards it are drawn.
+HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
+  HeapPictureCaption caption = slope_caption(r.heap, spec.experiment.heap_side);
+  caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
+  if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
+  return caption;
+}
+
 OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   OrderedJson j;
   j["experiment"] = "repose";
   j["case"] = spec.path;
   j["heap_side"] = spec.experiment.heap_side;
   j["angle_deg"] = r.angle_deg;
+  j["angle_measured_as"] = heap_caption(spec, r).measured_as;  // as heap.png's title and the console say
   j["left"] = slope_json(r.heap.left);
   j["right"] = slope_json(r.heap.right);
   j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? OrderedJson(r.heap.mean_deg) : OrderedJson(nullptr);
@@ -316,7 +326,10 @@ void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeRe
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   std::string horizontal = spec.experiment.view == "x" ? "y" : "x";  // the picture's horizontal axis
-  o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
+  HeapPictureCaption caption = heap_caption(spec, *r);
+  o.files.push_back({"heap.png", [r, horizontal, caption](const std::string& path) {
+                       write_heap_angle_png(path, r->heap, horizontal, caption);
+                     }});
 }
 
 // With --profile: where each phase's time went, by kernel stage and by kernel.
@@ -336,9 +349,12 @@ std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& 
   auto side = [](const SlopeFit& s) { return s.valid ? std::to_string(s.angle_deg).substr(0, 5) + " deg" : std::string("none"); };
   std::vector<std::string> lines;
   std::string angle = std::isfinite(r.angle_deg) ? printf_text("%.2f deg", r.angle_deg) : "not measured (no valid slope)";
-  lines.push_back(printf_text("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles",
-                              spec.name.c_str(), angle.c_str(), side(r.heap.left).c_str(), side(r.heap.right).c_str(),
-                              r.heap.heap_height, r.particles_measured));
+  // The headline as heap.png's title states it: the number, how it was measured, then the front view.
+  lines.push_back(printf_text("repose %s: angle of repose %s (%s; front view: left %s, right %s), heap %.3g m high, "
+                              "%zu particles",
+                              spec.name.c_str(), angle.c_str(), heap_caption(spec, r).measured_as.c_str(),
+                              side(r.heap.left).c_str(), side(r.heap.right).c_str(), r.heap.heap_height,
+                              r.particles_measured));
   for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
     lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
                                 p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));
@@ -363,7 +379,8 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
     o.status = r->settled ? OutcomeStatus::NoSlope : OutcomeStatus::NotSettled;
     o.problem = r->problem;
   }
-  if (!run.picture_path.empty()) write_heap_angle_png(run.picture_path, r->heap);
+  if (!run.picture_path.empty())
+    write_heap_angle_png(run.picture_path, r->heap, spec.experiment.view == "x" ? "y" : "x", heap_caption(spec, *r));
   o.values = {{"angle", r->angle_deg}, {"heap_height", r->heap.heap_height}, {"settle_time", r->settle_time},
               {"particles_measured", double(r->particles_measured)}};
   if (r->heap_3d && r->heap_3d->valid_sectors > 0) o.values["angle_3d"] = r->heap_3d->mean_deg;
