@@ -1,0 +1,97 @@
+// A model's predictions as smooth functions of its parameters, so that a diagnosis fits on a
+// surface instead of simulating every trial (docs/diagnosis.md, "Fits on a surrogate"). The model
+// is simulated at a design of points in the unit cube of its parameters, every condition at each
+// point; each group's mean (and, for a stochastic model, its replicate SD) over the points is
+// interpolated by a Gaussian process (calibrate/gaussian_process.h, the calibration's surrogate).
+// A fit minimises the score (model_fit.h) on that surface and simulates where the minimum lies,
+// until the surface agrees with the simulation there; the leave-one-condition-out refits and the
+// mimic tests reuse the same points.
+//
+// A heap is chaotic: any parameter change redraws every fill's outcome, so each design point is
+// filled with fills of its own (the surface pools their luck instead of keeping one set's) and
+// half the replicates of --sim-replicates (the neighbouring points average the rest). A clump's
+// drop keeps common random numbers: the same orientations at every point, a smooth surface.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "calibrate/gaussian_process.h"
+#include "diagnosis/model_fit.h"
+#include "stats/model_terms.h"
+
+namespace repose {
+
+// A minimum of the score on the surface (or, with no parameter, the one simulated model).
+struct SurfaceMinimum {
+  std::vector<double> u;     // in the unit cube of the model's parameters
+  double score = 0;          // the surface's score there, or the simulation's when `simulated`
+  bool simulated = false;    // the model was simulated at u and `score` is the simulation's
+  Prediction prediction;     // at u: simulated when `simulated`, else the surface's
+};
+
+// One group's surface: a quadratic trend over the unit cube plus a Gaussian process on its residual.
+struct GroupSurface {
+  std::vector<stats::Term> trend;
+  Eigen::VectorXd coef;
+  calibrate::GaussianProcess process;
+  double mean(const Eigen::VectorXd& at) const;
+};
+
+// Surfaces for one response per group, `of(point, group)` over the design `x` (points x parameters).
+std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eigen::MatrixXd& x,
+                                             const std::function<double(size_t, size_t)>& of);
+
+class ModelSurrogate {
+ public:
+  // `on_point(what)` is called after every design point is simulated (progress).
+  ModelSurrogate(Predictor& predictor, const ModelExtension* extension,
+                 std::function<void(const std::string&)> on_point = {});
+
+  const ModelExtension* extension() const { return extension_; }
+  const std::vector<FreeParameter>& parameters() const { return parameters_; }
+  std::vector<double> values(const std::vector<double>& u) const;  // unit cube -> parameter values
+  bool stochastic() const { return stochastic_; }
+  int replicates_per_point() const { return replicates_; }
+  size_t points() const { return design_.size(); }
+
+  // Simulates the initial design: a grid over the unit cube (7 points for one parameter, 4 x 4 for
+  // two, 3 x 3 for a stochastic model, whose surface is noise-limited anyway) and, given `near` (an
+  // extension's start: the baseline's fitted values, the extension off), a line through it along
+  // the extension's own parameters (7 points, 5 for a stochastic model): there the extension's
+  // effect must be resolved against the baseline's response, which elsewhere may change a
+  // hundred times as much across the cube. A model without parameters is simulated once.
+  void simulate_design(const std::vector<double>& near = {});
+  // The model simulated at u on every condition, added to the design (an existing point is reused).
+  Prediction simulate(const std::vector<double>& u);
+  // The surface at u: the processes' means; for a stochastic model the replicate variance from the
+  // SD surface and each mean's variance from the process's uncertainty.
+  Prediction predict(const std::vector<double>& u) const;
+  // The score's minimum on the surface over the conditions in `use` (against `target`'s
+  // predictions instead of the data when given), from the best design points.
+  SurfaceMinimum minimise(const std::vector<char>& use, const Prediction* target = nullptr);
+  // minimise(), then the model simulated at the minimum and the surface refitted, until the
+  // simulation agrees with the surface (a deterministic model: within 0.05 in chi^2 or 0.5 %) or
+  // the minimum falls within 0.05 of a simulated point (a stochastic one), at most `new_points`
+  // times. The result is the last simulated minimum when it agreed, else the surface's.
+  SurfaceMinimum fit(const std::vector<char>& use, const Prediction* target, int new_points);
+
+  // Points the design and the fits of a model with `k` parameters plan for (the progress's
+  // estimate): the design, the refinement and the held-out refits.
+  static int planned_points(size_t k, size_t conditions, bool stochastic);
+
+ private:
+  void refit();
+  Predictor& predictor_;
+  const ModelExtension* extension_;
+  std::vector<FreeParameter> parameters_;
+  std::function<void(const std::string&)> on_point_;
+  bool stochastic_ = false, chaotic_ = false;
+  int replicates_ = 1;
+  std::vector<std::vector<double>> design_;
+  std::vector<Prediction> simulated_;
+  bool stale_ = true;
+  std::vector<GroupSurface> mean_, sd_;  // per group
+};
+
+}  // namespace repose
