@@ -22,8 +22,8 @@ constexpr double kDiagnosisSignificance = 0.01;
 // chi^2 by which a rival refitted to the winner's predictions must miss them to be told apart
 // (3 sigma).
 constexpr double kSeparableChi2 = 9.0;
-// Modest in-sample support: an F test below this, with a large held-out gain, is evidence the
-// verdict must not overrule (it then names the candidate as `ambiguous`, never `adequate`).
+// Modest in-sample support: an F test below this, with less held-out error, is evidence the verdict
+// must not overrule (it then names the candidate as `ambiguous`, never `adequate`).
 constexpr double kModestSignificance = 0.05;
 // A large held-out gain (percent less error over every measure, in standard errors): the heap
 // tests' threshold, far above what a candidate that fits noise reaches.
@@ -62,7 +62,7 @@ struct BoundFit {
 enum class Standing {
   NoBetter,          // no test favours it enough
   Beats,             // F test p < 1 % and less held-out error over every measure (the one meaning)
-  ModestSupport,     // F test p < 5 % and a large held-out gain: evidence the verdict keeps
+  ModestSupport,     // F test p < 5 % and less held-out error (or a lower AIC and a large gain)
   StrainedBaseline,  // the baseline strains (a bound, a bent parameter) and the candidate gains largely
   HeldOutAgainst,    // F test p < 1 %, but it predicts held-out conditions no better
 };

@@ -13,6 +13,7 @@ namespace repose {
 namespace {
 
 constexpr int kRefinePoints = 6;       // points a fit may add where its minimum lies
+constexpr int kValleyPasses = 3;       // passes along an extension's valley (surrogate.h)
 constexpr double kOnBound = 0.005;     // of a parameter's range: a fit this near an end is on it
 constexpr double kBentParameter = 0.25;  // of its range: how far a strained baseline moved a parameter
 
@@ -43,8 +44,9 @@ Prediction held_out(DiagnosisContext& c, ModelSurrogate& s, bool from_surface, c
   for (size_t k = 0; k < obs.conditions.size(); ++k) {
     std::vector<char> use(obs.conditions.size(), 1);
     use[k] = 0;
-    SurfaceMinimum m = s.minimise(use);
+    SurfaceMinimum m = from_surface ? s.minimise(use) : s.fit(use, nullptr, 2);
     Prediction p = from_surface ? m.prediction : s.simulate(m.u);
+    if (getenv("DBG_SUR")) { fprintf(stderr, "DBG LOO %zu:", k); for (double x : s.values(m.u)) fprintf(stderr, " %g", x); fprintf(stderr, " surf %g sim %g\n", m.score, chi_square(obs, p, use)); }
     for (size_t g = 0; g < obs.groups.size(); ++g)
       if (obs.groups[g].condition == k) {
         held.mean[g] = p.mean[g];
@@ -146,7 +148,7 @@ size_t planned_simulations(DiagnosisContext& c, const std::vector<const ModelExt
   models.insert(models.end(), testable.begin(), testable.end());
   for (const ModelExtension* e : models) {
     ModelSurrogate& s = c.surrogate(e);
-    total += size_t(ModelSurrogate::planned_points(s.parameters().size(), conditions, s.stochastic())) * conditions *
+    total += size_t(ModelSurrogate::planned_points(s.parameters().size(), conditions, s.chaotic())) * conditions *
              size_t(s.replicates_per_point());
     if (s.stochastic()) total += conditions * size_t(c.predictor.confirmation_replicates());
   }
@@ -162,13 +164,14 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
   r.k = int(r.parameters.size());
   s.simulate_design(design_start(s, baseline));
   std::vector<char> all(obs.conditions.size(), 1);
+  s.trace_valley(all, kValleyPasses);
   SurfaceMinimum full = s.fit(all, nullptr, kRefinePoints);
   r.dropped_early = baseline && clearly_worse(c, full.score, *baseline, r.k);
   Prediction held = c.heldout_available ? held_out(c, s, r.dropped_early, full.prediction) : Prediction{};
   if (!r.dropped_early) full = s.fit(all, nullptr, 2);  // the held-out points refine the surface
   r.params = s.values(full.u);
-  // A deterministic model's fit is simulated where it lies; a stochastic one's is the surface's.
-  Prediction fitted = s.stochastic() ? full.prediction : s.simulate(full.u);
+  // A smooth model's fit is simulated where it lies; a chaotic one's is the surface's.
+  Prediction fitted = s.chaotic() ? full.prediction : s.simulate(full.u);
   r.fit_chi2 = chi_square(obs, fitted, all);
   r.prediction = fitted;
   r.chi2 = r.fit_chi2;
@@ -203,15 +206,17 @@ void compare_with_baseline(DiagnosisContext& c, ModelResult& r, const ModelResul
   r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
   r.p = stats::f_upper_tail(r.f, dk, c.noise_df);
   r.heldout_gain = c.heldout_available && base.heldout_sds > 0 ? 100.0 * (1.0 - r.heldout_sds / base.heldout_sds) : 0.0;
-  r.standing = candidate_standing(r.p, r.heldout_gain, c.heldout_available, baseline_strained(base, r, c.case_values));
+  r.standing = candidate_standing(r.p, r.heldout_gain, c.heldout_available, r.aic < base.aic,
+                                  baseline_strained(base, r, c.case_values));
   r.significant = r.standing == Standing::Beats;
 }
 
-Standing candidate_standing(double p, double gain, bool heldout_available, bool strained) {
+Standing candidate_standing(double p, double gain, bool heldout_available, bool aic_better, bool strained) {
   if (!heldout_available) return p < kDiagnosisSignificance ? Standing::Beats : Standing::NoBetter;
   if (p < kDiagnosisSignificance) return gain > 0 ? Standing::Beats : Standing::HeldOutAgainst;
-  if (gain >= kLargeGainPercent && p < kModestSignificance) return Standing::ModestSupport;
-  if (gain >= kLargeGainPercent && strained) return Standing::StrainedBaseline;
+  if ((p < kModestSignificance && gain > 0) || (aic_better && gain >= kLargeGainPercent))
+    return Standing::ModestSupport;
+  if (strained && gain >= kLargeGainPercent) return Standing::StrainedBaseline;
   return Standing::NoBetter;
 }
 

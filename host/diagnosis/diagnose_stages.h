@@ -99,15 +99,18 @@ CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelE
 // (Beats, ...) then follows from candidate_standing.
 void compare_with_baseline(DiagnosisContext& c, ModelResult& candidate, const ModelResult& baseline);
 
-// How a candidate stands, from its F test p, its held-out gain (percent, over every measure) and
-// whether the baseline strains where it does not (baseline_strained):
+// How a candidate stands, from its F test p, its held-out gain (percent, over every measure), its
+// AIC against the baseline's and whether the baseline strains where it does not
+// (baseline_strained):
 //   Beats            p < 1 % and a positive gain (the one meaning of "beats the baseline");
 //   HeldOutAgainst   p < 1 % but no gain: the in-sample and the held-out evidence disagree;
-//   ModestSupport    p < 5 % and a gain of at least kLargeGainPercent;
+//   ModestSupport    p < 5 % and a positive gain, or a lower AIC and a gain of at least
+//                    kLargeGainPercent: every test leans its way, none decides;
 //   StrainedBaseline the baseline strains and the gain is at least kLargeGainPercent;
 //   NoBetter         otherwise.
 // Without held-out conditions (fewer than 3) the F test alone decides Beats or NoBetter.
-Standing candidate_standing(double p, double gain_percent, bool heldout_available, bool baseline_strained);
+Standing candidate_standing(double p, double gain_percent, bool heldout_available, bool aic_better,
+                            bool baseline_strained);
 
 // A model's fitted parameters on an end of their range (within 0.5 % of it): the first
 // `baseline_k` (the baseline's) at either end, an extension's own at the top only (its low end is

@@ -77,7 +77,7 @@ std::string standing_words(const ModelResult& r) {
              "better (" + gain + ").";
     case Standing::ModestSupport:
       return "does not beat the baseline by the rule (F test p = " + num(r.p, 2) + ", above 1 %), yet predicts "
-             "held-out conditions far better (" + gain + "): modest evidence for it.";
+             "held-out conditions better (" + gain + ") and has the lower AIC: modest evidence for it.";
     case Standing::StrainedBaseline:
       return "does not beat the baseline by the rule (F test p = " + num(r.p, 2) + "), yet predicts held-out "
              "conditions far better (" + gain + ") where the baseline strains (below): evidence for it.";

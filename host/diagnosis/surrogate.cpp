@@ -14,8 +14,8 @@ namespace repose {
 namespace {
 
 constexpr double kSamePoint = 1e-6;      // unit-cube distance below which two points are one
-constexpr double kStochasticNear = 0.05;  // a stochastic fit's minimum this near a point: converged
-constexpr double kConverged = 0.002;      // a deterministic fit's minimum moving less than this: converged
+constexpr double kChaoticNear = 0.05;     // a chaotic fit's minimum this near a point: converged
+constexpr double kConverged = 0.002;      // a smooth fit's minimum moving less than this: converged
 
 double distance(const std::vector<double>& a, const std::vector<double>& b) {
   double d = 0;
@@ -105,7 +105,7 @@ namespace {
 // Design sizes: a grid of `grid` steps per axis over the whole cube and, for an extension, a line of
 // `line` steps along its own parameters through the baseline's values (where its effect must be
 // resolved against the baseline's, however steep the baseline's own response is).
-int grid_steps(size_t k, bool noisy) { return k == 1 ? 6 : noisy ? 2 : 3; }
+int grid_steps(size_t k) { return k == 1 ? 6 : 2; }
 int line_steps(bool noisy) { return noisy ? 4 : 6; }
 
 }  // namespace
@@ -113,9 +113,10 @@ int line_steps(bool noisy) { return noisy ? 4 : 6; }
 int ModelSurrogate::planned_points(size_t k, size_t conditions, bool noisy) {
   if (k == 0) return 1;
   int grid = 1;
-  for (size_t d = 0; d < k; ++d) grid *= grid_steps(k, noisy) + 1;
-  int line = k > 1 ? line_steps(noisy) : 0;
-  return grid + line + (noisy ? 3 : 5) + (conditions >= 3 ? int(conditions) : 0);  // refinement, held out
+  for (size_t d = 0; d < k; ++d) grid *= grid_steps(k) + 1;
+  int line = k > 1 ? line_steps(noisy) + 1 : 0;
+  int valley = k > 1 ? (noisy ? 1 : 2) * line : 0;  // passes that usually suffice
+  return grid + line + valley + (noisy ? 3 : 4) + (conditions >= 3 ? int(conditions) : 0);  // refinement, held out
 }
 
 void ModelSurrogate::simulate_design(const std::vector<double>& near) {
@@ -124,7 +125,7 @@ void ModelSurrogate::simulate_design(const std::vector<double>& near) {
     simulate({});
     return;
   }
-  const int steps = grid_steps(k, stochastic_);
+  const int steps = grid_steps(k);
   int total = 1;
   for (size_t d = 0; d < k; ++d) total *= steps + 1;
   for (int i = 0; i < total; ++i) {
@@ -137,11 +138,41 @@ void ModelSurrogate::simulate_design(const std::vector<double>& near) {
   // The line: the baseline's values held, each of the extension's own parameters over its range.
   size_t held = predictor_.parameters(nullptr).size();
   for (size_t d = held; d < k; ++d)
-    for (int j = 0; j <= line_steps(stochastic_); ++j) {
+    for (int j = 0; j <= line_steps(chaotic_); ++j) {
       std::vector<double> u = near;
-      u[d] = double(j) / line_steps(stochastic_);
+      u[d] = double(j) / line_steps(chaotic_);
+      line_.push_back(u);
       simulate(u);
     }
+}
+
+void ModelSurrogate::trace_valley(const std::vector<char>& use, int passes) {
+  const Observations& obs = predictor_.observations();
+  size_t held = predictor_.parameters(nullptr).size();
+  if (line_.empty() || held == 0) return;
+  std::vector<size_t> dims(held);
+  for (size_t d = 0; d < held; ++d) dims[d] = d;
+  for (int pass = 0; pass < passes; ++pass) {
+    refit();
+    // Along the line the baseline's parameters refitted on the surface, the extension's held.
+    std::vector<std::pair<std::vector<double>, double>> valley;
+    for (const std::vector<double>& point : line_) {
+      stats::UnitObjective objective = [&](const std::vector<double>& u) {
+        return chi_square(obs, predict(u), use);
+      };
+      stats::UnitMinimum m = stats::nelder_mead(objective, point, dims, 0.05, 100, 1e-5);
+      valley.push_back({m.x, m.value});
+    }
+    bool agreed = true;
+    for (const auto& [u, surface] : valley) {
+      double nearest = std::numeric_limits<double>::infinity();
+      for (const auto& p : design_) nearest = std::min(nearest, distance(p, u));
+      if (nearest < kConverged) continue;
+      double exact = chi_square(obs, simulate(u), use);
+      agreed = agreed && std::abs(exact - surface) <= std::max(0.5, 0.02 * exact);
+    }
+    if (agreed || chaotic_) break;
+  }
 }
 
 Prediction ModelSurrogate::simulate(const std::vector<double>& u) {
@@ -234,13 +265,13 @@ SurfaceMinimum ModelSurrogate::fit(const std::vector<char>& use, const Predictio
   for (int added = 0; added < new_points && !m.simulated; ++added) {
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& p : design_) nearest = std::min(nearest, distance(p, m.u));
-    if (stochastic_ && nearest < kStochasticNear) break;
+    if (chaotic_ && nearest < kChaoticNear) break;
     Prediction at = simulate(m.u);
     double exact = chi_square(obs, at, use, target);
     SurfaceMinimum next = minimise(use, target);
     // Converged: the simulation agrees with the surface, and the surface refitted with it keeps
     // its minimum there.
-    if (!stochastic_ && std::abs(exact - m.score) <= std::max(0.05, 0.005 * exact) &&
+    if (!chaotic_ && std::abs(exact - m.score) <= std::max(0.05, 0.005 * exact) &&
         distance(next.u, m.u) < kConverged) {
       m.score = exact;
       m.prediction = at;
@@ -249,8 +280,8 @@ SurfaceMinimum ModelSurrogate::fit(const std::vector<char>& use, const Predictio
     }
     m = next;
   }
-  if (stochastic_ || parameters_.empty()) return m;
-  // A deterministic model's simulated points are exact: none may beat what the fit returns.
+  if (chaotic_ || parameters_.empty()) return m;
+  // A smooth model's simulated points are exact: none may beat what the fit returns.
   for (size_t p = 0; p < design_.size(); ++p) {
     double exact = chi_square(obs, simulated_[p], use, target);
     if (exact < m.score - 1e-9 || (!m.simulated && exact <= m.score)) {

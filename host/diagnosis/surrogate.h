@@ -52,16 +52,24 @@ class ModelSurrogate {
   const std::vector<FreeParameter>& parameters() const { return parameters_; }
   std::vector<double> values(const std::vector<double>& u) const;  // unit cube -> parameter values
   bool stochastic() const { return stochastic_; }
+  bool chaotic() const { return chaotic_; }  // a heap: noisy between points (else smooth)
   int replicates_per_point() const { return replicates_; }
   size_t points() const { return design_.size(); }
 
-  // Simulates the initial design: a grid over the unit cube (7 points for one parameter, 4 x 4 for
-  // two, 3 x 3 for a stochastic model, whose surface is noise-limited anyway) and, given `near` (an
+  // Simulates the initial design: a grid over the unit cube (7 points for one parameter, 3 x 3 for
+  // two) and, given `near` (an
   // extension's start: the baseline's fitted values, the extension off), a line through it along
-  // the extension's own parameters (7 points, 5 for a stochastic model): there the extension's
+  // the extension's own parameters (7 points, 5 for a chaotic model): there the extension's
   // effect must be resolved against the baseline's response, which elsewhere may change a
   // hundred times as much across the cube. A model without parameters is simulated once.
   void simulate_design(const std::vector<double>& near = {});
+  // An extension's valley: where its parameters trade off against the baseline's (a cohesion
+  // absorbed by a higher restitution), the score's minimum is a narrow valley no coarse grid
+  // resolves. For each point of the design's line the baseline's parameters are refitted on the
+  // surface with the extension's held, and the model simulated there; repeated (at most `passes`
+  // times) until the simulations agree with the surface (within 0.5 in chi^2 or 2 %), once for a
+  // chaotic model. A model without a line (the baseline, an extension fitted alone) has none.
+  void trace_valley(const std::vector<char>& use, int passes);
   // The model simulated at u on every condition, added to the design (an existing point is reused).
   Prediction simulate(const std::vector<double>& u);
   // The surface at u: the processes' means; for a stochastic model the replicate variance from the
@@ -71,9 +79,10 @@ class ModelSurrogate {
   // predictions instead of the data when given), from the best design points.
   SurfaceMinimum minimise(const std::vector<char>& use, const Prediction* target = nullptr);
   // minimise(), then the model simulated at the minimum and the surface refitted, until the
-  // simulation agrees with the surface (a deterministic model: within 0.05 in chi^2 or 0.5 %) or
-  // the minimum falls within 0.05 of a simulated point (a stochastic one), at most `new_points`
-  // times. The result is the last simulated minimum when it agreed, else the surface's.
+  // simulation agrees with the surface and the refitted surface keeps its minimum there (a smooth
+  // model: within 0.05 in chi^2 or 0.5 %, and 0.002 of the cube) or the minimum falls within 0.05
+  // of a simulated point (a chaotic one), at most `new_points` times. A smooth model's result is
+  // then the simulated point that scores best; a chaotic one's the surface's minimum.
   SurfaceMinimum fit(const std::vector<char>& use, const Prediction* target, int new_points);
 
   // Points the design and the fits of a model with `k` parameters plan for (the progress's
@@ -89,6 +98,7 @@ class ModelSurrogate {
   bool stochastic_ = false, chaotic_ = false;
   int replicates_ = 1;
   std::vector<std::vector<double>> design_;
+  std::vector<std::vector<double>> line_;  // the design's line through an extension's start
   std::vector<Prediction> simulated_;
   bool stale_ = true;
   std::vector<GroupSurface> mean_, sd_;  // per group
