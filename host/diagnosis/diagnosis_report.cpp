@@ -259,14 +259,18 @@ void confidence_json(const Diagnosis& d, json& j) {
 void heldout_markdown(const Diagnosis& d, std::ostringstream& md) {
   md << "\nHeld-out error per measure (RMS over the conditions, each predicted by a fit to the others"
      << (d.scatter_scored ? "; mean and replicate SD together" : "") << "):\n\n| model |";
-  for (const MeasureError& e : d.baseline.heldout_by_measure) md << " " << with_unit(e.measure) << " |";
+  // Lengths in mm, as the findings give them.
+  auto in_mm = [](const std::string& measure) { return unit_of(measure) == "m"; };
+  for (const MeasureError& e : d.baseline.heldout_by_measure)
+    md << " " << (in_mm(e.measure) ? e.measure + " (mm)" : with_unit(e.measure)) << " |";
   md << "\n|---|";
   for (size_t m = 0; m < d.baseline.heldout_by_measure.size(); ++m) md << "---|";
   md << "\n";
   auto row = [&](const ModelResult& r) {
     if (!r.tested || r.heldout_by_measure.empty()) return;
     md << "| " << r.id << " |";
-    for (const MeasureError& e : r.heldout_by_measure) md << " " << format_g(e.rms, 4) << " |";
+    for (const MeasureError& e : r.heldout_by_measure)
+      md << " " << format_g(in_mm(e.measure) ? 1000 * e.rms : e.rms, 4) << " |";
     md << "\n";
   };
   row(d.baseline);
@@ -378,7 +382,7 @@ std::string report_markdown(const Observations& obs, const Diagnosis& d, const F
         "|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const ModelResult& r) {
     if (!r.tested) {
-      md << "| " << r.id << " | not tested: " << r.untested_reason << " | | | | | |\n";
+      md << "| " << r.id << " | not tested: " << r.untested_reason << " | | | | | | | |\n";
       return;
     }
     std::string ps;

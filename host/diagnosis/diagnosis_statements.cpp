@@ -204,6 +204,15 @@ void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
       others += (others.empty() ? "" : ", ") + id + " " + num(w, 2);
   out.push_back("Confidence " + num(d.confidence, 2) + ": the Akaike weight of " + named +
                 (others.empty() ? std::string(" (every other model below 0.005)") : " (" + others + ")") + ".");
+  // A baseline outweighed in-sample: say by which candidate, and why it is not named.
+  const ModelResult* heavier = compared_candidate(d);
+  if (d.cause.empty() && heavier && heavier->aic < d.baseline.aic)
+    out.push_back("The baseline's weight is the lower: " + heavier->id + " fits these data better (AIC " +
+                  num(heavier->aic, 4) + " against " + num(d.baseline.aic, 4) + "), but " +
+                  (d.heldout_available ? "predicts held-out conditions no better (" + num(heavier->heldout_gain, 3) +
+                                             " % gain) and its F test gives p = " + num(heavier->p, 2)
+                                       : "its F test gives p = " + num(heavier->p, 2)) +
+                  ": not enough to name it.");
 }
 
 // The pairs of candidates, told apart or not.

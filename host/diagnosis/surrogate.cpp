@@ -25,7 +25,7 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
 
 // The same process for another response over the same design: the hyperparameters, the kernel
 // matrix and its factor are shared, the response standardised and solved again (as
-// fit_gaussian_process does for its own). A series' time points reuse their condition's fit.
+// fit_gaussian_process does for its own).
 calibrate::GaussianProcess with_response(const calibrate::GaussianProcess& shape, const Eigen::VectorXd& y) {
   calibrate::GaussianProcess gp = shape;
   const double n = double(y.size());
@@ -43,8 +43,8 @@ calibrate::GaussianProcess with_response(const calibrate::GaussianProcess& shape
 // Processes for one response per group (`of(point, group)`), each on the residual of a quadratic
 // trend over the design (least squares): a drop's rebound spans a hundred times the data's noise
 // across the cube, and a stationary process fitted to that whole range smooths over what the data
-// resolve. The hyperparameters are fitted once per (condition, measure): on the group whose
-// residual varies most.
+// resolve. The hyperparameters are fitted once per measure (its conditions and a series' times
+// respond alike): on the group whose residual varies most.
 std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eigen::MatrixXd& x,
                                              const std::function<double(size_t, size_t)>& of) {
   const size_t points = size_t(x.rows()), groups = obs.groups.size();
@@ -61,17 +61,17 @@ std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eige
     out[g].coef = qr.solve(y);
     residual[g] = y - design * out[g].coef;
   }
-  std::map<std::pair<size_t, std::string>, size_t> representative;
+  std::map<std::string, size_t> representative;
   for (size_t g = 0; g < groups; ++g) {
-    auto key = std::make_pair(obs.groups[g].condition, obs.groups[g].measure);
+    const std::string& key = obs.groups[g].measure;
     auto it = representative.find(key);
     if (it == representative.end() || residual[g].squaredNorm() > residual[it->second].squaredNorm())
       representative[key] = g;
   }
-  std::map<std::pair<size_t, std::string>, calibrate::GaussianProcess> fitted;
+  std::map<std::string, calibrate::GaussianProcess> fitted;
   for (const auto& [key, g] : representative) fitted[key] = calibrate::fit_gaussian_process(x, residual[g]);
   for (size_t g = 0; g < groups; ++g) {
-    auto key = std::make_pair(obs.groups[g].condition, obs.groups[g].measure);
+    const std::string& key = obs.groups[g].measure;
     out[g].process = representative[key] == g ? fitted[key] : with_response(fitted[key], residual[g]);
   }
   return out;
@@ -90,6 +90,9 @@ ModelSurrogate::ModelSurrogate(Predictor& predictor, const ModelExtension* exten
   stochastic_ = predictor.stochastic(extension, values(std::vector<double>(parameters_.size(), 0.5)));
   // A heap (the expensive, chaotic role): each point its own fills, half the replicates.
   chaotic_ = stochastic_ && predictor.expensive();
+  const Observations& obs = predictor.observations();
+  scatter_scored_ = std::any_of(obs.groups.begin(), obs.groups.end(),
+                                [](const ObservationGroup& g) { return g.sigma_given && g.values.size() >= 2; });
   int r = predictor.simulated_replicates();
   replicates_ = !stochastic_ ? 1 : chaotic_ ? std::max(2, (r + 1) / 2) : r;
 }
@@ -200,7 +203,16 @@ void ModelSurrogate::refit() {
   for (size_t p = 0; p < design_.size(); ++p)
     for (size_t d = 0; d < parameters_.size(); ++d) x(long(p), long(d)) = design_[p][d];
   mean_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return simulated_[p].mean[g]; });
-  if (stochastic_) sd_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return std::sqrt(simulated_[p].var[g]); });
+  if (!stochastic_) return;
+  // The replicate scatter as a surface where the data score it (sigma given), else pooled over the
+  // points (it then weighs only the means' own uncertainty).
+  if (scatter_scored_) {
+    sd_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return std::sqrt(simulated_[p].var[g]); });
+    return;
+  }
+  pooled_var_.assign(obs.groups.size(), 0.0);
+  for (const Prediction& p : simulated_)
+    for (size_t g = 0; g < p.var.size(); ++g) pooled_var_[g] += p.var[g] / double(simulated_.size());
 }
 
 Prediction ModelSurrogate::predict(const std::vector<double>& u) const {
@@ -220,8 +232,8 @@ Prediction ModelSurrogate::predict(const std::vector<double>& u) const {
   int pooled = replicates_ * (chaotic_ ? int(design_.size()) : 1);
   out.mean_var.resize(groups);
   for (size_t g = 0; g < groups; ++g) {
-    double sd = std::max(0.0, sd_[g].mean(at));
-    out.var[g] = sd * sd;
+    double sd = scatter_scored_ ? std::max(0.0, sd_[g].mean(at)) : 0.0;
+    out.var[g] = scatter_scored_ ? sd * sd : pooled_var_[g];
     double latent = mean_[g].process.sd(at);
     out.mean_var[g] = std::max(latent * latent, out.var[g] / pooled);
   }

@@ -72,8 +72,9 @@ class ModelSurrogate {
   void trace_valley(const std::vector<char>& use, int passes);
   // The model simulated at u on every condition, added to the design (an existing point is reused).
   Prediction simulate(const std::vector<double>& u);
-  // The surface at u: the processes' means; for a stochastic model the replicate variance from the
-  // SD surface and each mean's variance from the process's uncertainty.
+  // The surface at u: the processes' means; for a stochastic model the replicate variance (from
+  // the SD surface where the data give sigma, else pooled over the points) and each mean's
+  // variance from the process's uncertainty.
   Prediction predict(const std::vector<double>& u) const;
   // The score's minimum on the surface over the conditions in `use` (against `target`'s
   // predictions instead of the data when given), from the best design points.
@@ -95,13 +96,14 @@ class ModelSurrogate {
   const ModelExtension* extension_;
   std::vector<FreeParameter> parameters_;
   std::function<void(const std::string&)> on_point_;
-  bool stochastic_ = false, chaotic_ = false;
+  bool stochastic_ = false, chaotic_ = false, scatter_scored_ = false;
   int replicates_ = 1;
   std::vector<std::vector<double>> design_;
   std::vector<std::vector<double>> line_;  // the design's line through an extension's start
   std::vector<Prediction> simulated_;
   bool stale_ = true;
-  std::vector<GroupSurface> mean_, sd_;  // per group
+  std::vector<GroupSurface> mean_, sd_;  // per group; sd_ only where the data score the scatter
+  std::vector<double> pooled_var_;        // per group: the points' replicate variance, pooled
 };
 
 }  // namespace repose
