@@ -33,12 +33,12 @@ std::vector<double> design_start(const ModelSurrogate& s, const ModelResult* bas
   return u;
 }
 
-// Each condition predicted by a fit on the surface to the others: simulated there, or read from
-// the surface for a candidate dropped early. A model without parameters predicts it as fitted.
+// Each condition predicted by a fit on the surface to the others: simulated there; for a chaotic
+// model then read from the surface through that point (it pools the neighbouring points' fills: a
+// point's own few fills are noisier), as for a candidate dropped early.
 Prediction held_out(DiagnosisContext& c, ModelSurrogate& s, bool from_surface, const Prediction& full) {
   const Observations& obs = c.obs;
   Prediction held = full;
-  if (s.parameters().empty()) return held;
   held.mean_var.assign(obs.groups.size(), 0.0);
   for (size_t g = 0; g < obs.groups.size(); ++g) held.mean_var[g] = full.variance_of_mean(g);
   for (size_t k = 0; k < obs.conditions.size(); ++k) {
@@ -46,7 +46,7 @@ Prediction held_out(DiagnosisContext& c, ModelSurrogate& s, bool from_surface, c
     use[k] = 0;
     SurfaceMinimum m = from_surface ? s.minimise(use) : s.fit(use, nullptr, 2);
     Prediction p = from_surface ? m.prediction : s.simulate(m.u);
-    if (getenv("DBG_SUR")) { fprintf(stderr, "DBG LOO %zu:", k); for (double x : s.values(m.u)) fprintf(stderr, " %g", x); fprintf(stderr, " surf %g sim %g\n", m.score, chi_square(obs, p, use)); }
+    if (!from_surface && s.chaotic()) p = s.surface(m.u);
     for (size_t g = 0; g < obs.groups.size(); ++g)
       if (obs.groups[g].condition == k) {
         held.mean[g] = p.mean[g];
@@ -167,7 +167,7 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
   s.trace_valley(all, kValleyPasses);
   SurfaceMinimum full = s.fit(all, nullptr, kRefinePoints);
   r.dropped_early = baseline && clearly_worse(c, full.score, *baseline, r.k);
-  Prediction held = c.heldout_available ? held_out(c, s, r.dropped_early, full.prediction) : Prediction{};
+  Prediction held = c.heldout_available && r.k > 0 ? held_out(c, s, r.dropped_early, full.prediction) : Prediction{};
   if (!r.dropped_early) full = s.fit(all, nullptr, 2);  // the held-out points refine the surface
   r.params = s.values(full.u);
   // A smooth model's fit is simulated where it lies; a chaotic one's is the surface's.
@@ -185,7 +185,8 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
     for (size_t g = 0; g < obs.groups.size(); ++g)
       r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + r.prediction.var[g]));
   r.aic = r.chi2 + 2.0 * r.k;
-  if (c.heldout_available) score_held_out(obs, held, r);
+  // A model without parameters predicts a left-out condition as it predicts every condition.
+  if (c.heldout_available) score_held_out(obs, r.k > 0 ? held : r.prediction, r);
   r.at_bound = parameters_at_bound(r, baseline ? baseline->k : r.k);
   r.points = int(s.points());
   return r;

@@ -43,26 +43,34 @@ calibrate::GaussianProcess with_response(const calibrate::GaussianProcess& shape
 // Processes for one response per group (`of(point, group)`), each on the residual of a quadratic
 // trend over the design (least squares): a drop's rebound spans a hundred times the data's noise
 // across the cube, and a stationary process fitted to that whole range smooths over what the data
-// resolve. The hyperparameters are fitted once per measure (its conditions and a series' times
-// respond alike): on the group whose residual varies most.
+// resolve. A residual that varies no more than twice a point's own noise (`noise`, a chaotic
+// model's variance of a point's mean) is that noise: the surface is then the trend alone, which a
+// process would only bend through the points' luck. The hyperparameters are fitted once per
+// measure (its conditions and a series' times respond alike): on the group whose residual varies
+// most.
 std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eigen::MatrixXd& x,
-                                             const std::function<double(size_t, size_t)>& of) {
+                                             const std::function<double(size_t, size_t)>& of,
+                                             const std::vector<double>& noise) {
   const size_t points = size_t(x.rows()), groups = obs.groups.size();
   std::vector<stats::Term> trend = stats::build_model(stats::ModelKind::quadratic, int(x.cols()));
   if (points < trend.size() + 2) trend = stats::build_model(stats::ModelKind::mean, int(x.cols()));
   Eigen::MatrixXd design = stats::model_matrix(trend, x);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(design);
+  const double dof = double(points - trend.size());
   std::vector<GroupSurface> out(groups);
   std::vector<Eigen::VectorXd> residual(groups);
+  std::map<std::string, size_t> representative;
   for (size_t g = 0; g < groups; ++g) {
     Eigen::VectorXd y = Eigen::VectorXd::Zero(long(points));
     for (size_t p = 0; p < points; ++p) y[long(p)] = of(p, g);
     out[g].trend = trend;
     out[g].coef = qr.solve(y);
     residual[g] = y - design * out[g].coef;
-  }
-  std::map<std::string, size_t> representative;
-  for (size_t g = 0; g < groups; ++g) {
+    if (!noise.empty()) {
+      out[g].has_process = residual[g].squaredNorm() / dof > 2 * noise[g];
+      out[g].trend_variance = noise[g] * double(trend.size()) / double(points);
+    }
+    if (!out[g].has_process) continue;
     const std::string& key = obs.groups[g].measure;
     auto it = representative.find(key);
     if (it == representative.end() || residual[g].squaredNorm() > residual[it->second].squaredNorm())
@@ -71,6 +79,7 @@ std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eige
   std::map<std::string, calibrate::GaussianProcess> fitted;
   for (const auto& [key, g] : representative) fitted[key] = calibrate::fit_gaussian_process(x, residual[g]);
   for (size_t g = 0; g < groups; ++g) {
+    if (!out[g].has_process) continue;
     const std::string& key = obs.groups[g].measure;
     out[g].process = representative[key] == g ? fitted[key] : with_response(fitted[key], residual[g]);
   }
@@ -78,9 +87,15 @@ std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eige
 }
 
 double GroupSurface::mean(const Eigen::VectorXd& at) const {
-  double m = process.mean(at);
+  double m = has_process ? process.mean(at) : 0.0;
   for (size_t t = 0; t < trend.size(); ++t) m += coef[long(t)] * stats::term_value(trend[t], at.data());
   return m;
+}
+
+double GroupSurface::latent_variance(const Eigen::VectorXd& at) const {
+  if (!has_process) return trend_variance;
+  double sd = process.sd(at);
+  return sd * sd;
 }
 
 ModelSurrogate::ModelSurrogate(Predictor& predictor, const ModelExtension* extension,
@@ -202,17 +217,18 @@ void ModelSurrogate::refit() {
   Eigen::MatrixXd x(long(design_.size()), long(parameters_.size()));
   for (size_t p = 0; p < design_.size(); ++p)
     for (size_t d = 0; d < parameters_.size(); ++d) x(long(p), long(d)) = design_[p][d];
-  mean_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return simulated_[p].mean[g]; });
-  if (!stochastic_) return;
-  // The replicate scatter as a surface where the data score it (sigma given), else pooled over the
-  // points (it then weighs only the means' own uncertainty).
-  if (scatter_scored_) {
-    sd_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return std::sqrt(simulated_[p].var[g]); });
-    return;
-  }
   pooled_var_.assign(obs.groups.size(), 0.0);
   for (const Prediction& p : simulated_)
     for (size_t g = 0; g < p.var.size(); ++g) pooled_var_[g] += p.var[g] / double(simulated_.size());
+  // A chaotic model's point mean carries its replicates' scatter: the noise a surface must not follow.
+  std::vector<double> noise;
+  if (chaotic_)
+    for (double v : pooled_var_) noise.push_back(v / replicates_);
+  mean_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return simulated_[p].mean[g]; }, noise);
+  // The replicate scatter as a surface where the data score it (sigma given), else pooled over the
+  // points (it then weighs only the means' own uncertainty).
+  if (stochastic_ && scatter_scored_)
+    sd_ = fit_group_surfaces(obs, x, [&](size_t p, size_t g) { return std::sqrt(simulated_[p].var[g]); }, {});
 }
 
 Prediction ModelSurrogate::predict(const std::vector<double>& u) const {
@@ -234,10 +250,14 @@ Prediction ModelSurrogate::predict(const std::vector<double>& u) const {
   for (size_t g = 0; g < groups; ++g) {
     double sd = scatter_scored_ ? std::max(0.0, sd_[g].mean(at)) : 0.0;
     out.var[g] = scatter_scored_ ? sd * sd : pooled_var_[g];
-    double latent = mean_[g].process.sd(at);
-    out.mean_var[g] = std::max(latent * latent, out.var[g] / pooled);
+    out.mean_var[g] = std::max(mean_[g].latent_variance(at), out.var[g] / pooled);
   }
   return out;
+}
+
+Prediction ModelSurrogate::surface(const std::vector<double>& u) {
+  refit();
+  return predict(u);
 }
 
 SurfaceMinimum ModelSurrogate::minimise(const std::vector<char>& use, const Prediction* target) {

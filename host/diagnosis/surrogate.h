@@ -30,17 +30,23 @@ struct SurfaceMinimum {
   Prediction prediction;     // at u: simulated when `simulated`, else the surface's
 };
 
-// One group's surface: a quadratic trend over the unit cube plus a Gaussian process on its residual.
+// One group's surface: a quadratic trend over the unit cube plus a Gaussian process on its residual
+// (none where the residual is the points' own noise).
 struct GroupSurface {
   std::vector<stats::Term> trend;
   Eigen::VectorXd coef;
+  bool has_process = true;
   calibrate::GaussianProcess process;
+  double trend_variance = 0;  // without a process: the trend's own variance at a point
   double mean(const Eigen::VectorXd& at) const;
+  double latent_variance(const Eigen::VectorXd& at) const;  // of the mean's estimate
 };
 
-// Surfaces for one response per group, `of(point, group)` over the design `x` (points x parameters).
+// Surfaces for one response per group, `of(point, group)` over the design `x` (points x
+// parameters); `noise` (empty for a smooth model) the variance of a point's value per group.
 std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eigen::MatrixXd& x,
-                                             const std::function<double(size_t, size_t)>& of);
+                                             const std::function<double(size_t, size_t)>& of,
+                                             const std::vector<double>& noise);
 
 class ModelSurrogate {
  public:
@@ -76,6 +82,8 @@ class ModelSurrogate {
   // the SD surface where the data give sigma, else pooled over the points) and each mean's
   // variance from the process's uncertainty.
   Prediction predict(const std::vector<double>& u) const;
+  // The same through every point simulated so far (refitted first when points were added).
+  Prediction surface(const std::vector<double>& u);
   // The score's minimum on the surface over the conditions in `use` (against `target`'s
   // predictions instead of the data when given), from the best design points.
   SurfaceMinimum minimise(const std::vector<char>& use, const Prediction* target = nullptr);
