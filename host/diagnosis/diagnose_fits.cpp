@@ -12,7 +12,9 @@ namespace repose {
 
 namespace {
 
-constexpr int kRefinePoints = 6;       // points a fit may add where its minimum lies
+// Points a fit may add where its minimum lies: a smooth model's cost a drop each, a chaotic one's
+// surface is noise-limited after a few.
+int refine_points(const ModelSurrogate& s) { return s.chaotic() ? 4 : 8; }
 constexpr int kValleyPasses = 3;       // passes along an extension's valley (surrogate.h)
 constexpr double kOnBound = 0.005;     // of a parameter's range: a fit this near an end is on it
 constexpr double kBentParameter = 0.25;  // of its range: how far a strained baseline moved a parameter
@@ -36,15 +38,15 @@ std::vector<double> design_start(const ModelSurrogate& s, const ModelResult* bas
 // Each condition predicted by a fit on the surface to the others: simulated there; for a chaotic
 // model then read from the surface through that point (it pools the neighbouring points' fills: a
 // point's own few fills are noisier), as for a candidate dropped early.
-Prediction held_out(DiagnosisContext& c, ModelSurrogate& s, bool from_surface, const Prediction& full) {
+Prediction held_out(DiagnosisContext& c, ModelSurrogate& s, bool from_surface, const SurfaceMinimum& full) {
   const Observations& obs = c.obs;
-  Prediction held = full;
+  Prediction held = full.prediction;
   held.mean_var.assign(obs.groups.size(), 0.0);
-  for (size_t g = 0; g < obs.groups.size(); ++g) held.mean_var[g] = full.variance_of_mean(g);
+  for (size_t g = 0; g < obs.groups.size(); ++g) held.mean_var[g] = full.prediction.variance_of_mean(g);
   for (size_t k = 0; k < obs.conditions.size(); ++k) {
     std::vector<char> use(obs.conditions.size(), 1);
     use[k] = 0;
-    SurfaceMinimum m = from_surface ? s.minimise(use) : s.fit(use, nullptr, 2);
+    SurfaceMinimum m = from_surface ? s.minimise(use) : s.fit(use, nullptr, 2, full.u);
     Prediction p = from_surface ? m.prediction : s.simulate(m.u);
     if (!from_surface && s.chaotic()) p = s.surface(m.u);
     for (size_t g = 0; g < obs.groups.size(); ++g)
@@ -165,9 +167,9 @@ ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, con
   s.simulate_design(design_start(s, baseline));
   std::vector<char> all(obs.conditions.size(), 1);
   s.trace_valley(all, kValleyPasses);
-  SurfaceMinimum full = s.fit(all, nullptr, kRefinePoints);
+  SurfaceMinimum full = s.fit(all, nullptr, refine_points(s));
   r.dropped_early = baseline && clearly_worse(c, full.score, *baseline, r.k);
-  Prediction held = c.heldout_available && r.k > 0 ? held_out(c, s, r.dropped_early, full.prediction) : Prediction{};
+  Prediction held = c.heldout_available && r.k > 0 ? held_out(c, s, r.dropped_early, full) : Prediction{};
   if (!r.dropped_early) full = s.fit(all, nullptr, 2);  // the held-out points refine the surface
   r.params = s.values(full.u);
   // A smooth model's fit is simulated where it lies; a chaotic one's is the surface's.

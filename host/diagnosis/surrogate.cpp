@@ -16,6 +16,7 @@ namespace {
 constexpr double kSamePoint = 1e-6;      // unit-cube distance below which two points are one
 constexpr double kChaoticNear = 0.05;     // a chaotic fit's minimum this near a point: converged
 constexpr double kConverged = 0.002;      // a smooth fit's minimum moving less than this: converged
+constexpr double kNearRadius = 0.1;       // a fit started near a known minimum searches this far first
 
 double distance(const std::vector<double>& a, const std::vector<double>& b) {
   double d = 0;
@@ -120,21 +121,23 @@ std::vector<double> ModelSurrogate::values(const std::vector<double>& u) const {
 
 namespace {
 
-// Design sizes: a grid of `grid` steps per axis over the whole cube and, for an extension, a line of
-// `line` steps along its own parameters through the baseline's values (where its effect must be
-// resolved against the baseline's, however steep the baseline's own response is).
+// Design sizes: a grid of `kGridSteps` steps per axis over the whole cube (one parameter: 6) and,
+// for an extension, a line of `kLineSteps` steps along its own parameters through the baseline's
+// values (where its effect must be resolved against the baseline's, however steep the baseline's
+// own response is).
 int grid_steps(size_t k) { return k == 1 ? 6 : 2; }
-int line_steps(bool noisy) { return noisy ? 4 : 6; }
+constexpr int kLineSteps = 4;
 
 }  // namespace
 
-int ModelSurrogate::planned_points(size_t k, size_t conditions, bool noisy) {
+int ModelSurrogate::planned_points(size_t k, size_t conditions, bool chaotic) {
   if (k == 0) return 1;
   int grid = 1;
   for (size_t d = 0; d < k; ++d) grid *= grid_steps(k) + 1;
-  int line = k > 1 ? line_steps(noisy) + 1 : 0;
-  int valley = k > 1 ? (noisy ? 1 : 2) * line : 0;  // passes that usually suffice
-  return grid + line + valley + (noisy ? 3 : 4) + (conditions >= 3 ? int(conditions) : 0);  // refinement, held out
+  int line = k > 1 ? kLineSteps + 1 : 0;
+  int valley = k > 1 ? (chaotic ? 1 : 2) * line : 0;  // the passes that usually suffice
+  int refine = chaotic ? 3 : 5, held_out = conditions >= 3 ? int(conditions) : 0;
+  return grid + line + valley + refine + held_out;
 }
 
 void ModelSurrogate::simulate_design(const std::vector<double>& near) {
@@ -156,9 +159,9 @@ void ModelSurrogate::simulate_design(const std::vector<double>& near) {
   // The line: the baseline's values held, each of the extension's own parameters over its range.
   size_t held = predictor_.parameters(nullptr).size();
   for (size_t d = held; d < k; ++d)
-    for (int j = 0; j <= line_steps(chaotic_); ++j) {
+    for (int j = 0; j <= kLineSteps; ++j) {
       std::vector<double> u = near;
-      u[d] = double(j) / line_steps(chaotic_);
+      u[d] = double(j) / kLineSteps;
       line_.push_back(u);
       simulate(u);
     }
@@ -170,16 +173,16 @@ void ModelSurrogate::trace_valley(const std::vector<char>& use, int passes) {
   if (line_.empty() || held == 0) return;
   std::vector<size_t> dims(held);
   for (size_t d = 0; d < held; ++d) dims[d] = d;
+  std::vector<std::vector<double>> starts = line_;  // each pass from the last pass's valley
   for (int pass = 0; pass < passes; ++pass) {
     refit();
     // Along the line the baseline's parameters refitted on the surface, the extension's held.
     std::vector<std::pair<std::vector<double>, double>> valley;
-    for (const std::vector<double>& point : line_) {
-      stats::UnitObjective objective = [&](const std::vector<double>& u) {
-        return chi_square(obs, predict(u), use);
-      };
-      stats::UnitMinimum m = stats::nelder_mead(objective, point, dims, 0.05, 100, 1e-5);
+    stats::UnitObjective objective = [&](const std::vector<double>& u) { return chi_square(obs, predict(u), use); };
+    for (std::vector<double>& start : starts) {
+      stats::UnitMinimum m = stats::nelder_mead(objective, start, dims, 0.05, 100, 1e-5);
       valley.push_back({m.x, m.value});
+      start = m.x;
     }
     bool agreed = true;
     for (const auto& [u, surface] : valley) {
@@ -261,6 +264,11 @@ Prediction ModelSurrogate::surface(const std::vector<double>& u) {
 }
 
 SurfaceMinimum ModelSurrogate::minimise(const std::vector<char>& use, const Prediction* target) {
+  return minimise_within(use, target, {}, 1.0);
+}
+
+SurfaceMinimum ModelSurrogate::minimise_within(const std::vector<char>& use, const Prediction* target,
+                                               const std::vector<double>& centre, double radius) {
   const Observations& obs = predictor_.observations();
   SurfaceMinimum best;
   if (parameters_.empty()) {
@@ -270,58 +278,105 @@ SurfaceMinimum ModelSurrogate::minimise(const std::vector<char>& use, const Pred
     return best;
   }
   refit();
-  stats::UnitObjective objective = [&](const std::vector<double>& u) {
-    return chi_square(obs, predict(u), use, target);
+  const size_t k = parameters_.size();
+  // The box searched, [centre - radius, centre + radius] within the cube (the whole cube without
+  // a centre); the search runs in its own unit cube.
+  std::vector<double> lo(k, 0.0), hi(k, 1.0);
+  for (size_t d = 0; d < k && !centre.empty(); ++d) {
+    lo[d] = std::max(0.0, centre[d] - radius);
+    hi[d] = std::min(1.0, centre[d] + radius);
+  }
+  auto in_box = [&](const std::vector<double>& v) {
+    std::vector<double> u(k);
+    for (size_t d = 0; d < k; ++d) u[d] = lo[d] + std::clamp(v[d], 0.0, 1.0) * (hi[d] - lo[d]);
+    return u;
   };
-  // Starts: the three design points the surface scores best.
-  std::vector<std::pair<double, size_t>> ranked;
-  for (size_t p = 0; p < design_.size(); ++p) ranked.push_back({objective(design_[p]), p});
-  std::sort(ranked.begin(), ranked.end());
-  std::vector<size_t> dims(parameters_.size());
-  for (size_t d = 0; d < dims.size(); ++d) dims[d] = d;
+  auto to_box = [&](const std::vector<double>& u) {
+    std::vector<double> v(k);
+    for (size_t d = 0; d < k; ++d) v[d] = hi[d] > lo[d] ? std::clamp((u[d] - lo[d]) / (hi[d] - lo[d]), 0.0, 1.0) : 0.0;
+    return v;
+  };
+  stats::UnitObjective objective = [&](const std::vector<double>& v) {
+    return chi_square(obs, predict(in_box(v)), use, target);
+  };
+  // Starts: the centre, else the three design points the surface scores best and, for a smooth
+  // model, the one the simulations score best (the surface may be wrong there).
+  std::vector<std::vector<double>> starts;
+  if (!centre.empty()) {
+    starts.push_back(centre);
+  } else {
+    std::vector<std::pair<double, size_t>> ranked;
+    for (size_t p = 0; p < design_.size(); ++p) ranked.push_back({objective(to_box(design_[p])), p});
+    std::sort(ranked.begin(), ranked.end());
+    for (size_t s = 0; s < std::min<size_t>(3, ranked.size()); ++s) starts.push_back(design_[ranked[s].second]);
+    if (!chaotic_) starts.push_back(design_[best_simulated(use, target)]);
+  }
+  std::vector<size_t> dims(k);
+  for (size_t d = 0; d < k; ++d) dims[d] = d;
   best.score = std::numeric_limits<double>::infinity();
-  for (size_t s = 0; s < std::min<size_t>(3, ranked.size()); ++s) {
-    stats::UnitMinimum m = stats::nelder_mead(objective, design_[ranked[s].second], dims, 0.05, 200, 1e-5);
+  for (const auto& start : starts) {
+    stats::UnitMinimum m = stats::nelder_mead(objective, to_box(start), dims, 0.05, 200, 1e-5);
     if (m.value < best.score) {
       best.score = m.value;
-      best.u = m.x;
+      best.u = in_box(m.x);
     }
   }
   best.prediction = predict(best.u);
   return best;
 }
 
-SurfaceMinimum ModelSurrogate::fit(const std::vector<char>& use, const Prediction* target, int new_points) {
+size_t ModelSurrogate::best_simulated(const std::vector<char>& use, const Prediction* target) const {
   const Observations& obs = predictor_.observations();
+  size_t best = 0;
+  double score = std::numeric_limits<double>::infinity();
+  for (size_t p = 0; p < design_.size(); ++p) {
+    double exact = chi_square(obs, simulated_[p], use, target);
+    if (exact < score) {
+      score = exact;
+      best = p;
+    }
+  }
+  return best;
+}
+
+SurfaceMinimum ModelSurrogate::fit(const std::vector<char>& use, const Prediction* target, int new_points,
+                                   const std::vector<double>& near) {
+  if (chaotic_ || parameters_.empty()) return fit_chaotic(use, target, new_points);
+  const Observations& obs = predictor_.observations();
+  // A trust region around the best simulated point: the surface's minimum in the region is
+  // simulated; a better point moves the region there (and widens it where the surface agreed),
+  // a worse one halves it. The first step searches the whole cube, or near `near`.
+  double radius = near.empty() ? 0.25 : kNearRadius;
+  SurfaceMinimum m = near.empty() ? minimise(use, target) : minimise_within(use, target, near, radius);
+  for (int added = 0; added < new_points && radius > kConverged; ++added) {
+    size_t incumbent = best_simulated(use, target);
+    double before = chi_square(obs, simulated_[incumbent], use, target);
+    Prediction at = simulate(m.u);
+    double exact = chi_square(obs, at, use, target);
+    bool agreed = std::abs(exact - m.score) <= std::max(0.05, 0.005 * exact);
+    bool moved = distance(m.u, design_[incumbent]) >= kConverged;
+    if (agreed && !moved) break;  // the surface's minimum is the best point, and it is exact there
+    if (exact < before) radius = agreed ? std::min(0.5, 2 * radius) : radius;
+    else radius /= 2;
+    m = minimise_within(use, target, design_[best_simulated(use, target)], radius);
+  }
+  // The result is the best simulated point: a smooth model's points are exact.
+  size_t best = best_simulated(use, target);
+  m.u = design_[best];
+  m.prediction = simulated_[best];
+  m.score = chi_square(obs, m.prediction, use, target);
+  m.simulated = true;
+  return m;
+}
+
+SurfaceMinimum ModelSurrogate::fit_chaotic(const std::vector<char>& use, const Prediction* target, int new_points) {
   SurfaceMinimum m = minimise(use, target);
   for (int added = 0; added < new_points && !m.simulated; ++added) {
     double nearest = std::numeric_limits<double>::infinity();
     for (const auto& p : design_) nearest = std::min(nearest, distance(p, m.u));
-    if (chaotic_ && nearest < kChaoticNear) break;
-    Prediction at = simulate(m.u);
-    double exact = chi_square(obs, at, use, target);
-    SurfaceMinimum next = minimise(use, target);
-    // Converged: the simulation agrees with the surface, and the surface refitted with it keeps
-    // its minimum there.
-    if (!chaotic_ && std::abs(exact - m.score) <= std::max(0.05, 0.005 * exact) &&
-        distance(next.u, m.u) < kConverged) {
-      m.score = exact;
-      m.prediction = at;
-      m.simulated = true;
-      break;
-    }
-    m = next;
-  }
-  if (chaotic_ || parameters_.empty()) return m;
-  // A smooth model's simulated points are exact: none may beat what the fit returns.
-  for (size_t p = 0; p < design_.size(); ++p) {
-    double exact = chi_square(obs, simulated_[p], use, target);
-    if (exact < m.score - 1e-9 || (!m.simulated && exact <= m.score)) {
-      m.u = design_[p];
-      m.score = exact;
-      m.prediction = simulated_[p];
-      m.simulated = true;
-    }
+    if (nearest < kChaoticNear) break;
+    simulate(m.u);
+    m = minimise(use, target);
   }
   return m;
 }

@@ -1,11 +1,12 @@
 // A model's predictions as smooth functions of its parameters, so that a diagnosis fits on a
 // surface instead of simulating every trial (docs/diagnosis.md, "Fits on a surrogate"). The model
 // is simulated at a design of points in the unit cube of its parameters, every condition at each
-// point; each group's mean (and, for a stochastic model, its replicate SD) over the points is
-// interpolated by a Gaussian process (calibrate/gaussian_process.h, the calibration's surrogate).
-// A fit minimises the score (model_fit.h) on that surface and simulates where the minimum lies,
-// until the surface agrees with the simulation there; the leave-one-condition-out refits and the
-// mimic tests reuse the same points.
+// point; each group's mean (and, where the data give sigma, a stochastic model's replicate SD)
+// over the points is a quadratic trend plus a Gaussian process on its residual
+// (calibrate/gaussian_process.h, the calibration's surrogate). A fit minimises the score
+// (model_fit.h) on that surface and simulates where the minimum lies, in a trust region, until the
+// surface agrees with the simulation there; the leave-one-condition-out refits and the mimic tests
+// reuse the same points.
 //
 // A heap is chaotic: any parameter change redraws every fill's outcome, so each design point is
 // filled with fills of its own (the surface pools their luck instead of keeping one set's) and
@@ -63,11 +64,10 @@ class ModelSurrogate {
   size_t points() const { return design_.size(); }
 
   // Simulates the initial design: a grid over the unit cube (7 points for one parameter, 3 x 3 for
-  // two) and, given `near` (an
-  // extension's start: the baseline's fitted values, the extension off), a line through it along
-  // the extension's own parameters (7 points, 5 for a chaotic model): there the extension's
-  // effect must be resolved against the baseline's response, which elsewhere may change a
-  // hundred times as much across the cube. A model without parameters is simulated once.
+  // two) and, given `near` (an extension's start: the baseline's fitted values, the extension
+  // off), a line of 5 points through it along the extension's own parameters: there the
+  // extension's effect must be resolved against the baseline's response, which elsewhere may
+  // change a hundred times as much across the cube. A model without parameters is simulated once.
   void simulate_design(const std::vector<double>& near = {});
   // An extension's valley: where its parameters trade off against the baseline's (a cohesion
   // absorbed by a higher restitution), the score's minimum is a narrow valley no coarse grid
@@ -85,21 +85,30 @@ class ModelSurrogate {
   // The same through every point simulated so far (refitted first when points were added).
   Prediction surface(const std::vector<double>& u);
   // The score's minimum on the surface over the conditions in `use` (against `target`'s
-  // predictions instead of the data when given), from the best design points.
+  // predictions instead of the data when given), from the three design points the surface scores
+  // best and, for a smooth model, the one the simulations score best.
   SurfaceMinimum minimise(const std::vector<char>& use, const Prediction* target = nullptr);
-  // minimise(), then the model simulated at the minimum and the surface refitted, until the
-  // simulation agrees with the surface and the refitted surface keeps its minimum there (a smooth
-  // model: within 0.05 in chi^2 or 0.5 %, and 0.002 of the cube) or the minimum falls within 0.05
-  // of a simulated point (a chaotic one), at most `new_points` times. A smooth model's result is
-  // then the simulated point that scores best; a chaotic one's the surface's minimum.
-  SurfaceMinimum fit(const std::vector<char>& use, const Prediction* target, int new_points);
+  // A fit with at most `new_points` simulated. A smooth model: a trust region around the best
+  // simulated point (the first step over the whole cube), its surface minimum simulated, the region
+  // moved to a better point (and doubled where the surface agreed, within 0.05 in chi^2 or 0.5 %)
+  // or halved, until the surface's minimum is the best point and agrees there; the result is the
+  // best simulated point, exact. Given `near` (a held-out refit starts at the full fit), the first
+  // region lies within 0.1 of it. A chaotic model: the surface's minimum, simulated and the
+  // surface refitted until it falls within 0.05 of a simulated point; the result is the surface's
+  // minimum.
+  SurfaceMinimum fit(const std::vector<char>& use, const Prediction* target, int new_points,
+                     const std::vector<double>& near = {});
 
   // Points the design and the fits of a model with `k` parameters plan for (the progress's
   // estimate): the design, the refinement and the held-out refits.
-  static int planned_points(size_t k, size_t conditions, bool stochastic);
+  static int planned_points(size_t k, size_t conditions, bool chaotic);
 
  private:
   void refit();
+  SurfaceMinimum minimise_within(const std::vector<char>& use, const Prediction* target,
+                                 const std::vector<double>& centre, double radius);
+  size_t best_simulated(const std::vector<char>& use, const Prediction* target) const;
+  SurfaceMinimum fit_chaotic(const std::vector<char>& use, const Prediction* target, int new_points);
   Predictor& predictor_;
   const ModelExtension* extension_;
   std::vector<FreeParameter> parameters_;
