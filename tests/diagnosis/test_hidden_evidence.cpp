@@ -19,6 +19,21 @@ double row_time(const std::string& row) {
   return t.empty() ? -1 : std::stod(t);
 }
 
+// Cabbage drops at five heights, five replicates with 1 mm noise (test_hidden_effects.cpp's design).
+SyntheticTruth cabbage_truth(uint64_t seed) {
+  SyntheticTruth truth;
+  truth.case_path = case_path("cabbage_drop");
+  truth.heights = kHeights;
+  truth.seed = seed;
+  return truth;
+}
+
+DiagnoseOptions only(const std::string& candidate) {
+  DiagnoseOptions options;
+  options.candidates = {candidate};
+  return options;
+}
+
 const MeasureError& measure_error(const ModelResult& r, const std::string& measure) {
   for (const auto& e : r.heldout_by_measure)
     if (e.measure == measure) return e;
@@ -36,14 +51,11 @@ TEST_CASE("an effect in one of two measures: the gain is measured there, positiv
   // first scalar measure's alone; now each measure's is reported and the verdict's gain is over
   // both in standard errors. Measured (this draw): rebound_height 2.09 -> 0.20 mm (91 % less),
   // height 0.397 -> 0.397 mm (0 %), over both 3.14 -> 0.67 standard errors (79 %).
-  SyntheticTruth truth;
-  truth.case_path = case_path("cabbage_drop");
+  SyntheticTruth truth = cabbage_truth(41);
   truth.restitution = 0.9;
   truth.extension = "restitution_velocity";
   truth.extension_params = {1.5e-3};
-  truth.heights = kHeights;
   truth.series_dt = 0.02;
-  truth.seed = 41;
   Diagnosis d = diagnose_hidden("evidence_two_measures", truth, nullptr, {},
                                 [](const std::string& row) { return row_time(row) <= 0.2; });
   INFO(summary(d));
@@ -70,15 +82,10 @@ TEST_CASE("a modest signal (F test p between 1 and 5 %, a large held-out gain) i
   // Cohesion of 3e4 J/m^3 hidden in cabbage drops, below where drops name it at 1 % (docs:
   // 5e4 gives p = 0.035): the issue's run B in miniature. Measured (this draw): F test p = 0.024,
   // 42 % less held-out error, cohesion's Akaike weight 0.88: `ambiguous`, cohesion named.
-  SyntheticTruth truth;
-  truth.case_path = case_path("cabbage_drop");
+  SyntheticTruth truth = cabbage_truth(34);
   truth.extension = "cohesion";
   truth.extension_params = {3e4};
-  truth.heights = kHeights;
-  truth.seed = 34;
-  DiagnoseOptions options;
-  options.candidates = {"cohesion"};
-  Diagnosis d = diagnose_hidden("evidence_modest", truth, nullptr, options);
+  Diagnosis d = diagnose_hidden("evidence_modest", truth, nullptr, only("cohesion"));
   INFO(summary(d));
   const ModelResult& cohesion = candidate(d, "cohesion");
   // The scenario's premise: a modest F test and a large held-out gain.
@@ -97,14 +104,9 @@ TEST_CASE("a modest signal (F test p between 1 and 5 %, a large held-out gain) i
 TEST_CASE("a baseline fitted on a bound of its range is reported as evidence and as no calibration",
           "[diagnosis][hidden]") {
   // A restitution of 0.97 hidden in cabbage drops: the baseline's search range ends at 0.95.
-  SyntheticTruth truth;
-  truth.case_path = case_path("cabbage_drop");
+  SyntheticTruth truth = cabbage_truth(43);
   truth.restitution = 0.97;
-  truth.heights = kHeights;
-  truth.seed = 43;
-  DiagnoseOptions options;
-  options.candidates = {"air_drag"};
-  Diagnosis d = diagnose_hidden("evidence_bound", truth, nullptr, options);
+  Diagnosis d = diagnose_hidden("evidence_bound", truth, nullptr, only("air_drag"));
   INFO(summary(d));
   REQUIRE(d.baseline.at_bound.size() == 1);
   CHECK(d.baseline.at_bound[0].parameter == "restitution");
