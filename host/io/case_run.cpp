@@ -11,6 +11,7 @@
 #include "case/case_loader.h"
 #include "engine/backend_factory.h"
 #include "engine/escape_check.h"
+#include "engine/memory_need.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "io/output_dir.h"
@@ -166,12 +167,21 @@ int finish_run(const Simulation& sim, RunOutput& output, RunInfo& info, const Ca
 
 }  // namespace
 
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& o) {
   // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
   Model model = build_model(spec);
+  // The model holds the particles now: the case's own copies (~200 B each) are let go.
+  std::vector<SphereSpec>().swap(spec.spheres);
+  std::vector<BodySpec>().swap(spec.bodies);
   KernelVariant variant = o.variant.empty() ? KernelVariant::fastest_for(o.backend, model) : KernelVariant::parse(o.variant);
   StartPoint start = read_restart(o.restart, model);
   Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
+
+  // The memory it needs fits (or the run is refused), before anything is written.
+  uint32_t restart_capacity = start.restarting ? restored_capacity(model, start.state) : 0;
+  MemoryNeed need = check_run_memory(model, variant, schedule.batch, o.backend, o.device,
+                                     model.vtk && schedule.frame_every > 0, restart_capacity);
+  if (!o.quiet) std::fprintf(stderr, "%s: memory: %s\n", spec.name.c_str(), describe_memory_need(need).c_str());
 
   // Every path is usable before the first step.
   std::string dir = o.out_dir.empty() ? "out/" + spec.name : o.out_dir;

@@ -34,6 +34,7 @@ struct CaseRunOptions {
 
 // Returns the exit code: 0 when the run finished, 128 + the signal when one stopped it. Throws
 // OutputError for an unusable folder or file, std::runtime_error for a state that does not fit.
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& options);
+// The case is taken by value: its particles are let go once the model holds them.
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& options);
 
 }  // namespace repose

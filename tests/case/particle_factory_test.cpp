@@ -189,7 +189,7 @@ TEST_CASE("200,000 spheres fill in seconds, overlap-free") {
   REQUIRE(spheres.size() == 200000);
   CHECK(seconds < 10);
   // Overlap check of all of them through an independent grid pass.
-  SphereGrid grid(0.01);
+  SphereGrid grid(0.01, fill.box_min, fill.box_max, spheres.size());
   int overlaps = 0;
   for (const SphereSpec& s : spheres) {
     overlaps += grid.find_overlap(s.position, s.radius) >= 0;
