@@ -30,6 +30,18 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// Wall and processor seconds of a part of the setup (the processor's is the figure to compare on
+// a shared machine).
+struct Stopwatch {
+  Clock::time_point wall = Clock::now();
+  std::clock_t cpu = std::clock();
+  std::string text() const {
+    char t[64];
+    std::snprintf(t, sizeof t, "%.3g s (%.3g cpu s)", seconds_since(wall), double(std::clock() - cpu) / CLOCKS_PER_SEC);
+    return t;
+  }
+};
+
 // The model after `settle` simulated seconds on the cpu backend, run once and cached in
 // `cache` (a state file); with settle 0 the model as the case starts, nothing cached.
 Model settled_bench_model(Model model, double settle, unsigned threads, const std::string& cache, double& energy) {
@@ -71,17 +83,19 @@ size_t touching_contacts(const HostState& s) {
 }
 
 // The bandwidths the kernels are measured against: a copy with the simulation's own footprint
-// (its buffers, mostly in cache for a small bed) and one far larger than any cache.
+// (its buffers, mostly in cache for a small bed) and one far larger than any cache (2 x 256 MiB;
+// a larger simulation's own copy is that one).
 struct CopyBandwidth {
   size_t own_bytes = 0;
   double own = 0, dram = 0;
 };
 
 CopyBandwidth measure_copies(size_t buffer_bytes, unsigned threads) {
+  constexpr size_t kDram = size_t(256) << 20;
   CopyBandwidth c;
-  c.own_bytes = buffer_bytes;
-  c.own = copy_bandwidth(buffer_bytes / 2, threads);
-  c.dram = copy_bandwidth(size_t(256) << 20, threads);
+  c.own_bytes = std::min(buffer_bytes, 2 * kDram);
+  c.dram = copy_bandwidth(kDram, threads);
+  c.own = c.own_bytes < 2 * kDram ? copy_bandwidth(c.own_bytes / 2, threads) : c.dram;
   return c;
 }
 
@@ -118,22 +132,16 @@ void print_roofline(const RunProfile& p, const Layout& layout, const TrafficCoun
                 all_bytes / all_seconds / copy.dram);
 }
 
-// Time and memory of making the simulation (buffers, first neighbour list, first forces).
-struct SimulationSetup {
-  double seconds = 0;
-  size_t resident = 0;  // bytes after it
-};
-
 // One backend and variant on the settled model: setup, speed, list size and memory, then where
 // the time goes (every kernel timed over the same number of steps) and how close to the
 // memory bandwidth it runs.
 void bench_one(const Model& model, const std::string& backend, const KernelVariant& v, int device, unsigned threads,
                uint32_t steps) {
   MemoryNeed need = check_run_memory(model, v, 50, backend, device, false);
-  auto t_setup = Clock::now();
+  Stopwatch setup;
   Simulation sim(model, make_backend(backend, device, threads, v.workgroup), v, 50);
-  SimulationSetup setup{seconds_since(t_setup), resident_bytes()};
-  size_t peak_after_setup = peak_resident_bytes();
+  std::string setup_time = setup.text();
+  size_t resident_after_setup = resident_bytes(), peak_after_setup = peak_resident_bytes();
   sim.advance(50);  // warm up: list built, caches hot
   uint32_t rebuilds_before = sim.rebuilds();
   auto t0 = Clock::now();
@@ -149,9 +157,9 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
               n * steps / secs, contacts * steps / secs, contacts, touching_contacts(sim.state()),
               bytes_per_particle, per_contact_bytes, rebuilds, cpu_secs);
   size_t stepping = resident_bytes();
-  std::printf("         setup %.3g s (buffers, first neighbour list and forces); memory: %s; this process: %s "
+  std::printf("         setup %s (buffers, first neighbour list and forces); memory: %s; this process: %s "
               "resident after setup (peak %s), %s while stepping (%.0f B per particle)\n",
-              setup.seconds, describe_memory_need(need).c_str(), format_bytes(double(setup.resident)).c_str(),
+              setup_time.c_str(), describe_memory_need(need).c_str(), format_bytes(double(resident_after_setup)).c_str(),
               format_bytes(double(peak_after_setup)).c_str(), format_bytes(double(stepping)).c_str(),
               double(stepping) / n);
   sim.set_profiling(true);
@@ -203,7 +211,7 @@ int run_bench(int argc, char** argv) {
 
   // Setup, timed: the case (a fill places its particles here), then the model.
   bool own_case = !case_path.empty();
-  auto t0 = Clock::now();
+  Stopwatch case_time;
   CaseSpec spec;
   if (own_case) {
     auto loaded = load_case_or_report(case_path, {});
@@ -212,11 +220,11 @@ int run_bench(int argc, char** argv) {
   } else {
     spec = bench_bed_case(n);
   }
-  double case_seconds = seconds_since(t0);
+  std::string case_seconds = case_time.text();
   if (skin >= 0) spec.neighbour.skin = skin;
-  t0 = Clock::now();
+  Stopwatch model_time;
   Model model = build_model(spec);
-  double model_seconds = seconds_since(t0);
+  std::string model_seconds = model_time.text();
   std::vector<SphereSpec>().swap(spec.spheres);  // the model holds the particles now
   std::vector<BodySpec>().swap(spec.bodies);
   n = model.n_particles;
@@ -232,8 +240,8 @@ int run_bench(int argc, char** argv) {
   else
     std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
                 settle, n, model.dt, 1e3 * model.skin, energy, steps);
-  std::printf("setup: case %.3g s (%s), model %.3g s\n", case_seconds,
-              own_case ? "read, fills placed" : "the bed's spheres on a jittered lattice", model_seconds);
+  std::printf("setup: case %s (%s), model %s\n", case_seconds.c_str(),
+              own_case ? "read, fills placed" : "the bed's spheres on a jittered lattice", model_seconds.c_str());
   // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
   // figure to compare on a shared machine.
   std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
