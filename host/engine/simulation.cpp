@@ -109,10 +109,29 @@ void Simulation::upload_walls(uint32_t steps) {
   backend_->upload_walls(w);
 }
 
+namespace {
+
+// True when some wall moves between the start of step `first` and the end of `steps` steps
+// (velocity Verlet evaluates a step's walls at its end).
+bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
+  double t0 = double(first) * m.dt, t1 = double(first + steps + 1) * m.dt;
+  for (const ModelWall& w : m.walls) {
+    const WallMotion& motion = w.motion;
+    bool moves = motion.velocity[0] != 0 || motion.velocity[1] != 0 || motion.velocity[2] != 0 ||
+                 motion.angular_rate != 0;
+    if (moves && motion.start_time < t1 && motion.stop_time > t0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
+  // A batch in which no wall moves forces no rebuilds for walls: the skin check alone suffices.
+  bool still = !walls_move_during(model_, step_, steps);
   std::vector<Dispatch> program;
   for (uint32_t s = 0; s < steps; ++s) {
-    auto one = step_program(model_, layout_, variant_, s);
+    auto one = step_program(model_, layout_, variant_, s, still);
     program.insert(program.end(), one.begin(), one.end());
   }
   return program;
