@@ -68,6 +68,38 @@ void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
         axis[0] * e1[1] - axis[1] * e1[0]};
 }
 
+// Interleaves the low 21 bits of x, y and z (a Morton code: cells close in space get close codes).
+uint64_t morton_code(uint64_t x, uint64_t y, uint64_t z) {
+  auto spread = [](uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread(x) | spread(y) << 1 | spread(z) << 2;
+}
+
+// Puts spheres[first ...] in the Morton order of cells `cell` wide from `origin` (ties in
+// placement order), so that spheres near in space are near in memory.
+void order_by_cells(std::vector<SphereSpec>& spheres, size_t first, const Vec3d& origin, double cell) {
+  std::vector<std::pair<uint64_t, size_t>> keys;
+  keys.reserve(spheres.size() - first);
+  for (size_t i = first; i < spheres.size(); ++i) {
+    uint64_t c[3];
+    for (int axis = 0; axis < 3; ++axis)
+      c[axis] = uint64_t(std::max(0.0, std::floor((spheres[i].position[axis] - origin[axis]) / cell)));
+    keys.push_back({morton_code(c[0], c[1], c[2]), i});
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<SphereSpec> ordered;
+  ordered.reserve(keys.size());
+  for (const auto& key : keys) ordered.push_back(std::move(spheres[key.second]));
+  std::move(ordered.begin(), ordered.end(), spheres.begin() + std::ptrdiff_t(first));
+}
+
 // Every sphere and body sub-sphere placed so far, in the world.
 std::vector<SphereSpec> occupied_spheres(const CaseSpec& spec) {
   std::vector<SphereSpec> occupied = spec.spheres;
@@ -301,6 +333,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     sphere.where = fill.where;
     spheres.push_back(sphere);
   }
+  if (fill.count >= kFillInCellOrder) order_by_cells(spheres, spheres.size() - size_t(fill.count), region.lo, 2 * fill.radius_max);
 }
 
 void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
