@@ -198,6 +198,8 @@ int run_bench(int argc, char** argv) {
   app.add_option("--skin", skin, "neighbour skin (m; default the case's): results do not depend on it");
   app.add_option("--cache", cache_dir, "folder for the settled bed (reused when present)");
   app.add_option("--case", case_path, "benchmark this case instead of the bed, after --settle simulated seconds of it");
+  std::vector<std::string> sets;
+  app.add_option("--set", sets, "with --case: override a case key, KEY=VALUE (repeatable)");
   app.add_flag("--scalar-contacts", scalar_contacts,
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
   CLI11_PARSE(app, argc, argv);
@@ -214,7 +216,7 @@ int run_bench(int argc, char** argv) {
   Stopwatch case_time;
   CaseSpec spec;
   if (own_case) {
-    auto loaded = load_case_or_report(case_path, {});
+    auto loaded = load_case_or_report(case_path, sets);
     if (!loaded) return 2;
     spec = std::move(*loaded);
   } else {
