@@ -15,7 +15,7 @@ int main(int argc, char** argv) {
   using namespace repose::cli;
   repose::install_experiments();  // the case loader reads [experiment] through them
   std::vector<Verb> verbs;
-  for (auto group : {engine_verbs, experiment_verbs, stats_verbs, geometry_verbs, calibrate_verbs, diagnose_verbs})
+  for (auto group : {engine_verbs, bench_verbs, experiment_verbs, stats_verbs, geometry_verbs, calibrate_verbs, diagnose_verbs})
     for (auto& v : group()) verbs.push_back(std::move(v));
 
   auto usage = [&](FILE* out) {

@@ -36,8 +36,22 @@ class CpuBackend : public Backend {
   void put(uint32_t binding, const std::vector<T>& src);
   ThreadPool pool_;
   Layout layout_;
-  // One block of memory per binding of the buffer table (none for aliases).
-  std::array<std::vector<std::byte>, gpu::kBindingCount> storage_;
+  // Zeroed host memory for every binding at once, aligned to 2 MiB and advised as transparent
+  // huge pages when it is that large: the kernels' scattered reads of partners' rows then miss
+  // the TLB far less.
+  struct FreeArena {
+    void operator()(std::byte* p) const;
+  };
+  static std::unique_ptr<std::byte, FreeArena> zeroed_arena(size_t bytes);
+  struct Binding {
+    std::byte* begin = nullptr;
+    size_t length = 0;
+    std::byte* data() const { return begin; }
+    size_t size() const { return length; }
+  };
+  std::unique_ptr<std::byte, FreeArena> arena_;
+  // Each binding of the buffer table (none for aliases): its part of the arena.
+  std::array<Binding, gpu::kBindingCount> storage_;
   gpu::Buffers buf_;
 };
 

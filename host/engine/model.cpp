@@ -361,6 +361,7 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   m.cell = 2 * r_cell + m.skin;
   m.table_size = next_pow2(std::max<uint32_t>(1024, 2 * m.n_particles));
   m.max_interval = spec.neighbour.rebuild_interval > 0 ? spec.neighbour.rebuild_interval : 0;
+  m.still_interval = m.max_interval;
 
   // Moving walls: rebuild before any wall point can travel half the skin.
   double extent = 0;

@@ -7,23 +7,43 @@
 
 namespace repose {
 
+uint32_t first_contact_capacity(const Model& m) {
+  return 6 * m.n_particles + 4 * static_cast<uint32_t>(m.walls.size()) + 64;
+}
+
+uint32_t grown_capacity(uint32_t needed) { return needed + needed / 4 + 64; }
+
+uint32_t restored_capacity(const Model& m, const HostState& s) {
+  uint32_t needed = s.control.size() == gpu::kControlWords
+                        ? std::max(s.control[gpu::kCtlContacts], s.control[gpu::kCtlMaxContacts])
+                        : 0u;
+  return std::max(first_contact_capacity(m), grown_capacity(needed));
+}
+
+Layout simulation_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps, uint32_t capacity) {
+  Layout l;
+  l.n_particles = m.n_particles;
+  l.n_walls = static_cast<uint32_t>(m.walls.size());
+  l.n_materials = m.n_materials;
+  l.table_size = m.table_size;
+  l.batch_steps = std::max<uint32_t>(1, batch_steps);
+  l.lean_contacts = v.lean;
+  l.rolling_springs = (m.flags & gpu::kFlagRollingSpring) != 0;
+  if (l.rolling_springs && v.lean)
+    throw std::invalid_argument("rolling = \"epsd\" stores each contact's rolling torque: use the 'full' kernel "
+                                "variant, not 'lean'");
+  if ((m.flags & gpu::kFlagSpinningFriction) != 0 && v.lean)
+    throw std::invalid_argument("spinning_friction stores each contact's torques: use the 'full' kernel variant, "
+                                "not 'lean'");
+  l.n_bodies = static_cast<uint32_t>(m.bodies.size());
+  l.capacity = capacity;
+  return l;
+}
+
 Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
                        uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
-  layout_.n_particles = model_.n_particles;
-  layout_.n_walls = static_cast<uint32_t>(model_.walls.size());
-  layout_.n_materials = model_.n_materials;
-  layout_.table_size = model_.table_size;
-  layout_.batch_steps = std::max<uint32_t>(1, max_batch_steps);
-  layout_.lean_contacts = variant_.lean;
-  layout_.rolling_springs = (model_.flags & gpu::kFlagRollingSpring) != 0;
-  if (layout_.rolling_springs && variant_.lean)
-    throw std::invalid_argument("rolling = \"epsd\" stores each contact's rolling torque: use the 'full' kernel "
-                                "variant, not 'lean'");
-  if ((model_.flags & gpu::kFlagSpinningFriction) != 0 && variant_.lean)
-    throw std::invalid_argument("spinning_friction stores each contact's torques: use the 'full' kernel variant, "
-                                "not 'lean'");
-  layout_.n_bodies = static_cast<uint32_t>(model_.bodies.size());
+  layout_ = simulation_layout(model_, variant_, max_batch_steps, 0);
   constants_ = {model_.material, model_.pairs, model_.subs};
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
@@ -37,8 +57,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   state_.row_start.assign(model_.n_particles + 1, 0u);
   state_.trans_start.assign(model_.n_particles + 1, 0u);
   state_.bodies = model_.bodies;
-  // Room for ~6 contacts per particle plus walls; grown on overflow.
-  allocate(first_capacity ? first_capacity : 6 * model_.n_particles + 4 * layout_.n_walls + 64);
+  allocate(first_capacity ? first_capacity : first_contact_capacity(model_));
   if (layout_.n_bodies) {
     backend_->execute(body_place_program(model_, layout_, variant_));
     backend_->download_state(state_);
@@ -73,7 +92,7 @@ void Simulation::allocate(uint32_t capacity) {
 // attempt's largest list, reached after contacts went missing, is no state of the run), so the
 // redone evaluation starts where an ample list's would.
 void Simulation::grow(uint32_t needed) {
-  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
+  allocate(std::max(layout_.capacity, grown_capacity(needed)));
 }
 
 // Walls of the coming steps: velocity Verlet evaluates forces at the end of a step, symplectic
@@ -90,10 +109,29 @@ void Simulation::upload_walls(uint32_t steps) {
   backend_->upload_walls(w);
 }
 
+namespace {
+
+// True when some wall moves between the start of step `first` and the end of `steps` steps
+// (velocity Verlet evaluates a step's walls at its end).
+bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
+  double t0 = double(first) * m.dt, t1 = double(first + steps + 1) * m.dt;
+  for (const ModelWall& w : m.walls) {
+    const WallMotion& motion = w.motion;
+    bool moves = motion.velocity[0] != 0 || motion.velocity[1] != 0 || motion.velocity[2] != 0 ||
+                 motion.angular_rate != 0;
+    if (moves && motion.start_time < t1 && motion.stop_time > t0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
+  // A batch in which no wall moves forces no rebuilds for walls: the skin check alone suffices.
+  bool still = !walls_move_during(model_, step_, steps);
   std::vector<Dispatch> program;
   for (uint32_t s = 0; s < steps; ++s) {
-    auto one = step_program(model_, layout_, variant_, s);
+    auto one = step_program(model_, layout_, variant_, s, still);
     program.insert(program.end(), one.begin(), one.end());
     if (summing_walls_) {
       // After the step's forces: each wall's, summed over the batch from its first step.

@@ -36,9 +36,21 @@ struct EnergySummary {
 // Translational and rotational kinetic energy of the spheres, or of the bodies when there are.
 EnergySummary kinetic_energy(const HostState& state);
 
+// The contact-list capacity a simulation starts with: room for ~6 contacts per particle plus
+// walls (a settled bed of equal spheres holds ~4.6 per particle with the default skin); it grows
+// on overflow.
+uint32_t first_contact_capacity(const Model& m);
+// The capacity a list grows to when it needs `needed` entries: a quarter more, and some.
+uint32_t grown_capacity(uint32_t needed);
+// The capacity a simulation of m holds after restoring state s (Simulation::restore).
+uint32_t restored_capacity(const Model& m, const HostState& s);
+// The buffer sizes of a simulation of m with this variant, batch length and list capacity.
+// Throws std::invalid_argument when the variant cannot hold what the model needs.
+Layout simulation_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps, uint32_t capacity);
+
 class Simulation {
  public:
-  // first_capacity: contact-list entries to start with (0: room for ~6 contacts per particle);
+  // first_capacity: contact-list entries to start with (0: first_contact_capacity);
   // the list grows on overflow, so it only changes how often that happens, never the results.
   Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant = {},
              uint32_t max_batch_steps = 200, uint32_t first_capacity = 0);

@@ -4,6 +4,7 @@
 
 #include "engine/buffer_table.h"
 #include "engine/step_program.h"
+#include "util/memory_info.h"
 #include "vk/vk_check.h"
 
 namespace repose {
@@ -32,27 +33,30 @@ static void down(const vk::Buffer& src, std::vector<T>& dst, size_t count) {
   src.download(dst.data(), count * sizeof(T));
 }
 
-// Refuses a layout the device cannot hold or dispatch, before anything is allocated.
-void VulkanBackend::check_fits(const Layout& l) const {
-  const vk::DeviceInfo& d = ctx_->info();
-  auto gib = [](double bytes) { return std::to_string(bytes / 1073741824.0).substr(0, 5) + " GiB"; };
+std::string vulkan_fit_problem(const vk::DeviceInfo& d, const Layout& l) {
   size_t total = 0;
   for (uint32_t i = 0; i < kBindingCount; ++i) {
     size_t bytes = binding_bytes(i, l);
     total += bytes;
     if (bytes > d.max_storage_range || (d.max_allocation && bytes > d.max_allocation))
-      throw vk::VulkanError(std::string("buffer ") + kBufferTable[i].name + " needs " + gib(bytes) + ", above what '" +
-                            d.name + "' binds as one storage buffer (" + d.limits_text() + ")");
+      return std::string("buffer ") + kBufferTable[i].name + " needs " + format_bytes(double(bytes)) + ", above what '" +
+             d.name + "' binds as one storage buffer (" + d.limits_text() + ")";
   }
   if (d.device_local_bytes && total > d.device_local_bytes)
-    throw vk::VulkanError("the simulation needs " + gib(total) + " of device memory; '" + d.name + "' has " +
-                          gib(d.device_local_bytes));
+    return "needs " + format_bytes(double(total)) + " of device memory, " + format_bytes(double(d.device_local_bytes)) +
+           " available on '" + d.name + "'";
   // The largest dispatch: one invocation per particle, bucket or contact-list entry.
   uint64_t most = std::max<uint64_t>({uint64_t(l.n_particles) + 1, uint64_t(l.table_size) + 2, l.capacity, l.n_walls});
   uint32_t groups = uint32_t((most + gpu::kDefaultWorkgroup - 1) / gpu::kDefaultWorkgroup);
   if (max_groups_x() > d.max_groups[0] || gpu::dispatch_rows(groups, max_groups_x()) > d.max_groups[1])
-    throw vk::VulkanError("'" + d.name + "' cannot dispatch " + std::to_string(groups) + " workgroups (" +
-                          d.limits_text() + ")");
+    return "'" + d.name + "' cannot dispatch " + std::to_string(groups) + " workgroups (" + d.limits_text() + ")";
+  return "";
+}
+
+// Refuses a layout the device cannot hold or dispatch, before anything is allocated.
+void VulkanBackend::check_fits(const Layout& l) const {
+  std::string problem = vulkan_fit_problem(ctx_->info(), l);
+  if (!problem.empty()) throw vk::VulkanError(problem);
 }
 
 void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {

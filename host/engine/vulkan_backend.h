@@ -12,6 +12,11 @@
 
 namespace repose {
 
+// Why the device cannot hold or dispatch a simulation of this layout (a buffer above its storage
+// range or allocation size, more memory than its device-local heap, too many workgroups), or ""
+// when it can. VulkanBackend refuses such a layout; engine/memory_need.h asks before a run.
+std::string vulkan_fit_problem(const vk::DeviceInfo& device, const Layout& layout);
+
 class VulkanBackend : public Backend {
  public:
   VulkanBackend(int device_index, uint32_t workgroup);

@@ -12,6 +12,7 @@
 #include "case/case_loader.h"
 #include "engine/backend_factory.h"
 #include "engine/escape_check.h"
+#include "engine/memory_need.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "io/output_dir.h"
@@ -190,7 +191,7 @@ RunInfo run_info(const CaseSpec& spec, const CaseRunOptions& o, const Backend& e
 
 }  // namespace
 
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& o) {
   // Everything the user gave is checked before the folder is touched: the restart state (its
   // checksum, consistency and case), the step counts, the paths.
   Model model = build_model(spec);
@@ -200,6 +201,14 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
   bool restarting = !o.restart.empty();
   RestartPoint start = restarting ? read_restart_state(o.restart, model, hash) : RestartPoint{};
   Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
+  // The model holds the particles now: the case's own copies (~200 B each) are let go.
+  std::vector<SphereSpec>().swap(spec.spheres);
+  std::vector<BodySpec>().swap(spec.bodies);
+  // The memory it needs fits (or the run is refused), before anything is written.
+  uint32_t restart_capacity = restarting ? restored_capacity(model, start.state) : 0;
+  MemoryNeed need = check_run_memory(model, variant, schedule.batch, o.backend, o.device,
+                                     model.vtk && schedule.frame_every > 0, restart_capacity);
+  if (!o.quiet) std::fprintf(stderr, "%s: memory: %s\n", spec.name.c_str(), describe_memory_need(need).c_str());
   std::string dir = o.out_dir.empty() ? "out/" + spec.name : o.out_dir;
   bool state_in_folder = !o.state_out.empty() && path_is_within(o.state_out, dir);
   if (!o.state_out.empty() && !state_in_folder) check_file_writable(o.state_out, "--state-out");

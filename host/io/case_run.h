@@ -38,6 +38,7 @@ struct CaseRunOptions {
 // BadInput (OutputError for an unusable or busy folder, InputError for a restart state that is
 // damaged, changed, inconsistent or of another case) before anything is written; a failure during
 // the run (WriteError: a full disk) ends summary.json as "failed: REASON" and is rethrown.
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& options);
+// The case is taken by value: its particles are let go once the model holds them.
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& options);
 
 }  // namespace repose
