@@ -123,13 +123,14 @@ std::vector<Candidate> candidates(const Eigen::MatrixXd& x, const Eigen::VectorX
 
 }  // namespace
 
-GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const NoiseBounds& noise) {
+GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const NoiseBounds& noise,
+                                     bool linear_trend) {
   const int n = int(x.rows()), k = int(x.cols());
   if (n < 2) throw std::runtime_error("a Gaussian process needs at least two runs");
   GaussianProcess gp;
   gp.x = x;
   // The trend needs runs beyond its k + 1 coefficients to leave the process something to fit.
-  gp.trend = n >= k + 3;
+  gp.trend = linear_trend && n >= k + 3;
   gp.y_mean = y.mean();
   double var = (y.array() - gp.y_mean).square().sum() / n;
   gp.y_scale = var > 0 ? std::sqrt(var) : 1.0;
@@ -146,6 +147,22 @@ GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::Vect
   gp.noise_ratio = best->v.ratio;
   gp.log_likelihood = best->v.log_likelihood;
   if (!condition(gp, ys)) throw std::runtime_error("Gaussian process: no hyperparameters fit the runs");
+  return gp;
+}
+
+GaussianProcess with_response(const GaussianProcess& shape, const Eigen::VectorXd& y) {
+  GaussianProcess gp = shape;
+  const double n = double(y.size());
+  gp.y_mean = y.mean();
+  double var = (y.array() - gp.y_mean).square().sum() / n;
+  gp.y_scale = var > 0 ? std::sqrt(var) : 1.0;
+  const Eigen::VectorXd ys = (y.array() - gp.y_mean) / gp.y_scale;
+  const Eigen::MatrixXd kinv_h = gp.chol.solve(gp.h);
+  gp.beta = gp.h_kinv_h_inverse * (kinv_h.transpose() * ys);
+  const Eigen::VectorXd r = ys - gp.h * gp.beta;
+  gp.alpha = gp.chol.solve(r);
+  const double dof = std::max(1.0, n - double(gp.h.cols()));
+  gp.signal_variance = std::max(r.dot(gp.alpha) / dof, 1e-300);
   return gp;
 }
 

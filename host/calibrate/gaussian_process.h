@@ -43,8 +43,15 @@ struct NoiseBounds {
   double low = 0, high = INFINITY;
 };
 
-// Throws std::runtime_error with fewer than two runs.
-GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const NoiseBounds& noise = {});
+// Throws std::runtime_error with fewer than two runs. `linear_trend` false: a constant mean only
+// (for a response that is already the residual of a fitted trend).
+GaussianProcess fit_gaussian_process(const Eigen::MatrixXd& x, const Eigen::VectorXd& y, const NoiseBounds& noise = {},
+                                     bool linear_trend = true);
+
+// The same process for another response over the same inputs: the hyperparameters and the kernel
+// matrix's factor are kept, the response standardised, the trend and alpha solved again and the
+// signal variance profiled (as fitting does).
+GaussianProcess with_response(const GaussianProcess& shape, const Eigen::VectorXd& y);
 
 // Expected improvement for hitting a target: E[max(0, best - |Y - target|)] with
 // Y ~ N(mean, sd^2) and `best` the smallest |y - target| seen so far (closed form).

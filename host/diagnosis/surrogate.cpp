@@ -24,21 +24,6 @@ double distance(const std::vector<double>& a, const std::vector<double>& b) {
   return d;
 }
 
-// The same process for another response over the same design: the hyperparameters, the kernel
-// matrix and its factor are shared, the response standardised and solved again (as
-// fit_gaussian_process does for its own).
-calibrate::GaussianProcess with_response(const calibrate::GaussianProcess& shape, const Eigen::VectorXd& y) {
-  calibrate::GaussianProcess gp = shape;
-  const double n = double(y.size());
-  gp.y_mean = y.mean();
-  double var = (y.array() - gp.y_mean).square().sum() / n;
-  gp.y_scale = var > 0 ? std::sqrt(var) : 1.0;
-  Eigen::VectorXd ys = (y.array() - gp.y_mean) / gp.y_scale;
-  gp.alpha = gp.chol.solve(ys);
-  gp.signal_variance = std::max(ys.dot(gp.alpha) / n, 1e-300);
-  return gp;
-}
-
 }  // namespace
 
 // Processes for one response per group (`of(point, group)`), each on the residual of a quadratic
@@ -78,11 +63,11 @@ std::vector<GroupSurface> fit_group_surfaces(const Observations& obs, const Eige
       representative[key] = g;
   }
   std::map<std::string, calibrate::GaussianProcess> fitted;
-  for (const auto& [key, g] : representative) fitted[key] = calibrate::fit_gaussian_process(x, residual[g]);
+  for (const auto& [key, g] : representative) fitted[key] = calibrate::fit_gaussian_process(x, residual[g], {}, false);  // the residual has no trend left
   for (size_t g = 0; g < groups; ++g) {
     if (!out[g].has_process) continue;
     const std::string& key = obs.groups[g].measure;
-    out[g].process = representative[key] == g ? fitted[key] : with_response(fitted[key], residual[g]);
+    out[g].process = representative[key] == g ? fitted[key] : calibrate::with_response(fitted[key], residual[g]);
   }
   return out;
 }

@@ -77,9 +77,11 @@ TEST_CASE("the memory a run needs is its measured peak within 20 %", "[engine][m
 TEST_CASE("a run that does not fit in memory is refused before anything is written", "[engine][memory][cli]") {
   fs::path out = fs::temp_directory_path() / "repose_test_memory_refused";
   fs::remove_all(out);
-  // 300,000 spheres need ~270 MiB; ulimit -v leaves the process far less room than that.
+  // 300,000 spheres need ~270 MiB; ulimit -v leaves the process far less room than that. The cpu
+  // backend by name: `auto` first asks Vulkan for a GPU, and the driver it loads reserves address
+  // space (thread stacks and arenas) that ulimit -v counts.
   std::string args = "run " + std::string(REPOSE_SOURCE_DIR) +
-                     "/cases/large_heap/large_heap.toml --set fill.0.count=300000 --steps 5 --threads 1 --out " +
+                     "/cases/large_heap/large_heap.toml --set fill.0.count=300000 --steps 5 --backend cpu --threads 1 --out " +
                      out.string();
   repose::test::CliRun r = repose::test::run_repose_env("ulimit -v 300000; ", args);
   INFO(r.output);
