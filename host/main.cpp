@@ -1,10 +1,13 @@
 // repose: deterministic DEM on Vulkan compute. Dispatches `repose VERB ...` to its verb.
+// Exit codes (README, "Exit codes"; cli/cli_checks.h): 0 done, 1 a failure while working, 2 bad
+// input of any kind, 3 a calibration that missed its target, 128 + N stopped by signal N.
 #include <cstdio>
 #include <cstring>
 #include <exception>
 #include <string>
 #include <vector>
 
+#include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "experiments/registry.h"
 
@@ -12,7 +15,8 @@ int main(int argc, char** argv) {
   using namespace repose::cli;
   repose::install_experiments();  // the case loader reads [experiment] through them
   std::vector<Verb> verbs;
-  for (auto group : {engine_verbs, experiment_verbs, stats_verbs, optimize_verbs, geometry_verbs, calibrate_verbs, diagnose_verbs})
+  for (auto group : {engine_verbs, bench_verbs, experiment_verbs, stats_verbs, optimize_verbs, geometry_verbs, calibrate_verbs,
+                     diagnose_verbs})
     for (auto& v : group()) verbs.push_back(std::move(v));
 
   auto usage = [&](FILE* out) {
@@ -33,7 +37,7 @@ int main(int argc, char** argv) {
       return v.run(static_cast<int>(args.size()), args.data());
     } catch (const std::exception& e) {
       std::fprintf(stderr, "repose %s: error: %s\n", argv[1], e.what());
-      return 1;
+      return failure_exit_code(e);
     }
   }
   std::fprintf(stderr, "repose: unknown verb '%s'\n\n", argv[1]);

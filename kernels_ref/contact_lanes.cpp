@@ -49,7 +49,6 @@ struct real3 {
 inline real operator+(real a, real b) { return hn::Add(a.v, b.v); }
 inline real operator-(real a, real b) { return hn::Sub(a.v, b.v); }
 inline real operator*(real a, real b) { return hn::Mul(a.v, b.v); }
-inline real operator/(real a, real b) { return hn::Div(a.v, b.v); }
 inline real operator-(real a) { return hn::Neg(a.v); }
 inline cond operator<(real a, real b) { return {hn::Lt(a.v, b.v)}; }
 inline cond operator>(real a, real b) { return {hn::Gt(a.v, b.v)}; }
@@ -63,7 +62,11 @@ inline cond operator&&(bool a, cond b) { return a ? b : cond{hn::FirstN(D(), 0)}
 inline cond operator&&(cond a, bool b) { return b ? a : cond{hn::FirstN(D(), 0)}; }
 inline real3 operator+(real3 a, real3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline real3 operator-(real3 a, real3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline real sqrt(real a) { return hn::Sqrt(a.v); }
+// The law divides and takes roots only through div_rn and sqrt_rn (GLSL corrects a device's
+// rounding there); lanes round both correctly, so they are Div and Sqrt. No operator/ nor sqrt:
+// a plain one in the law does not compile here.
+inline real div_rn(real a, real b) { return hn::Div(a.v, b.v); }
+inline real sqrt_rn(real a) { return hn::Sqrt(a.v); }
 inline real abs(real a) { return hn::Abs(a.v); }
 // std::max(a, b) and std::min(a, b) exactly: which operand wins on equal zeros and on NaN (a SIMD
 // max returns its second operand there).

@@ -83,7 +83,7 @@ void run_wall_reduce(Buffers& buf, uint n_walls) {
         sy[t] = sy[t] + sy[t + s];
         sz[t] = sz[t] + sz[t + s];
       }
-    buf.wall_force[w] = vec4(sx[0], sy[0], sz[0], 0.0f);
+    k.store_wall_force(w, vec3(sx[0], sy[0], sz[0]));
   }
 }
 

@@ -30,6 +30,11 @@ using cond = bool;
 inline float pick(bool c, float yes, float no) { return c ? yes : no; }
 inline vec3 pick(bool c, vec3 yes, vec3 no) { return c ? yes : no; }
 
+// The twin's division and square root are IEEE's, correctly rounded; the GLSL kernels make
+// theirs the same on devices that round otherwise (kernels/glsl_prelude.glsl).
+inline float div_rn(float a, float b) { return a / b; }
+inline float sqrt_rn(float x) { return std::sqrt(x); }
+
 inline uint atomicAdd(uint& target, uint value) {
   return std::atomic_ref<uint>(target).fetch_add(value, std::memory_order_relaxed);
 }

@@ -22,7 +22,7 @@ namespace repose::gpu {
 //   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
 //   count:  Particles N, ParticlesPlusOne N+1, Contacts C (the list capacity), ContactsTwice 2C,
 //           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
-//           Pairs M*M, WallRows steps_per_batch*W, Walls W, Bodies B, Control kControlWords,
+//           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
 //           CandidateSlots N*kCandidateSlots,
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
@@ -62,7 +62,7 @@ namespace repose::gpu {
   X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
   X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
   X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, ascending per row */ \
-  X(25, WallForce, wall_force, vec4, Walls, Always, Scratch)  /* force on each wall (output) */ \
+  X(25, WallForce, wall_force, vec4, WallSums, Always, Scratch)  /* force on each wall, its sum, its peak */ \
   X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
   X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
@@ -239,6 +239,7 @@ struct SimPush {
   float rolling_damping;  // kFlagRollingSpring: eta_r, the rolling dashpot's fraction of critical
   uint absent_wall_kinds;  // bit k: no wall of kind k in the run (0: any may be present)
   uint max_groups_x;  // workgroups per dispatch row: more go into rows along y (dispatch_rows)
+  uint wall_sums;     // wall_reduce: 0 the force only; 1 also its sum and peak; 2 those anew
 };
 
 struct ScanPush {
@@ -252,6 +253,15 @@ struct ScanPush {
 // more. A dispatch of more groups runs as rows of at most max_groups_x along y; every kernel takes
 // its index from invocation_index() (kernels/glsl_prelude.glsl), which counts across the rows.
 REPOSE_CONST kMaxGroupsX = 65535u;
+
+// How the kernels round a division and a square root (div_rn and sqrt_rn in
+// kernels/glsl_prelude.glsl, a specialisation constant chosen by host/vk/kernel_set.cpp):
+// as the device does (lavapipe and the CPU twin round both correctly), corrected to the correctly
+// rounded result (hardware GPUs: Vulkan allows 2.5 ULP for a division), or, for tests, first put
+// up to 2 ULP off and then corrected, so that lavapipe exercises the correction.
+REPOSE_CONST kRoundingDevice = 0u;
+REPOSE_CONST kRoundingCorrected = 1u;
+REPOSE_CONST kRoundingTest = 2u;
 #ifdef __cplusplus
 inline uint dispatch_rows(uint groups, uint max_x) { return groups == 0u ? 1u : (groups + max_x - 1u) / max_x; }
 inline uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups : max_x; }

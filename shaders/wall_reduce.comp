@@ -38,5 +38,5 @@ void main() {
     }
     barrier();
   }
-  if (t == 0u) B_wall_force[w] = vec4(sum_x[0], sum_y[0], sum_z[0], 0.0f);
+  if (t == 0u) store_wall_force(w, vec3(sum_x[0], sum_y[0], sum_z[0]));
 }

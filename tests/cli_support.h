@@ -1,8 +1,12 @@
 // Runs the built `repose` binary as a user would and captures what it prints (stdout and stderr
-// together) and its exit status. Shared by the test folders that exercise verbs end to end.
+// together) and its exit status; scratch folders and file contents for checking what it wrote.
+// Shared by the test folders that exercise verbs end to end.
 #pragma once
 #include <cstdio>
 #include <fcntl.h>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -46,6 +50,21 @@ inline pid_t spawn_repose(const std::vector<std::string>& args, const std::strin
   argv.push_back(nullptr);
   execv(REPOSE_BINARY, argv.data());
   _exit(127);
+}
+
+// An empty scratch folder of this process (ctest runs test cases of one file at the same time).
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  namespace fs = std::filesystem;
+  fs::path d = fs::temp_directory_path() / ("repose_test_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+// A file's bytes ("" when it cannot be read).
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
 }  // namespace repose::test

@@ -3,8 +3,10 @@
 #pragma once
 #include <string>
 
+#include "calibrate/calibration_result.h"
 #include "calibrate/mpi_session.h"
 #include "calibrate/plan.h"
+#include "calibrate/run_source.h"
 
 namespace repose::calibrate {
 
@@ -19,11 +21,20 @@ struct CampaignOptions {
 
 struct CampaignSummary {
   bool target_reached = false;
-  double verification_error = 0;  // relative
+  double verification_error = 0;  // relative, of the first verified response
   int simulations = 0;
   int simulated_now = 0;          // runs this invocation ran (0 on a complete resume)
   std::string report_path;
 };
+
+// Runs `verify` (rig 0's ids) on every verified response's rig and judges each response
+// (verification.h): fills res.checks and res.target_reached.
+void verify_result(const CampaignPlan& plan, RunSource& source, const std::vector<RunSpec>& verify, CalibrationResult& res);
+
+// The campaign's verdict in one line, as the headline, the report and the figures say it.
+std::string verdict_line(const CampaignPlan& plan, const CalibrationResult& res);
+// "sd 4.2 on 3 df (95 % interval 2.4 .. 16)" or "unknown (no replicates)".
+std::string noise_text(const NoiseEstimate& noise);
 
 CampaignSummary run_campaign(const CampaignPlan& plan, const CampaignOptions& options, MpiSession& mpi);
 

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "calibrate/campaign.h"
 #include "io/provenance.h"
 #include "util/atomic_file.h"
 #include "util/hash.h"
@@ -22,18 +23,31 @@ std::string percent(double fraction) {
   return buf;
 }
 
+// The runs with every response of their rig the plan names.
 void runs_table(std::ostringstream& md, const CampaignPlan& plan, const std::vector<RunRecord>& runs) {
+  std::vector<int> shown;
+  for (size_t i = 0; i < plan.responses.size(); ++i)
+    for (const auto& r : runs)
+      if (r.spec.rig == plan.responses[i].rig) {
+        shown.push_back(int(i));
+        break;
+      }
   md << "| run | seed |";
   for (const auto& f : plan.factors) md << " " << f.name << " |";
-  md << " " << plan.response << " | error | wall s | rank |\n|---|---|";
-  for (size_t i = 0; i < plan.factors.size(); ++i) md << "---|";
-  md << "---|---|---|---|\n";
+  for (int i : shown) md << " " << plan.responses[size_t(i)].label << " | error |";
+  md << " wall s | rank |\n|---|---|";
+  for (size_t i = 0; i < plan.factors.size() + 2 * shown.size(); ++i) md << "---|";
+  md << "---|---|\n";
   for (const auto& r : runs) {
-    double y = r.responses.at(plan.response);
     md << "| " << r.spec.id << " | " << r.spec.seed << " |";
     for (double x : r.spec.x) md << " " << num(x) << " |";
-    md << " " << num(y) << " | " << percent((y - plan.measured) / plan.measured) << " | " << num(r.wall_s, 3) << " | "
-       << r.rank << " |\n";
+    for (int i : shown) {
+      const PlanResponse& resp = plan.responses[size_t(i)];
+      auto it = r.responses.find(resp.name);
+      if (resp.rig != r.spec.rig || it == r.responses.end()) md << " | |";
+      else md << " " << num(it->second) << " | " << percent((it->second - resp.measured) / resp.measured) << " |";
+    }
+    md << " " << num(r.wall_s, 3) << " | " << r.rank << " |\n";
   }
 }
 
@@ -50,81 +64,116 @@ nlohmann::ordered_json runs_json(const CampaignPlan& plan, const std::vector<Run
   return a;
 }
 
-// The plan, the experiment and what the campaign cost.
+// The plan, its rigs and responses, and what the campaign cost.
 void header_section(std::ostringstream& md, const CampaignRecord& rec) {
   const CampaignPlan& plan = *rec.plan;
   const CalibrationResult& res = rec.result;
-  const double tol = plan.absolute_tolerance();
   md << "# Calibration campaign `" << plan.name << "`\n\n";
+  md << "**" << verdict_line(plan, res) << ".**\n\n";
   md << "- plan: `" << plan.path << "` (hash " << plan_hash(canonical_plan_text(plan)) << "), database `" << rec.db_path << "`\n";
-  md << "- experiment `" << plan.experiment << "` on the base case `" << plan.case_path << "`, backend " << plan.backend << "\n";
-  md << "- response `" << plan.response << "`: measured " << num(plan.measured);
-  if (plan.measured_sd > 0) md << " +- " << num(plan.measured_sd) << " (sd)";
-  md << ", tolerance " << num(100 * plan.tolerance) << " % (+-" << num(tol) << ")\n";
-  md << "- method: " << res.method << "; " << rec.simulations << " simulations, " << num(rec.simulated_seconds, 3)
+  for (size_t i = 0; i < plan.rigs.size(); ++i)
+    md << "- " << (i == 0 ? std::string("campaign case") : "rig `" + plan.rigs[i].name + "`") << ": experiment `"
+       << plan.rigs[i].experiment << "` on `" << plan.rigs[i].case_path << "`, backend " << plan.backend << "\n";
+  for (const auto& r : plan.responses) {
+    md << "- response `" << r.label << "` (" << (r.role == ResponseRole::calibrate ? "calibrates" : "verifies only")
+       << "): measured " << num(r.measured);
+    if (r.measured_sd > 0) md << ", lab sd " << num(r.measured_sd) << " over " << r.measured_n << " (standard error " << num(r.measured_se(), 4) << ")";
+    else md << " (no lab sd given: taken as exact)";
+    md << ", tolerance " << num(100 * r.tolerance) << " % (+-" << num(r.absolute_tolerance(), 4) << ")\n";
+  }
+  md << "- method: " << res.method << "; " << rec.simulations << " simulations in the database, " << num(rec.simulated_seconds, 3)
      << " s of simulation on";
   for (const auto& h : rec.hosts) md << " " << h;
   md << "\n\n## Factors\n\n| factor | case key | low | high |\n|---|---|---|---|\n";
   for (const auto& f : plan.factors) md << "| " << f.name << " | `" << f.key << "` | " << num(f.low) << " | " << num(f.high) << " |\n";
-  if (!plan.settings.empty()) {
-    md << "\nFixed for every run:";
-    for (const auto& s : plan.settings) md << " `" << s.key << " = " << s.value << "`";
-    md << "\n";
-  }
+  for (const auto& rig : plan.rigs)
+    if (!rig.settings.empty()) {
+      md << "\nFixed for every run" << (rig.name.empty() ? "" : " on rig " + rig.name) << ":";
+      for (const auto& s : rig.settings) md << " `" << s.key << " = " << s.value << "`";
+      md << "\n";
+    }
 }
 
 void calibrated_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res) {
   md << "\n## Calibrated parameters\n\n";
-  md << (res.target_reached ? "The target is reached" : "**The target is not reached** within the tolerance")
-     << "; model prediction at the chosen point: " << num(res.predicted) << ".\n\n";
-  md << "| parameter | calibrated | uncertainty (1 sd) | d" << plan.response << "/dx | range meeting the target (others free) |\n"
+  md << (res.model_on_target ? "The model puts every calibrating response within its tolerance at the chosen point"
+                             : "**The model does not put every calibrating response within its tolerance** at the chosen point")
+     << ". Whether the target is reached is the verification's to say (below).\n\n";
+  md << "| parameter | chosen | 90 % credible interval | posterior median | posterior sd | d" << plan.primary().label
+     << "/dx | model within tolerance for |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& p : res.parameters) {
+    md << "| " << p.name << " | " << num(p.value) << " | ";
+    if (p.has_posterior)
+      md << num(p.low, 4) << " .. " << num(p.high, 4) << (p.identified ? "" : " (not identified)") << " | " << num(p.median, 4)
+         << " | " << num(p.sd, 3);
+    else md << "none: " << res.method << " fits no model | | ";
+    md << " | " << num(p.slope, 4) << " | " << num(p.set_low) << " .. " << num(p.set_high) << " |\n";
+  }
+  if (res.posterior.computed) {
+    md << "\nThe posterior (flat prior over the factor box) weighs each parameter set by how well the model's mean response "
+          "meets the measured value, given the lab's standard error and the model's own uncertainty (the runs' noise averaged); "
+          "the credible interval holds 90 % of each parameter's marginal. The joint 90 % region fills "
+       << num(100 * res.posterior.region_fraction, 3) << " % of the box.";
+    if (!res.ridge_text.empty()) md << " " << res.ridge_text;
+    md << "\n";
+  }
+  md << "\n## Run-to-run noise (from replicates)\n\n| response | noise sd | df | 95 % interval | model at the chosen point |\n"
      << "|---|---|---|---|---|\n";
-  for (const auto& p : res.parameters)
-    md << "| " << p.name << " | " << num(p.value) << " | " << num(p.uncertainty, 3) << " | " << num(p.slope, 4) << " | "
-       << (res.target_reached ? num(p.set_low) + " .. " + num(p.set_high) : std::string("none: out of reach")) << " |\n";
-  md << "\nUncertainty: sigma_y / |slope| with sigma_y = sqrt(measured_sd^2 + replicate_sd^2) = " << num(res.sigma_response, 4)
-     << " (measured sd " << num(plan.measured_sd, 4) << ", replicate sd " << num(res.replicate_sd, 4) << " on "
-     << res.replicate_df << " df from runs that differ only by their packing seed), each parameter moved alone.";
-  if (res.replicate_df > 0 && res.replicate_sd == 0)
-    md << " Replicates gave identical responses: this experiment does not depend on the packing seed.";
-  if (res.sigma_response == 0) md << " With no noise and no measured sd the uncertainty is zero; the range column is what the tolerance allows.";
-  md << " The range column lists every sampled parameter set whose predicted response is within the tolerance: one measured value is "
-        "met by a whole curve or surface of parameter sets.\n";
+  for (const auto& m : res.models) {
+    md << "| " << plan.responses[size_t(m.response)].label << " | ";
+    if (m.noise.known()) md << num(m.noise.sd, 4) << " | " << m.noise.df << " | " << num(m.noise.low, 4) << " .. " << num(m.noise.high, 4);
+    else md << "unknown: nothing replicated | 0 | ";
+    md << " | " << num(m.predicted) << " +- " << num(m.predicted_sd, 3) << " |\n";
+  }
 }
 
 void verification_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res) {
   md << "\n## Verification\n\n";
-  if (res.verification.empty()) md << "No verification runs (verification.runs = 0).\n";
-  else {
-    md << "Mean " << num(res.verification_mean) << ", sd " << num(res.verification_sd, 4) << " over " << res.verification.size()
-       << " runs; relative error against the measured value " << percent(res.verification_error)
-       << (std::abs(res.verification_error) <= plan.tolerance ? " (within" : " (outside") << " the tolerance).\n\n";
-    runs_table(md, plan, res.verification);
+  if (res.checks.empty()) {
+    md << "No verification runs (verification.runs = 0): the calibrated parameters are not checked, so the target is not reached.\n";
+    return;
+  }
+  md << "Each verified response's mean, with its standard error (the noise sd over the square root of the runs), against the "
+        "measured value with the lab's standard error: **confirmed** when the difference is within the tolerance and its "
+        "standard error too, **contradicted** when the difference exceeds the tolerance by more than two standard errors, "
+        "**inconclusive** otherwise.\n\n";
+  for (const auto& c : res.checks) {
+    md << "- " << check_text(plan, c) << "\n";
+  }
+  for (const auto& c : res.checks) {
+    md << "\n";
+    runs_table(md, plan, c.runs);
   }
 }
 
 // The adaptive loop's runs in order, with the expected improvement that proposed each.
-void loop_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res,
-                  const AdaptiveOutcome& loop) {
-  md << "\n## Adaptive loop\n\n" << loop.initial << " space-filling runs (Halton), then one proposal at a time.";
+void loop_section(std::ostringstream& md, const CampaignPlan& plan, const CalibrationResult& res, const AdaptiveOutcome& loop) {
+  md << "\n## Adaptive loop\n\n";
+  if (!loop.pilot.empty())
+    md << "Noise pilot: " << loop.pilot.size() << " runs at " << plan.adaptive.pilot_points << " point(s), each its own seed. ";
+  md << loop.initial << " space-filling runs (Halton), then one proposal at a time.";
   md << (plan.adaptive.seed_per_run ? " Each run packs with its own seed." : " Every run packs with the same seed.");
   if (loop.simulations_to_target > 0)
-    md << " The target was met after simulation " << loop.simulations_to_target
-       << " (the surrogate's mean within the tolerance and known to within it).";
-  else md << " The target was not met within the budget of " << plan.adaptive.budget << ".";
-  md << " At the chosen point the surrogate expects " << plan.response << " = " << num(res.predicted) << " +- "
-     << num(res.predicted_sd, 3) << "; run-to-run noise sd " << num(res.run_noise_sd, 3) << ".";
+    md << " The surrogate met the tolerance after loop run " << loop.simulations_to_target
+       << " (its means within the tolerance and known to within it).";
+  else md << " The surrogate did not meet the tolerance within the budget of " << plan.adaptive.budget << ".";
+  md << " At the chosen point it expects " << plan.primary().label << " = " << num(res.primary().predicted) << " +- "
+     << num(res.primary().predicted_sd, 3) << ".";
   md << "\n\n| # | ";
   for (const auto& f : plan.factors) md << f.name << " | ";
-  md << plan.response << " | error | expected improvement |\n|---|";
+  md << plan.primary().label << " | error | expected improvement |\n|---|";
   for (size_t i = 0; i <= plan.factors.size(); ++i) md << "---|";
   md << "---|---|\n";
   for (size_t i = 0; i < loop.steps.size(); ++i) {
     const auto& s = loop.steps[i];
     md << "| " << i + 1 << " | ";
     for (double x : s.run.spec.x) md << num(x) << " | ";
-    md << num(s.run.responses.at(plan.response)) << " | " << percent(s.relative_error) << " | "
+    md << num(s.values[0]) << " | " << percent(s.relative_error) << " | "
        << (int(i) < loop.initial ? "(start)" : num(s.expected_improvement, 3)) << " |\n";
+  }
+  if (!loop.pilot.empty()) {
+    md << "\nNoise pilot runs:\n\n";
+    runs_table(md, plan, loop.pilot);
   }
 }
 
@@ -139,7 +188,7 @@ std::string report_markdown(const CampaignRecord& rec) {
     loop_section(md, plan, res, *rec.loop);
   } else {
     md << "\n## Design runs\n\n";
-    runs_table(md, plan, rec.model_runs);
+    runs_table(md, plan, res.primary().runs);
   }
   md << "\n## Model\n\n```\n" << res.model_text << "```\n\n## Figures\n\n";
   for (const auto& f : rec.figures) md << "![" << f.file << "](" << f.file << ")\n\n" << f.caption << "\n\n";
@@ -150,13 +199,47 @@ std::string report_markdown(const CampaignRecord& rec) {
 Provenance campaign_provenance(const CampaignRecord& rec) {
   const CampaignPlan& plan = *rec.plan;
   Provenance prov;
-  prov.case_path = plan.case_path;
-  prov.case_hash = fnv1a_hex(plan.case_identity);
-  for (const auto& setting : plan.settings) prov.overrides.push_back(setting.key + "=" + setting.value);
+  prov.case_path = plan.rigs[0].case_path;
+  prov.case_hash = fnv1a_hex(plan.rigs[0].case_identity);
+  for (const auto& setting : plan.rigs[0].settings) prov.overrides.push_back(setting.key + "=" + setting.value);
   prov.seed = plan.base_seed;
   prov.backend = plan.backend;
   for (const auto& h : rec.hosts) prov.device += (prov.device.empty() ? "" : ", ") + h;  // host:rank of the runs
   return prov;
+}
+
+nlohmann::ordered_json optional_number(double v) {
+  return std::isfinite(v) ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr);
+}
+
+nlohmann::ordered_json noise_json(const NoiseEstimate& n) {
+  if (!n.known()) return {{"sd", nullptr}, {"df", 0}, {"low", nullptr}, {"high", nullptr}};
+  return {{"sd", n.sd}, {"df", n.df}, {"low", n.low}, {"high", optional_number(n.high)}};
+}
+
+nlohmann::ordered_json check_json(const CampaignPlan& plan, const ResponseCheck& c) {
+  const PlanResponse& r = plan.responses[size_t(c.response)];
+  return {{"response", r.label}, {"agreement", agreement_name(c.agreement)}, {"mean", c.mean}, {"sd", c.run_sd},
+          {"se", optional_number(c.se)}, {"measured", r.measured}, {"measured_se", c.measured_se},
+          {"difference", c.difference}, {"difference_se", optional_number(c.difference_se)},
+          {"relative_error", c.relative_error(r.measured)}, {"tolerance", c.tolerance}, {"noise", noise_json(c.noise)},
+          {"runs_needed", c.runs_needed}, {"runs", runs_json(plan, c.runs)}};
+}
+
+nlohmann::ordered_json parameters_json(const CalibrationResult& res) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::object();
+  for (const auto& p : res.parameters) {
+    nlohmann::ordered_json e = {{"value", p.value}, {"slope", p.slope}, {"set_low", p.set_low}, {"set_high", p.set_high}};
+    if (p.has_posterior) {
+      e["credible_low"] = p.low;
+      e["credible_high"] = p.high;
+      e["median"] = p.median;
+      e["sd"] = p.sd;
+      e["identified"] = p.identified;
+    }
+    j[p.name] = e;
+  }
+  return j;
 }
 
 nlohmann::ordered_json summary_json(const CampaignRecord& rec) {
@@ -167,33 +250,38 @@ nlohmann::ordered_json summary_json(const CampaignRecord& rec) {
   j["plan"] = plan.path;
   j["plan_hash"] = plan_hash(canonical_plan_text(plan));
   j["database"] = rec.db_path;
-  j["experiment"] = plan.experiment;
+  j["experiment"] = plan.rigs[0].experiment;
   j["method"] = res.method;
-  j["response"] = plan.response;
-  j["measured"] = plan.measured;
-  j["measured_sd"] = plan.measured_sd;
-  j["tolerance"] = plan.tolerance;
+  j["response"] = plan.primary().label;
+  j["measured"] = plan.primary().measured;
+  j["measured_sd"] = plan.primary().measured_sd;
+  j["measured_se"] = plan.primary().measured_se();
+  j["tolerance"] = plan.primary().tolerance;
   j["target_reached"] = res.target_reached;
-  j["predicted"] = res.predicted;
+  j["verdict"] = verdict_line(plan, res);
+  j["model_on_target"] = res.model_on_target;
+  j["predicted"] = res.primary().predicted;
+  j["predicted_sd"] = res.primary().predicted_sd;
   j["simulations"] = rec.simulations;
   if (rec.loop) {
     j["simulations_to_target"] = rec.loop->simulations_to_target;
     j["loop_runs"] = int(rec.loop->steps.size());
-    j["predicted_sd"] = res.predicted_sd;
-    j["run_noise_sd"] = res.run_noise_sd;
+    j["pilot_runs"] = int(rec.loop->pilot.size());
   }
-  // No range meets an unreachable target, and no verification says nothing: null, not numbers.
-  auto reached = [&](double v) { return res.target_reached ? nlohmann::ordered_json(v) : nlohmann::ordered_json(nullptr); };
-  for (const auto& p : res.parameters)
-    j["parameters"][p.name] = {{"value", p.value}, {"uncertainty", std::isfinite(p.uncertainty) ? nlohmann::ordered_json(p.uncertainty) : nlohmann::ordered_json(nullptr)},
-                               {"slope", p.slope}, {"set_low", reached(p.set_low)}, {"set_high", reached(p.set_high)}};
-  j["replicate_sd"] = res.replicate_sd;
-  j["replicate_df"] = res.replicate_df;
-  j["sigma_response"] = res.sigma_response;
-  auto verified = [&](double v) { return res.verification.empty() ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(v); };
-  j["verification"] = {{"mean", verified(res.verification_mean)}, {"sd", verified(res.verification_sd)},
-                       {"relative_error", verified(res.verification_error)}, {"runs", runs_json(plan, res.verification)}};
-  j["model_runs"] = runs_json(plan, rec.model_runs);
+  j["parameters"] = parameters_json(res);
+  for (const auto& m : res.models) j["noise"][plan.responses[size_t(m.response)].label] = noise_json(m.noise);
+  if (res.posterior.computed) {
+    nlohmann::ordered_json ridge = nlohmann::ordered_json::object();
+    for (size_t f = 0; f < plan.factors.size(); ++f) ridge[plan.factors[f].name] = res.posterior.ridge[int(f)];
+    j["posterior"] = {{"region_fraction", res.posterior.region_fraction}, {"ridge_direction_coded", ridge},
+                      {"ridge_sd_coded", res.posterior.ridge_sd}, {"across_sd_coded", res.posterior.across_sd},
+                      {"text", res.ridge_text}};
+  }
+  // The first verified response as before; every one under "verifications".
+  j["verification"] = res.checks.empty() ? nlohmann::ordered_json(nullptr) : check_json(plan, res.checks[0]);
+  j["verifications"] = nlohmann::ordered_json::array();
+  for (const auto& c : res.checks) j["verifications"].push_back(check_json(plan, c));
+  j["model_runs"] = runs_json(plan, res.primary().runs);
   j["provenance"] = provenance_json(campaign_provenance(rec));
   for (const auto& f : rec.figures) j["figures"].push_back(f.file);
   return j;

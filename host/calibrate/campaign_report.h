@@ -15,10 +15,9 @@ struct CampaignRecord {
   const CampaignPlan* plan = nullptr;
   std::string db_path;
   CalibrationResult result;
-  std::vector<RunRecord> model_runs;     // design or loop runs
   const AdaptiveOutcome* loop = nullptr;  // adaptive mode only
   std::vector<Figure> figures;
-  int simulations = 0;                    // design/loop + verification runs in the database
+  int simulations = 0;                    // runs in the database
   double simulated_seconds = 0;           // their summed wall time
   std::vector<std::string> hosts;         // "host:rank" that ran them
 };

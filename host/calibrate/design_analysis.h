@@ -1,22 +1,19 @@
-// The classical chain on a finished design: a response surface (stats::analyse, optional
-// backward reduction) or, for a one-factor sweep, a calibration curve; then the parameters
-// that hit the measured value, the set of equally good ones, and each parameter's uncertainty.
+// The classical chain on a finished design: per calibrating response a response surface
+// (stats::analyse, optional backward reduction) or, for a one-factor sweep, a calibration curve;
+// then the parameters that hit the measured values (factors in design.fix held), the set of
+// equally good ones and the posterior. A steepest-ascent path fits no model: its best point is
+// chosen from the means of its replicates.
 #pragma once
 #include "calibrate/calibration_result.h"
 #include "calibrate/plan.h"
-#include "calibrate/run_store.h"
+#include "calibrate/run_source.h"
 
 namespace repose::calibrate {
 
-// Throws when a design run is missing from the store or the model cannot be fitted.
-CalibrationResult analyse_design(const CampaignPlan& plan, const RunStore& store);
+// Throws when a design run is missing from the source or a model cannot be fitted.
+CalibrationResult analyse_design(const CampaignPlan& plan, const RunSource& source);
 
-// After the verification runs: their mean, sd, relative error, and the uncertainties with the
-// replicate noise of the design and the verification pooled.
-void add_verification(const CampaignPlan& plan, const std::vector<RunRecord>& runs,
-                      const std::vector<std::vector<double>>& other_replicate_groups, CalibrationResult& result);
-
-// The design's responses grouped by design point (centre replicates, repeated points).
-std::vector<std::vector<double>> design_replicate_groups(const CampaignPlan& plan, const RunStore& store);
+// The design's replicate groups of a response (centre points, repeated points, path replicates).
+std::vector<std::vector<double>> design_replicate_groups(const CampaignPlan& plan, const RunSource& source, int response);
 
 }  // namespace repose::calibrate

@@ -43,6 +43,24 @@ stats::Design table_design(const CampaignPlan& plan) {
   return d;
 }
 
+// A steepest-ascent path: `levels` points evenly from path_from to path_to (actual values).
+stats::Design path_design(const CampaignPlan& plan) {
+  stats::Design d;
+  d.type = "path";
+  d.factors = stats_factors(plan);
+  const int n = plan.design.levels, k = int(d.factors.size());
+  d.coded.resize(n, k);
+  for (int i = 0; i < n; ++i) {
+    const double t = double(i) / (n - 1);
+    for (int j = 0; j < k; ++j)
+      d.coded(i, j) = d.factors[size_t(j)].to_coded(plan.design.path_from[size_t(j)] +
+                                                     t * (plan.design.path_to[size_t(j)] - plan.design.path_from[size_t(j)]));
+    d.points.push_back(stats::PointType::path);
+    d.run_order.push_back(i);
+  }
+  return d;
+}
+
 }  // namespace
 
 stats::Design build_design(const CampaignPlan& plan) {
@@ -51,6 +69,7 @@ stats::Design build_design(const CampaignPlan& plan) {
   stats::Design d;
   if (p.type == "sweep") d = sweep_design(plan);
   else if (p.type == "table") d = table_design(plan);
+  else if (p.type == "path") d = path_design(plan);
   else if (p.type == "ccd") d = stats::central_composite(f, stats::parse_alpha(p.alpha), p.centre);
   else if (p.type == "bbd") d = stats::box_behnken(f, p.centre);
   else if (p.type == "factorial") d = stats::full_factorial(f, p.centre);

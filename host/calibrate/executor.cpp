@@ -25,10 +25,13 @@ std::string describe(const RunRecord& r, const CampaignPlan& plan) {
     std::snprintf(buf, sizeof buf, "%s%s=%.5g", i ? " " : "", plan.factors[i].name.c_str(), r.spec.x[i]);
     s += buf;
   }
-  auto it = r.responses.find(plan.response);
-  if (it != r.responses.end()) {
-    std::snprintf(buf, sizeof buf, " -> %s=%.6g", plan.response.c_str(), it->second);
+  const char* arrow = " ->";
+  for (const auto& response : plan.responses) {
+    auto it = r.responses.find(response.name);
+    if (response.rig != r.spec.rig || it == r.responses.end()) continue;
+    std::snprintf(buf, sizeof buf, "%s %s=%.6g", arrow, response.name.c_str(), it->second);
     s += buf;
+    arrow = ",";
   }
   return s;
 }

@@ -12,10 +12,11 @@ using nlohmann::json;
 RunJob make_job(const CampaignPlan& plan, const RunSpec& spec) {
   RunJob job;
   job.spec = spec;
-  job.experiment = plan.experiment;
-  job.case_path = plan.case_path;
-  job.case_text = plan.case_text;
-  job.overrides = run_overrides(plan, spec.x, spec.seed);
+  const PlanRig& rig = plan.rigs.at(size_t(spec.rig));
+  job.experiment = rig.experiment;
+  job.case_path = rig.case_path;
+  job.case_text = rig.case_text;
+  job.overrides = run_overrides(plan, spec.rig, spec.x, spec.seed);
   job.options.backend = plan.backend;
   return job;
 }
@@ -45,7 +46,7 @@ std::string host_name() {
 namespace {
 
 json spec_to_json(const RunSpec& s) {
-  return {{"id", s.id}, {"phase", s.phase}, {"point", s.point}, {"replicate", s.replicate}, {"seed", s.seed}, {"x", s.x}};
+  return {{"id", s.id}, {"phase", s.phase}, {"point", s.point}, {"replicate", s.replicate}, {"seed", s.seed}, {"x", s.x}, {"rig", s.rig}};
 }
 
 RunSpec spec_from_json(const json& j) {
@@ -56,6 +57,7 @@ RunSpec spec_from_json(const json& j) {
   s.replicate = j.at("replicate");
   s.seed = j.at("seed");
   s.x = j.at("x").get<std::vector<double>>();
+  s.rig = j.value("rig", 0);
   return s;
 }
 

@@ -11,12 +11,13 @@
 namespace repose::calibrate {
 
 struct RunSpec {
-  std::string id;     // "design-007-r0", "verify-r2", "loop-004", "final-r1"
-  std::string phase;  // design, verify, loop, final
+  std::string id;     // "design-007-r0", "verify-r2", "loop-004", "pilot-1-r3", "loop-004@cylinder"
+  std::string phase;  // design, verify, loop, pilot
   int point = 0;      // design point (standard order) or loop iteration
   int replicate = 0;  // seed = base_seed + replicate
   std::uint64_t seed = 0;
   std::vector<double> x;  // actual factor values, in plan order
+  int rig = 0;            // the plan's rig it runs on (ids on rig r > 0 end in "@NAME")
 };
 
 // A finished run as stored: the spec, its responses, and where and how long it ran.

@@ -6,11 +6,11 @@
 #include <ctime>
 #include <filesystem>
 #include <limits>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
-#include <fcntl.h>
-#include <sys/file.h>
-#include <unistd.h>
+
+#include "util/file_lock.h"
 
 namespace repose::calibrate {
 
@@ -52,39 +52,29 @@ std::string utc_now() {
   return buf;
 }
 
-// Takes DB.lock for as long as the process holds it (the kernel drops it when the process ends,
-// even by kill -9); returns the descriptor. Two campaigns on one database would run the same
+// DB.lock for as long as the store is open: two campaigns on one database would run the same
 // runs twice and collide on inserting them.
-int lock_database(const std::string& path) {
-  std::string lock_path = path + ".lock";
-  int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(lock_path + ": cannot create the campaign's lock file");
-  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
-    char holder[64] = {0};
-    ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
-    ::close(fd);
-    std::string who = n > 0 ? std::string(holder, size_t(n)) : "another process";
-    while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
-    throw std::runtime_error(path + " is in use by another campaign (" + who +
-                             "): wait for it to finish, or give this one another --db");
+std::unique_ptr<FileLock> lock_database(const std::string& path) {
+  try {
+    return std::make_unique<FileLock>(path + ".lock");
+  } catch (const FileBusy& busy) {
+    throw FileBusy(path + " is in use by another campaign (" + busy.holder() +
+                       "): wait for it to finish, or give this one another --db", busy.holder());
   }
-  std::string me = "process " + std::to_string(::getpid()) + ", since " + utc_now() + "\n";
-  if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, me.data(), me.size(), 0) < 0) { /* the lock holds without the note */ }
-  return fd;
 }
 
 }  // namespace
 
 RunStore::RunStore(const std::string& path, const CampaignPlan& plan, bool fresh)
     : path_(path), factor_names_(plan.factor_names()) {
+  for (const auto& rig : plan.rigs) rig_names_.push_back(rig.name);
   namespace fs = std::filesystem;
   if (fs::path(path).has_parent_path()) fs::create_directories(fs::path(path).parent_path());
-  lock_fd_ = lock_database(path);
+  lock_ = lock_database(path);
   try {
     open(plan, fresh);
   } catch (...) {
     sqlite3_close(db_);
-    ::close(lock_fd_);
     throw;
   }
 }
@@ -111,7 +101,8 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
   {
     Statement q(db_, "SELECT hash, canonical, plan_file FROM plan WHERE id = 1");
     if (q.step()) {
-      if (q.text(0) != hash_ && !adopt_older_plan_row(q.text(0), canonical, plan))
+      if (q.text(0) != hash_ && !adopt_older_plan_row(q.text(0), canonical, plan) &&
+          !adopt_budget_change(q.text(1), canonical))
         throw std::runtime_error(path + ": this database belongs to another version of the plan (" + q.text(2) +
                                  "); changed since: " + describe_plan_change(q.text(1), canonical) +
                                  ". Restore the plan, or start over with --new (discards the " +
@@ -128,10 +119,7 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
   load_runs();
 }
 
-RunStore::~RunStore() {
-  sqlite3_close(db_);
-  ::close(lock_fd_);
-}
+RunStore::~RunStore() { sqlite3_close(db_); }
 
 // Databases made before the plan hashed its parsed base case (they hashed the case's text as
 // campaign.case_content_hash) are adopted when that text is unchanged: their runs are the same.
@@ -142,9 +130,24 @@ bool RunStore::adopt_older_plan_row(const std::string& stored_hash, const std::s
   if (at == std::string::npos) return false;
   size_t end = canonical.find('\n', at);
   size_t case_lines = canonical.find(kCaseLinePrefix);
-  std::string older = canonical.substr(0, at) + "campaign.case_content_hash = " + plan_hash(plan.case_text) +
+  std::string older = canonical.substr(0, at) + "campaign.case_content_hash = " + plan_hash(plan.rigs[0].case_text) +
                       canonical.substr(end, case_lines == std::string::npos ? std::string::npos : case_lines - end);
   if (plan_hash(older) != stored_hash) return false;
+  Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
+  up.bind(1, hash_);
+  up.bind(2, canonical);
+  up.step();
+  return true;
+}
+
+// A plan whose adaptive budget was raised (or lowered) is the same campaign: the budget is no longer
+// part of the canonical text, and a database that still holds it in its plan row is adopted.
+bool RunStore::adopt_budget_change(const std::string& stored_canonical, const std::string& canonical) {
+  std::istringstream in(stored_canonical);
+  std::string without, line;
+  while (std::getline(in, line))
+    if (line.rfind("adaptive.budget = ", 0) != 0) without += line + "\n";
+  if (without != canonical) return false;
   Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
   up.bind(1, hash_);
   up.bind(2, canonical);
@@ -161,8 +164,13 @@ void RunStore::exec(const std::string& sql) {
   }
 }
 
-void RunStore::load_runs() {
-  Statement q(db_, "SELECT run_id, phase, point, replicate, seed, factors, responses, wall_s, host, rank FROM runs");
+namespace {
+
+// Every row of the runs table, each run given its rig from its id's "@NAME".
+std::map<std::string, RunRecord> read_runs(sqlite3* db, const std::vector<std::string>& factor_names,
+                                           const std::vector<std::string>& rig_names) {
+  std::map<std::string, RunRecord> runs;
+  Statement q(db, "SELECT run_id, phase, point, replicate, seed, factors, responses, wall_s, host, rank FROM runs");
   while (q.step()) {
     RunRecord r;
     r.spec.id = q.text(0);
@@ -171,15 +179,45 @@ void RunStore::load_runs() {
     r.spec.replicate = int(q.integer(3));
     r.spec.seed = uint64_t(q.integer(4));
     auto factors = nlohmann::json::parse(q.text(5));
-    for (const auto& name : factor_names_) r.spec.x.push_back(factors.at(name).get<double>());
+    for (const auto& name : factor_names) r.spec.x.push_back(factors.at(name).get<double>());
     const auto responses = nlohmann::json::parse(q.text(6));  // named: items() does not extend its life
     for (auto& [k, v] : responses.items())
       r.responses[k] = v.is_null() ? std::numeric_limits<double>::quiet_NaN() : v.get<double>();  // NaN is stored as null
     r.wall_s = q.real(7);
     r.host = q.text(8);
     r.rank = int(q.integer(9));
-    runs_[r.spec.id] = r;
+    const size_t at = r.spec.id.rfind('@');
+    for (size_t i = 1; at != std::string::npos && i < rig_names.size(); ++i)
+      if (r.spec.id.compare(at + 1, std::string::npos, rig_names[i]) == 0) r.spec.rig = int(i);
+    runs[r.spec.id] = r;
   }
+  return runs;
+}
+
+}  // namespace
+
+void RunStore::load_runs() { runs_ = read_runs(db_, factor_names_, rig_names_); }
+
+std::map<std::string, RunRecord> RunStore::read_only(const std::string& path, const CampaignPlan& plan) {
+  std::map<std::string, RunRecord> runs;
+  if (!std::filesystem::exists(path)) return runs;
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) != SQLITE_OK) {
+    sqlite3_close(db);
+    return runs;
+  }
+  std::vector<std::string> rigs;
+  for (const auto& rig : plan.rigs) rigs.push_back(rig.name);
+  try {
+    sqlite3_busy_timeout(db, 2000);
+    Statement q(db, "SELECT hash FROM plan WHERE id = 1");
+    // Runs of another plan (another version of this one) say nothing about this plan's cost.
+    if (q.step() && q.text(0) == plan_hash(canonical_plan_text(plan))) runs = read_runs(db, plan.factor_names(), rigs);
+  } catch (const std::exception&) {
+    runs.clear();  // not a campaign database: nothing to learn from it
+  }
+  sqlite3_close(db);
+  return runs;
 }
 
 bool RunStore::has(const std::string& id) const { return runs_.count(id) > 0; }

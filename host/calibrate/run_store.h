@@ -9,6 +9,7 @@
 
 #include "calibrate/plan.h"
 #include "calibrate/run_spec.h"
+#include "util/file_lock.h"
 
 struct sqlite3;
 
@@ -29,19 +30,25 @@ class RunStore {
   // Commits one run (its own transaction); throws on a duplicate id or a write failure.
   void insert(const RunRecord& record);
   std::size_t size() const { return runs_.size(); }
+  const std::map<std::string, RunRecord>& runs() const { return runs_; }  // by id
+  // The runs of a database made for this same plan, read without locking or writing (for
+  // `--check`); empty when there is none or it belongs to another plan.
+  static std::map<std::string, RunRecord> read_only(const std::string& path, const CampaignPlan& plan);
   const std::string& path() const { return path_; }
 
  private:
   void open(const CampaignPlan& plan, bool fresh);
   bool adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical, const CampaignPlan& plan);
+  bool adopt_budget_change(const std::string& stored_canonical, const std::string& canonical);
   void exec(const std::string& sql);
   void load_runs();
 
   std::string path_;
   std::string hash_;
   std::vector<std::string> factor_names_;
+  std::vector<std::string> rig_names_;  // to give each stored run its rig (from its id's "@NAME")
   sqlite3* db_ = nullptr;
-  int lock_fd_ = -1;  // flock on PATH.lock while this store is open
+  std::unique_ptr<FileLock> lock_;  // PATH.lock while this store is open
   std::map<std::string, RunRecord> runs_;
 };
 

@@ -6,14 +6,15 @@
 #include <string>
 
 #include "case/case_spec.h"
+#include "util/input_error.h"
 #include "util/number_text.h"
 
 namespace repose {
 
-class CaseError : public std::runtime_error {
+class CaseError : public BadInput {
  public:
   CaseError(const SourceRef& where, const std::string& problem, int column = 0)
-      : std::runtime_error(format(where, problem, column)),
+      : BadInput(format(where, problem, column)),
         where_(where),
         problem_(problem),
         column_(column) {}

@@ -86,6 +86,7 @@ void CaseReader::read_template(const Section& s) {
     }
   } else {
     std::string file = *s.text("file");
+    t.file = file;
     std::filesystem::path path = std::filesystem::path(file_).parent_path() / file;
     try {
       t.clump.spheres = read_sphere_csv(path.string());

@@ -3,12 +3,14 @@
 #include "case/case_reader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "case/case_error.h"
 #include "case/experiment_keys.h"
 #include "case/spelling.h"
 #include "case/time_step.h"
+#include "util/path_name.h"
 
 namespace repose {
 
@@ -20,11 +22,22 @@ void CaseReader::read_simulation() {
   s->allow_only({"name", "seed", "end_time", "dt", "rayleigh_fraction", "gravity", "integrator"},
                 "[simulation]");
   spec_.name = s->text("name").value_or(std::filesystem::path(file_).stem().string());
+  // The name becomes file and folder names (frames/NAME_00000.vtp, out/NAME): it must stay inside.
+  if (std::string why = why_not_path_name(spec_.name); !why.empty()) {
+    if (s->has("name")) s->fail("name", why);
+    throw CaseError({file_, "simulation.name", 0}, "the case file's name gives the case no usable name (" + why +
+                                                       "): give simulation.name");
+  }
   if (auto seed = s->integer("seed")) {
     if (*seed < 0) s->fail("seed", "must not be negative");
     spec_.seed = uint64_t(*seed);
   }
   spec_.gravity = s->vector3("gravity").value_or(spec_.gravity);
+  double g = std::sqrt(spec_.gravity[0] * spec_.gravity[0] + spec_.gravity[1] * spec_.gravity[1] +
+                       spec_.gravity[2] * spec_.gravity[2]);
+  if (!(g <= 1e4))  // a geotechnical centrifuge reaches a few hundred g
+    s->fail("gravity", "|gravity| = " + format_number(g) + " m/s^2 is " + format_number(g / 9.81) +
+                           " g: more than 1e4 m/s^2 is no lab, planet or centrifuge (a unit slip?)");
   spec_.integrator = s->choice<Integrator>(
       "integrator",
       {{"velocity_verlet", Integrator::VelocityVerlet}, {"symplectic_euler", Integrator::SymplecticEuler}},

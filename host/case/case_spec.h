@@ -69,6 +69,7 @@ struct SphereSpec {
 // material density, or from an explicit mass (the union's centre and inertia scaled to it).
 struct TemplateSpec {
   std::string name;
+  std::string file;  // the sphere CSV as the case names it ("" for a builtin template)
   ClumpTemplate clump;
   std::optional<double> mass;  // kg at scale 1
   SourceRef where;

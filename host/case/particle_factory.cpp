@@ -21,21 +21,29 @@ std::string describe(const SphereSpec& sphere) {
   return sphere.where.key + " (line " + std::to_string(sphere.where.line) + ")";
 }
 
-// Grid holding the spheres whose bounding boxes reach into [lo, hi]: only they can touch new
-// spheres placed there. ids maps grid ids back to indices in `spheres`.
+bool reaches_into(const SphereSpec& s, const Vec3d& lo, const Vec3d& hi) {
+  bool near = true;
+  for (int axis = 0; axis < 3; ++axis)
+    near = near && s.position[axis] + s.radius > lo[axis] && s.position[axis] - s.radius < hi[axis];
+  return near;
+}
+
+// Grid over [lo, hi] holding the spheres whose bounding boxes reach into it: only they can touch
+// the `adding` new spheres placed there. ids maps grid ids back to indices in `spheres`.
 SphereGrid grid_near(const std::vector<SphereSpec>& spheres, const Vec3d& lo, const Vec3d& hi,
-                     double new_radius_max, std::vector<int>& ids) {
+                     double new_radius_max, size_t adding, std::vector<int>& ids) {
   double largest = 0;
-  for (const SphereSpec& s : spheres) largest = std::max(largest, s.radius);
+  size_t near = 0;
+  for (const SphereSpec& s : spheres)
+    if (reaches_into(s, lo, hi)) {
+      largest = std::max(largest, s.radius);
+      ++near;
+    }
   // Cells about one new sphere wide; a much larger existing sphere then spans at most ~17^3.
-  SphereGrid grid(std::max(2 * new_radius_max, largest / 8));
+  SphereGrid grid(std::max(2 * new_radius_max, largest / 8), lo, hi, near + adding);
   for (size_t i = 0; i < spheres.size(); ++i) {
-    const SphereSpec& s = spheres[i];
-    bool near = true;
-    for (int axis = 0; axis < 3; ++axis)
-      near = near && s.position[axis] + s.radius > lo[axis] && s.position[axis] - s.radius < hi[axis];
-    if (!near) continue;
-    grid.insert(s.position, s.radius);
+    if (!reaches_into(spheres[i], lo, hi)) continue;
+    grid.insert(spheres[i].position, spheres[i].radius);
     ids.push_back(int(i));
   }
   return grid;
@@ -60,6 +68,38 @@ void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
         axis[0] * e1[1] - axis[1] * e1[0]};
 }
 
+// Interleaves the low 21 bits of x, y and z (a Morton code: cells close in space get close codes).
+uint64_t morton_code(uint64_t x, uint64_t y, uint64_t z) {
+  auto spread = [](uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  return spread(x) | spread(y) << 1 | spread(z) << 2;
+}
+
+// Puts spheres[first ...] in the Morton order of cells `cell` wide from `origin` (ties in
+// placement order), so that spheres near in space are near in memory.
+void order_by_cells(std::vector<SphereSpec>& spheres, size_t first, const Vec3d& origin, double cell) {
+  std::vector<std::pair<uint64_t, size_t>> keys;
+  keys.reserve(spheres.size() - first);
+  for (size_t i = first; i < spheres.size(); ++i) {
+    uint64_t c[3];
+    for (int axis = 0; axis < 3; ++axis)
+      c[axis] = uint64_t(std::max(0.0, std::floor((spheres[i].position[axis] - origin[axis]) / cell)));
+    keys.push_back({morton_code(c[0], c[1], c[2]), i});
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<SphereSpec> ordered;
+  ordered.reserve(keys.size());
+  for (const auto& key : keys) ordered.push_back(std::move(spheres[key.second]));
+  std::move(ordered.begin(), ordered.end(), spheres.begin() + std::ptrdiff_t(first));
+}
+
 // Every sphere and body sub-sphere placed so far, in the world.
 std::vector<SphereSpec> occupied_spheres(const CaseSpec& spec) {
   std::vector<SphereSpec> occupied = spec.spheres;
@@ -75,8 +115,15 @@ std::vector<SphereSpec> occupied_spheres(const CaseSpec& spec) {
 void check_no_overlaps(const std::vector<SphereSpec>& spheres) {
   if (spheres.empty()) return;
   double largest = 0;
-  for (const SphereSpec& s : spheres) largest = std::max(largest, s.radius);
-  SphereGrid grid(2 * largest);
+  Vec3d lo = spheres[0].position, hi = lo;
+  for (const SphereSpec& s : spheres) {
+    largest = std::max(largest, s.radius);
+    for (int axis = 0; axis < 3; ++axis) {
+      lo[axis] = std::min(lo[axis], s.position[axis] - s.radius);
+      hi[axis] = std::max(hi[axis], s.position[axis] + s.radius);
+    }
+  }
+  SphereGrid grid(2 * largest, lo, hi, spheres.size());
   for (const SphereSpec& sphere : spheres) {
     int other = grid.find_overlap(sphere.position, sphere.radius);
     if (other >= 0) {
@@ -136,13 +183,14 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
   }
   std::vector<int> ids;
   Vec3d lo = lattice.box_min, hi = lattice.box_max;
-  SphereGrid grid = grid_near(spheres, lo, hi, lattice.radius, ids);
+  SphereGrid grid = grid_near(spheres, lo, hi, lattice.radius, sites.size(), ids);
   for (const Vec3d& site : sites) {
     int other = grid.find_overlap(site, lattice.radius);
     if (other >= 0)
       throw CaseError(lattice.where, "the site at " + format_point(site) + " overlaps " +
                                          describe(spheres[size_t(ids[size_t(other)])]));
   }
+  spheres.reserve(spheres.size() + sites.size());
   for (const Vec3d& site : sites) {
     SphereSpec sphere;
     sphere.position = site;
@@ -222,7 +270,8 @@ void append_body_lattice(const LatticeSpec& lattice, CaseSpec& spec) {
   double largest_sub = 0;
   for (const Sphere& s : templ.clump.spheres) largest_sub = std::max(largest_sub, s.radius * lattice.scale);
   std::vector<int> ids;
-  SphereGrid grid = grid_near(occupied, lattice.box_min, lattice.box_max, largest_sub, ids);
+  SphereGrid grid = grid_near(occupied, lattice.box_min, lattice.box_max, largest_sub,
+                              sites.size() * templ.clump.spheres.size(), ids);
   for (const Vec3d& site : sites) {
     BodySpec body = probe;
     body.material = lattice.material;
@@ -245,7 +294,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
   auto uniform = [&engine] { return unit_interval(engine()); };
   FillRegion region(fill);
   std::vector<int> ids;
-  SphereGrid grid = grid_near(spheres, region.lo, region.hi, fill.radius_max, ids);
+  SphereGrid grid = grid_near(spheres, region.lo, region.hi, fill.radius_max, size_t(fill.count), ids);
 
   auto draw_radius = [&] {
     double radius = fill.radius_min;
@@ -258,6 +307,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     for (int k = 0; k < fill.count; ++k) largest_first.push_back(draw_radius());
     std::sort(largest_first.begin(), largest_first.end(), std::greater<double>());
   }
+  spheres.reserve(spheres.size() + size_t(fill.count));
   for (int placed = 0; placed < fill.count; ++placed) {
     double radius = fill.largest_first ? largest_first[size_t(placed)] : draw_radius();
     bool found = false;
@@ -283,6 +333,7 @@ void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres) {
     sphere.where = fill.where;
     spheres.push_back(sphere);
   }
+  if (fill.count >= kFillInCellOrder) order_by_cells(spheres, spheres.size() - size_t(fill.count), region.lo, 2 * fill.radius_max);
 }
 
 void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
@@ -296,7 +347,8 @@ void append_body_fill(const FillSpec& fill, CaseSpec& spec) {
 
   std::vector<SphereSpec> occupied = occupied_spheres(spec);
   std::vector<int> ids;
-  SphereGrid grid = grid_near(occupied, region.lo, region.hi, largest_sub * fill.scale_max, ids);
+  SphereGrid grid = grid_near(occupied, region.lo, region.hi, largest_sub * fill.scale_max,
+                              size_t(fill.count) * templ.clump.spheres.size(), ids);
 
   for (int placed = 0; placed < fill.count; ++placed) {
     BodySpec body;

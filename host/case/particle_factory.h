@@ -34,7 +34,13 @@ void append_lattice(const LatticeSpec& lattice, std::vector<SphereSpec>& spheres
 // Random sequential addition: each new sphere draws its radius, then tries random centres in the
 // region (one radius from its boundary) until it overlaps no sphere already in `spheres`, up to
 // kFillTriesPerSphere tries. Throws CaseError saying how many fitted when one finds no place.
+// A fill of kFillInCellOrder spheres or more is then stored in the order of its cells (a Morton
+// order of cells two radii wide) instead of the order it was placed in, which is random in space:
+// spheres that touch are then near in memory, and the kernels gather their rows from the cache
+// instead of from main memory. Smaller fills keep the placement order (and the bytes of every
+// case written before the rule).
 constexpr int kFillTriesPerSphere = 20000;
+constexpr int kFillInCellOrder = 100000;
 void append_fill(const FillSpec& fill, std::vector<SphereSpec>& spheres);
 
 // The same for a template fill: bodies at random orientations and scales, none overlapping the

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "case/body_pose.h"
 #include "case/case_error.h"
 #include "case/time_step.h"
 #include "util/number_text.h"
@@ -88,6 +89,82 @@ void check_sizes_against_boxes(const CaseSpec& spec) {
   }
 }
 
+// The axis-aligned box around spheres and walls; its size is its longest edge.
+struct Extent {
+  Vec3d lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  void add(const Vec3d& p, double r = 0) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k] - r);
+      hi[k] = std::max(hi[k], p[k] + r);
+    }
+  }
+  bool empty() const { return lo[0] > hi[0]; }
+  double size() const { return empty() ? 0 : std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]}); }
+};
+
+// What a bounded wall spans (planes span nothing).
+Extent wall_extent(const WallSpec& w) {
+  Extent e;
+  switch (w.type) {
+    case WallSpec::Type::Box: e.add(w.box_min); e.add(w.box_max); break;
+    case WallSpec::Type::Cylinder:
+      e.add(w.base, w.radius);
+      e.add({w.base[0] + w.height * w.axis[0], w.base[1] + w.height * w.axis[1], w.base[2] + w.height * w.axis[2]}, w.radius);
+      break;
+    case WallSpec::Type::Rectangle: e.add(w.point, 0.5 * std::max(w.size[0], w.size[1])); break;
+    case WallSpec::Type::Mesh:
+      if (w.mesh)
+        for (const Vec3d& v : w.mesh->vertices) e.add(v);
+      break;
+    case WallSpec::Type::Plane: break;
+  }
+  return e;
+}
+
+// A mesh far larger than everything else in the case is an STL in millimetres read as metres
+// (meshes are drawn in mm more often than not): a warning with the remedy.
+void check_mesh_sizes(CaseSpec& spec) {
+  Extent rest;
+  for (const SphereSpec& s : spec.spheres) rest.add(s.position, s.radius);
+  for (const BodySpec& b : spec.bodies)
+    rest.add(b.position, bounding_radius(spec.templates[size_t(b.template_index)].clump) * b.scale);
+  for (const WallSpec& w : spec.walls)
+    if (w.type != WallSpec::Type::Mesh && !wall_extent(w).empty()) rest.add(wall_extent(w).lo), rest.add(wall_extent(w).hi);
+  if (rest.empty() || !(rest.size() > 0)) return;
+  for (size_t i = 0; i < spec.walls.size(); ++i) {
+    const WallSpec& w = spec.walls[i];
+    double size = w.type == WallSpec::Type::Mesh ? wall_extent(w).size() : 0;
+    if (size > 100 * rest.size())
+      warn(spec.warnings, {w.where.file, "wall[" + std::to_string(i) + "].file", w.where.line},
+           "the mesh is " + number(size) + " m across, " + number(size / rest.size()) + " times the " + number(rest.size()) +
+               " m the particles and other walls span: an STL in millimetres? give scale = 0.001");
+  }
+}
+
+// A template's bodies far larger than the rig, or than any granule, are a sphere CSV written in
+// millimetres: blamed on the file, before the time step (which follows the radii) says more.
+void check_template_sizes(const CaseSpec& spec) {
+  Extent largest;
+  std::string largest_name;
+  for (const WallSpec& w : spec.walls)
+    if (wall_extent(w).size() > largest.size()) largest = wall_extent(w), largest_name = w.name;
+  for (size_t t = 0; t < spec.templates.size(); ++t) {
+    const TemplateSpec& templ = spec.templates[t];
+    double scale = 0, radius = 0;
+    for (const BodySpec& b : spec.bodies)
+      if (b.template_index == int(t)) scale = std::max(scale, b.scale);
+    for (const auto& sphere : templ.clump.spheres) radius = std::max(radius, sphere.radius);
+    double across = 2 * bounding_radius(templ.clump) * scale;
+    bool beyond_rig = largest.size() > 0 && across > 10 * largest.size();
+    if (templ.file.empty() || !(across > 20 || beyond_rig)) continue;
+    throw CaseError({templ.where.file, "template[" + std::to_string(t) + "].file", templ.where.line},
+                    templ.file + ": its bodies are " + number(across) + " m across (radii up to " + number(radius * scale) +
+                        " m in column 'radius'), " +
+                        (beyond_rig ? "more than ten times the largest wall, '" + largest_name + "' (" + number(largest.size()) + " m)"
+                                    : "larger than any granule") + ": millimetres written as metres?");
+  }
+}
+
 // dt against end_time, and each particle's initial travel per step against its radius.
 void check_time_scales(CaseSpec& spec) {
   double dt = resolve_dt(spec);
@@ -99,6 +176,10 @@ void check_time_scales(CaseSpec& spec) {
     throw CaseError(spec.time.end_where, "end_time " + number(spec.time.end_time) + " s is " +
                                          number(spec.time.end_time / dt) + " steps of " + number(dt) +
                                          " s: more than 1e12 steps cannot be meant");
+  if (spec.time.end_time / dt > 1e9)
+    warn(spec.warnings, spec.time.where, "a time step of " + number(dt) + " s makes " + number(spec.time.end_time / dt) +
+                                             " steps to end_time " + number(spec.time.end_time) +
+                                             " s: days of computing at any speed (1e12 steps are refused)");
   if (spec.time.end_time / dt < 20)
     warn(spec.warnings, spec.time.where, "only " + number(spec.time.end_time / dt) + " steps of " + number(dt) +
                                              " s before end_time " + number(spec.time.end_time) + " s");
@@ -142,6 +223,8 @@ void check_shear_modulus(double g, const SourceRef& where, std::vector<std::stri
 
 void check_case_ranges(CaseSpec& spec) {
   check_sizes_against_boxes(spec);
+  check_template_sizes(spec);
+  check_mesh_sizes(spec);
   for (size_t f = 0; f < spec.fills.size(); ++f) check_fill_inside_walls(spec, spec.fills[f], f);
   check_time_scales(spec);
 }

@@ -1,74 +1,68 @@
 #include "case/sphere_grid.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace repose {
 
-SphereGrid::SphereGrid(double cell_size) : cell_size_(cell_size), slots_(1024, Slot{0, 0, 0, -1}) {}
+SphereGrid::SphereGrid(double cell_size, const Vec3d& lo, const Vec3d& hi, size_t expected) : origin_(lo) {
+  double extent[3];
+  for (int axis = 0; axis < 3; ++axis) extent[axis] = std::max(0.0, hi[axis] - lo[axis]);
+  // At most 4 cells per expected sphere (and 2^12 in any case); each growth by 2^(1/3) halves
+  // the count.
+  double most = std::max(4096.0, 4.0 * double(expected));
+  cell_size_ = cell_size;
+  auto cells = [&] {
+    double total = 1;
+    for (double e : extent) total *= std::floor(e / cell_size_) + 1;
+    return total;
+  };
+  while (cells() > most) cell_size_ *= 1.2599210498948732;
+  small_radius_ = 0.5 * cell_size_;
+  for (int axis = 0; axis < 3; ++axis) dims_[axis] = int64_t(std::floor(extent[axis] / cell_size_)) + 1;
+  heads_.assign(size_t(dims_[0] * dims_[1] * dims_[2]), -1);
+  entries_.reserve(expected);
+}
 
-SphereGrid::CellRange SphereGrid::cells_of(const Vec3d& centre, double radius) const {
+SphereGrid::CellRange SphereGrid::cells_of(const Vec3d& centre, double reach) const {
   CellRange range;
   for (int axis = 0; axis < 3; ++axis) {
-    range.lo[axis] = int64_t(std::floor((centre[axis] - radius) / cell_size_));
-    range.hi[axis] = int64_t(std::floor((centre[axis] + radius) / cell_size_));
+    auto cell = [&](double x) {
+      double c = std::floor((x - origin_[axis]) / cell_size_);
+      return int64_t(std::clamp(c, 0.0, double(dims_[axis] - 1)));  // beyond the box: its border cells
+    };
+    range.lo[axis] = cell(centre[axis] - reach);
+    range.hi[axis] = cell(centre[axis] + reach);
   }
   return range;
 }
 
-size_t SphereGrid::slot_of(int64_t x, int64_t y, int64_t z) const {
-  // splitmix-style mixing of the three cell coordinates; linear probing.
-  uint64_t h = uint64_t(x) * 0x9E3779B97F4A7C15ull;
-  h ^= uint64_t(y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-  h ^= uint64_t(z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-  h ^= h >> 31;
-  size_t mask = slots_.size() - 1;
-  for (size_t i = size_t(h) & mask;; i = (i + 1) & mask) {
-    const Slot& slot = slots_[i];
-    if (slot.head < 0 || (slot.x == x && slot.y == y && slot.z == z)) return i;
-  }
-}
-
-void SphereGrid::grow() {
-  std::vector<Slot> old = std::move(slots_);
-  slots_.assign(old.size() * 2, Slot{0, 0, 0, -1});
-  for (const Slot& slot : old)
-    if (slot.head >= 0) slots_[slot_of(slot.x, slot.y, slot.z)] = slot;
-}
-
 void SphereGrid::insert(const Vec3d& centre, double radius) {
-  int id = int(centres_.size());
-  centres_.push_back(centre);
-  radii_.push_back(radius);
-  CellRange range = cells_of(centre, radius);
+  int id = count_++;
+  CellRange range = cells_of(centre, radius <= small_radius_ ? 0.0 : radius);
   for (int64_t x = range.lo[0]; x <= range.hi[0]; ++x)
     for (int64_t y = range.lo[1]; y <= range.hi[1]; ++y)
       for (int64_t z = range.lo[2]; z <= range.hi[2]; ++z) {
-        if (2 * (used_slots_ + 1) > slots_.size()) grow();
-        Slot& slot = slots_[slot_of(x, y, z)];
-        if (slot.head < 0) {
-          slot = Slot{x, y, z, -1};
-          ++used_slots_;
-        }
-        entries_.push_back(Entry{id, slot.head});
-        slot.head = int(entries_.size() - 1);
+        int& head = heads_[cell_index(x, y, z)];
+        entries_.push_back(Entry{centre[0], centre[1], centre[2], radius, id, head});
+        head = int(entries_.size() - 1);
       }
 }
 
 int SphereGrid::find_overlap(const Vec3d& centre, double radius) const {
-  CellRange range = cells_of(centre, radius);
-  for (int64_t x = range.lo[0]; x <= range.hi[0]; ++x)
+  CellRange range = cells_of(centre, radius + small_radius_);
+  for (int64_t z = range.lo[2]; z <= range.hi[2]; ++z)
     for (int64_t y = range.lo[1]; y <= range.hi[1]; ++y)
-      for (int64_t z = range.lo[2]; z <= range.hi[2]; ++z) {
-        const Slot& slot = slots_[slot_of(x, y, z)];
-        for (int e = slot.head; e >= 0; e = entries_[e].next) {
-          int other = entries_[e].sphere;
-          double dx = centre[0] - centres_[other][0];
-          double dy = centre[1] - centres_[other][1];
-          double dz = centre[2] - centres_[other][2];
-          double reach = radius + radii_[other];
-          if (dx * dx + dy * dy + dz * dz < reach * reach) return other;
+      for (int64_t x = range.lo[0]; x <= range.hi[0]; ++x)
+        for (int e = heads_[cell_index(x, y, z)]; e >= 0;) {
+          const Entry& other = entries_[size_t(e)];
+          double dx = centre[0] - other.x;
+          double dy = centre[1] - other.y;
+          double dz = centre[2] - other.z;
+          double reach = radius + other.radius;
+          if (dx * dx + dy * dy + dz * dz < reach * reach) return other.sphere;
+          e = other.next;
         }
-      }
   return -1;
 }
 

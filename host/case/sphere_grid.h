@@ -1,6 +1,11 @@
-// A hash grid of spheres for overlap queries while particles are being placed. Each sphere is
-// entered in every cell its bounding box touches, so two overlapping spheres always share a
-// cell whatever their sizes, and a query looks only at the cells of its own bounding box.
+// A grid of spheres for overlap queries while particles are being placed (a random fill tries
+// ten or more places per sphere, so this is where a million-sphere fill spends its time).
+// The cells are one dense array over a box, the region being filled: a cell is found by
+// arithmetic. A sphere no wider than a cell is entered once, in the cell of its centre; a
+// larger one (a cabbage's core among its veins) in every cell its bounding box touches. A query
+// looks at the cells within its radius plus half a cell of its centre, which holds every centre
+// of a small sphere it can touch and a cell shared with every large one. Spheres and queries
+// that reach beyond the box use its border cells, so nothing is missed outside it either.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -11,32 +16,42 @@ namespace repose {
 
 class SphereGrid {
  public:
-  // cell_size: about the diameter of the spheres queried most often.
-  explicit SphereGrid(double cell_size);
+  // cell_size: about the diameter of the spheres queried most often; [lo, hi]: where the
+  // queries are; expected: about how many spheres will be inserted. The cells grow beyond
+  // cell_size when the box would need more than 4 per expected sphere (a sparse fill of a big
+  // region), which only makes the cells fuller.
+  SphereGrid(double cell_size, const Vec3d& lo, const Vec3d& hi, size_t expected);
 
   // Adds a sphere; its id is the number of spheres added before it.
   void insert(const Vec3d& centre, double radius);
 
   // Id of the first-found stored sphere that overlaps the given one (centre distance strictly
-  // less than the sum of the radii: touching is allowed), or -1.
+  // less than the sum of the radii: touching is allowed), or -1. Cells are visited in memory
+  // order (z, then y, then x), a cell's spheres newest first.
   int find_overlap(const Vec3d& centre, double radius) const;
 
-  size_t size() const { return centres_.size(); }
+  size_t size() const { return size_t(count_); }
 
  private:
   struct CellRange { int64_t lo[3], hi[3]; };
-  struct Slot { int64_t x, y, z; int head; };  // head < 0: empty slot
-  struct Entry { int sphere; int next; };      // a sphere's membership of one cell
+  // A sphere's membership of one cell, with its centre and radius at hand (one memory read).
+  struct Entry {
+    double x, y, z, radius;
+    int sphere;
+    int next;  // the cell's next older entry, -1 at the end
+  };
 
-  CellRange cells_of(const Vec3d& centre, double radius) const;
-  size_t slot_of(int64_t x, int64_t y, int64_t z) const;  // existing or empty slot
-  void grow();
+  CellRange cells_of(const Vec3d& centre, double reach) const;
+  size_t cell_index(int64_t x, int64_t y, int64_t z) const {
+    return size_t((z * dims_[1] + y) * dims_[0] + x);
+  }
 
   double cell_size_;
-  std::vector<Vec3d> centres_;
-  std::vector<double> radii_;
-  std::vector<Slot> slots_;  // open addressing, power-of-two size
-  size_t used_slots_ = 0;
+  double small_radius_;  // spheres up to this radius are entered by their centre alone
+  Vec3d origin_{};
+  int64_t dims_[3] = {1, 1, 1};
+  int count_ = 0;
+  std::vector<int> heads_;  // per cell: its newest entry, -1 when empty
   std::vector<Entry> entries_;
 };
 

@@ -4,9 +4,34 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <string>
 
+#include "util/input_error.h"
+
 namespace repose::cli {
+
+// Exit codes (README, "Exit codes"): 0 done; 1 a failure while working (a full disk, no device,
+// a reading the rig could not take); 2 bad input (a case, a data file, a command line, an output
+// folder, a state file); 3 a calibration that missed its target; 128 + N stopped by signal N.
+inline int failure_exit_code(const std::exception& e) { return dynamic_cast<const BadInput*>(&e) ? 2 : 1; }
+
+// CLI11's exit codes (105, 106, 109, ...) for command-line errors become 2; --help stays 0.
+inline int parse_exit_code(CLI::App& app, const CLI::ParseError& e) { return app.exit(e) == 0 ? 0 : 2; }
+
+// CLI11_PARSE with the exit codes above.
+#define REPOSE_PARSE(app, argc, argv)                  \
+  try {                                                \
+    (app).parse((argc), (argv));                       \
+  } catch (const CLI::ParseError& parse_error) {       \
+    return repose::cli::parse_exit_code(app, parse_error); \
+  }
+
+// A path that is given must name something: `--out ''` would silently mean the default.
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator([](std::string& text) -> std::string { return text.empty() ? "an empty path names nothing" : ""; },
+                        "PATH");
+}
 
 // A finite number > 0 (refuses nan, inf and negative values that CLI11's own ranges let through).
 inline CLI::Validator finite_positive() {

@@ -14,7 +14,8 @@ struct Verb {
       run;
 };
 
-std::vector<Verb> engine_verbs();    // verbs_engine.cpp: devices, run, bench
+std::vector<Verb> engine_verbs();    // verbs_engine.cpp: devices, run
+std::vector<Verb> bench_verbs();     // verbs_bench.cpp: bench
 std::vector<Verb> stats_verbs();     // verbs_stats.cpp: design, fit, curve
 std::vector<Verb> optimize_verbs();  // verbs_optimize.cpp: optimize
 std::vector<Verb> geometry_verbs();  // verbs_geometry.cpp: clump, stl, heap-angle

@@ -6,6 +6,8 @@
 #include "calibrate/campaign.h"
 #include "calibrate/mpi_session.h"
 #include "calibrate/plan.h"
+#include "calibrate/plan_check.h"
+#include "calibrate/run_store.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
 
@@ -28,8 +30,10 @@ int run_calibrate(int argc, char** argv) {
   int jobs = -1;
   bool check_only = false;
   app.add_option("plan", plan_path, "campaign plan (TOML, docs/calibration.md)")->required();
-  app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)");
-  app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)");
+  app.add_option("--db", options.db_path, "campaign database (default OUT/campaign.sqlite)")
+      ->check(non_empty_path());
+  app.add_option("--out", options.out_dir, "folder for report.md, summary.json and the figures (default out/calibrate/NAME)")
+      ->check(non_empty_path());
   app.add_flag("--new", options.fresh, "discard an existing database and start over");
   app.add_option("--jobs", jobs, "simulations at a time on this machine (default: its cores; 1 per rank under mpirun; "
                  "0 under mpirun: rank 0 only coordinates)")
@@ -38,12 +42,13 @@ int run_calibrate(int argc, char** argv) {
                  "cpu backend threads of each simulation (default 1; a loop that proposes one run at a time can use them)")
       ->check(whole_number(1, 256));
   app.add_flag("--quiet", options.quiet, "no per-run progress lines");
-  app.add_flag("--check", check_only, "load and check the plan, print the runs it asks for, run nothing");
+  app.add_flag("--check", check_only,
+               "load and check the plan, print the runs it asks for, their cost and the precision they can reach; run nothing");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     mpi.stop_workers();
-    return app.exit(e);
+    return parse_exit_code(app, e);
   }
   CampaignPlan plan;
   try {
@@ -62,6 +67,17 @@ int run_calibrate(int argc, char** argv) {
                 plan.mode == CampaignMode::design ? "design" : "adaptive", plan.factors.size(),
                 plan_hash(canonical_plan_text(plan)).c_str(), describe_planned_runs(plan).c_str());
     mpi.stop_workers();
+    try {
+      const std::string out_dir = options.out_dir.empty() ? "out/calibrate/" + plan.name : options.out_dir;
+      bool unreachable = false;
+      std::printf("%s", describe_plan_check(plan, RunStore::read_only(options.db_path.empty() ? out_dir + "/campaign.sqlite"
+                                                                                             : options.db_path, plan),
+                                            1.0, unreachable)
+                            .c_str());
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "repose calibrate --check: %s\n", e.what());
+      return 1;
+    }
     return 0;
   }
   if (jobs < 0) jobs = mpi.active() ? 1 : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -74,7 +90,7 @@ int run_calibrate(int argc, char** argv) {
     mpi.stop_workers();
     std::fprintf(stderr, "repose calibrate: %s\n(every finished run is kept: run the same command again to resume)\n",
                  e.what());
-    return 1;
+    return failure_exit_code(e);
   }
 }
 

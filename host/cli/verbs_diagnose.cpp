@@ -11,6 +11,7 @@
 #include "case/case_error.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "io/output_dir.h"
 #include "diagnosis/diagnose.h"
 #include "diagnosis/diagnosis_report.h"
 #include "diagnosis/extensions.h"
@@ -61,14 +62,15 @@ int run_diagnose(int argc, char** argv) {
   bool quiet = false;
   app.add_option("data", data_path, "measured data CSV (README, 'Measured data')")->required();
   app.add_option("--params", params_path, "calibrated parameters (TOML of case keys); the baseline is then not refitted");
-  app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)");
+  app.add_option("--out", out_dir, "folder for diagnosis.json, report.md and figures (default out/diagnose_NAME)")
+      ->check(non_empty_path());
   app.add_option("--threads", threads, "simulations run in parallel (default 2)")->check(thread_count());
   app.add_option("--candidates", candidates, "comma-separated extension ids to test (default: all that apply)");
   app.add_option("--sim-replicates", sim_replicates,
                  "simulated replicates per condition for a stochastic model (a clump at random orientations; default 8)")
       ->check(CLI::Range(2, 1000));
   app.add_flag("--quiet", quiet, "no progress lines");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (out_dir.empty()) out_dir = "out/diagnose_" + std::filesystem::path(data_path).stem().string();
   try {
     DiagnoseOptions options;
@@ -83,6 +85,8 @@ int run_diagnose(int argc, char** argv) {
     for (std::string id; std::getline(list, id, ',');)
       if (!id.empty()) options.candidates.push_back(id);
     Observations obs = group_observations(read_measured_data(data_path));
+    OutputFolder folder(out_dir);  // ours alone until the diagnosis is written
+    folder.remove_leftovers();
     Diagnosis d = diagnose(obs, options);
     write_diagnosis(obs, d, out_dir);
     std::printf("verdict: %s", d.verdict.c_str());
@@ -99,7 +103,7 @@ int run_diagnose(int argc, char** argv) {
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "diagnose: %s\n", e.what());
-    return 1;
+    return failure_exit_code(e);
   }
   return 0;
 }
@@ -139,8 +143,11 @@ int run_synth_data(int argc, char** argv) {
       ->check(CLI::Range(0.0, 0.99));
   app.add_option("--seed", truth.seed, "noise seed, and a clump body's orientations (default 1)");
   app.add_flag("--sigma", truth.write_sigma, "write a sigma column (the noise SDs): diagnose then scores the replicate scatter too");
-  app.add_option("--out", out, "CSV to write")->required();
-  CLI11_PARSE(app, argc, argv);
+  bool quiet = false;
+  app.add_flag("--quiet", quiet, "no progress lines");
+  app.add_option("--out", out, "CSV to write")->check(non_empty_path())->required();
+  REPOSE_PARSE(app, argc, argv);
+  truth.progress = !quiet;
   try {
     if (restitution > 0) truth.restitution = restitution;
     if (grain_friction > 0) truth.grain_friction = grain_friction;
@@ -168,7 +175,7 @@ int run_synth_data(int argc, char** argv) {
 int run_extensions(int argc, char** argv) {
   CLI::App app{"List the candidate model extensions diagnose tests: parameters, ranges, revealing measures, "
                "case keys and where their physics lives."};
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   for (const ModelExtension& e : model_extensions()) {
     std::printf("%s\n  %s\n", e.id.c_str(), e.description.c_str());
     for (const FreeParameter& p : e.parameters)

@@ -6,12 +6,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "util/number_text.h"
 #include "engine/backend_factory.h"
+#include "engine/model.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
 #include "io/provenance.h"
@@ -73,19 +75,27 @@ int run_experiment(int argc, char** argv) {
   app.add_option("--threads", threads, "cpu backend threads (default all cores)")->check(thread_count());
   app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
   app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)");
+  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)")
+      ->check(non_empty_path());
   app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
   app.add_flag("--quiet", quiet, "no progress output");
   bool profile = false;
   app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
+  bool wall_impulses = false;
+  app.add_flag("--wall-impulses", wall_impulses,
+               "wall_forces.csv also gives each wall's largest force and its impulse between samples (the walls' "
+               "forces summed every step: one more kernel per step)");
+  double frames = 0;
+  auto* frames_opt = app.add_option("--frames", frames,
+                                    "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
+                                    "case's [output] interval, else 0.01 s (less often for large cases)")
+                         ->expected(0, 1)
+                         ->check(finite_positive());
   int replicates = 1;
   app.add_option("--replicates", replicates,
-                 "drop: N drops with seeds seed, seed+1, ... (a clump lands at a random orientation each)")
+                 "drop, roll (incline): N runs with seeds seed, seed+1, ... (a clump at a random orientation each)")
       ->check(whole_number(1, 1000));
-  CLI11_PARSE(app, argc, argv);
-  const std::vector<std::string> with_replicates = types_where([](const Experiment& e) { return e.takes_replicates(); });
-  if (replicates > 1 && std::find(with_replicates.begin(), with_replicates.end(), type) == with_replicates.end())
-    return usage_error("--replicates applies to the " + listed(with_replicates) + " experiment");
+  REPOSE_PARSE(app, argc, argv);
   const std::vector<std::string> with_height = types_with_key("drop_height");
   if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
     return usage_error("--height applies to the " + listed(with_height) + " experiment");
@@ -104,10 +114,18 @@ int run_experiment(int argc, char** argv) {
                  spec.experiment.type.c_str(), type.c_str());
     return 2;
   }
+  if (replicates > 1 && !experiment->takes_replicates()) {
+    std::vector<std::string> with;
+    for (const Experiment* e : experiments())
+      if (e->takes_replicates()) with.push_back(e->description());
+    return usage_error("--replicates applies to " + listed(with) + ", not to " + experiment->description());
+  }
   // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
   if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
+  std::optional<OutputFolder> folder;  // ours alone until the experiment ends
   try {
-    prepare_output_dir(out_dir, overwrite, {case_path});
+    folder.emplace(out_dir);
+    folder->make_ready(overwrite, {case_path});
   } catch (const OutputError& e) {
     std::fprintf(stderr, "repose experiment: %s\n", e.what());
     return 2;
@@ -120,15 +138,42 @@ int run_experiment(int argc, char** argv) {
   run.threads = threads;
   run.progress = !quiet;
   run.replicates = replicates;
+  run.wall_impulses = wall_impulses;
+  if (frames_opt->count() || (spec.output.interval > 0 && spec.output.vtk)) {
+    run.frames.dir = out_dir;
+    run.frames.name = spec.name;
+    run.frames.interval = frames > 0                ? frames
+                          : spec.output.interval > 0 ? spec.output.interval
+                                                     : default_frame_interval(build_model(spec), spec.experiment.max_time);
+  }
+  // Not strict: a reading the rig could not take comes back as a status with what was measured
+  // so far, which is written (TYPE.json with status "failed" and the reason) before exit 1.
+  run.strict = false;
   try {
     ExperimentOutcome outcome = experiment->run(spec, run);
-    measured_or_throw(outcome);
+    outcome.json = with_status(outcome);
     outcome.json["provenance"] = experiment_provenance(spec, sets, run);
     for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
+    if (run.frames.wanted())
+      std::printf("VTK frames every %g s in %s/frames, series %s/%s*.pvd for ParaView (*_contacts.pvd: the force "
+                  "network, *_walls.pvd: the walls)\n",
+                  run.frames.interval, out_dir.c_str(), out_dir.c_str(), spec.name.c_str());
+    if (outcome.status != OutcomeStatus::Measured) {
+      std::fprintf(stderr, "%s\n", outcome.problem.c_str());
+      return 1;
+    }
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
-    return 1;
+    ExperimentOutcome failed;
+    failed.status = OutcomeStatus::Failed;
+    failed.problem = e.what();
+    failed.json["experiment"] = type;
+    failed.json["case"] = spec.path;
+    failed.json = with_status(failed);
+    failed.json["provenance"] = experiment_provenance(spec, sets, run);
+    write_outcome(failed, type + ".json", out_dir);
+    return failure_exit_code(e);
   }
   return 0;
 }

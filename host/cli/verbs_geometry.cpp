@@ -18,6 +18,7 @@
 #include "geometry/clump.h"
 #include "geometry/sphere_csv.h"
 #include "geometry/stl.h"
+#include "geometry/stl_shapes.h"
 #include "geometry/templates.h"
 #include "measure/bed_height.h"
 #include "measure/heap_angle.h"
@@ -25,6 +26,7 @@
 #include "measure/heap_profile.h"
 #include "measure/heap_views.h"
 #include "measure/heap_png.h"
+#include "measure/heap_scatter.h"
 
 namespace repose::cli {
 
@@ -92,9 +94,9 @@ int run_template(int argc, char** argv) {
   std::string name, out;
   bool list = false;
   app.add_option("name", name, "template name (see --list)");
-  app.add_option("--out", out, "CSV file to write (x,y,z,radius)");
+  app.add_option("--out", out, "CSV file to write (x,y,z,radius)")->check(non_empty_path());
   app.add_flag("--list", list, "list the shipped templates");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   if (list) {
     for (const ShippedTemplate& t : shipped_templates()) std::printf("%-22s %s\n", t.name.c_str(), t.summary.c_str());
     return 0;
@@ -130,7 +132,7 @@ int run_clump(int argc, char** argv) {
   app.add_option("--inertia", inertia, "explicit inertia Ixx,Iyy,Izz,Ixy,Ixz,Iyz about the centre of mass (kg m^2)")
       ->expected(6)
       ->delimiter(',');
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   ClumpTemplate clump;
   clump.name = file;
@@ -184,7 +186,7 @@ int run_stl(int argc, char** argv) {
   bool json = false;
   app.add_option("file", file, "STL file")->required();
   app.add_flag("--json", json, "print JSON instead of text");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   const StlFile stl = read_stl(file);
   const MeshSummary s = summarize_mesh(stl.mesh);
@@ -318,11 +320,47 @@ void print_measure_rows(const HeapAngleRun& r, const std::string& side) {
     if (name != "bed_height" || r.bed) std::printf("%s,%.7g\n", name.c_str(), values.at(name));
 }
 
+// Several saved heaps of one rig: each one's readings, then their fill-to-fill spread and the
+// front view's variance split by cause (measure/heap_scatter.h).
+void print_heap_scatter(const std::vector<std::string>& files, const HeapReadingOptions& options) {
+  std::vector<HeapReading> readings;
+  std::printf("%-40s %8s %10s %9s %9s %8s %8s\n", "heap", "front", "views", "views sd", "turned sd", "height", "run-out");
+  for (const std::string& file : files) {
+    if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0)
+      throw std::runtime_error(file + ": several heaps are re-measured from their spheres (CSV), not from pictures");
+    readings.push_back(read_heap(read_sphere_csv(file), options));
+    const HeapReading& r = readings.back();
+    std::printf("%-40s %8.3f %10.3f %9.3f %9.3f %8.4f %8.4f\n", file.c_str(), r.front, r.views_mean, r.views_sd,
+                r.turned_sd, r.height, r.runout);
+  }
+  const HeapScatter s = heap_scatter(readings);
+  auto row = [](const char* what, const SampleSpread& v, const char* unit) {
+    std::printf("%-34s mean %9.4g %s, sd %8.3g, SE %8.3g (n %d)\n", what, v.mean, unit, v.sd, v.se(), v.n);
+  };
+  std::printf("over %zu heaps (side %s, fit band %g-%g of the height):\n", readings.size(), options.side.c_str(),
+              options.angle.band_low, options.angle.band_high);
+  row("front view (one photograph)", s.front, "deg");
+  if (options.views > 1) {
+    std::printf("%-34s sd %8.3g deg (each view's sd between heaps, pooled over the %d views)\n", "any one view", s.one_view_sd,
+                options.views);
+    row(printf_text("mean of %d views", options.views).c_str(), s.views_mean, "deg");
+  }
+  row("heap height", s.height, "m  ");
+  row("run-out", s.runout, "m  ");
+  std::printf("one photograph's sd by cause: line fit on a few bodies %.3g deg (cameras turned +-%g deg), camera side %s, "
+              "packing (heap to heap) %.3g deg\n",
+              s.fit_sd, options.turn_deg,
+              options.views > 1 ? printf_text("%.3g deg (%d views)", s.camera_sd, options.views).c_str() : "not measured (--views 1)",
+              s.packing_sd);
+}
+
 // What `repose heap-angle` was asked for, as its options give it.
 struct HeapAngleRequest {
-  std::string file, view = "y", png, json, side = "both";
+  std::vector<std::string> files;
+  std::string view = "y", png, json, side = "both";
   bool axisymmetric = false, light_heap = false, data_rows = false;
   int views = 1, threshold = 128;
+  double turn = 2.0;
   HeapAngleOptions options;
   AxisymmetricOptions axi;
   std::vector<double> band, centre;
@@ -330,8 +368,13 @@ struct HeapAngleRequest {
 };
 
 void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
-  app.add_option("file", q.file, "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph)")
+  app.add_option("file", q.files,
+                 "CSV with x,y,z,radius columns (metres), z up; or a PNG silhouette (photograph). Several CSVs "
+                 "(refilled heaps of one rig): each one's front view, --views mean and small camera turns, then "
+                 "their mean, sd and the sd's causes")
       ->required();
+  app.add_option("--turn", q.turn, "several heaps: the front camera is also turned by +-TURN and +-TURN/2 degrees (default 2)")
+      ->check(CLI::Range(0.01, 45.0));
   app.add_option("--threshold", q.threshold, "PNG: pixels darker than this grey level (0-255) are the heap (default 128)")
       ->check(CLI::Range(1, 255));
   app.add_flag("--light-heap", q.light_heap, "PNG: the heap is the lighter part of the picture");
@@ -360,28 +403,25 @@ void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
   app.add_option("--centre,--center", q.centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
 }
 
-// Reads the heap (a sphere CSV or a PNG silhouette) and measures what was asked.
+// Reads the heap q.files[0] (a sphere CSV or a PNG silhouette) and measures what was asked.
 HeapAngleRun measure_request(HeapAngleRequest& q) {
+  const std::string& file = q.files.front();
   HeapAngleRun r;
-  r.file = q.file;
+  r.file = file;
   r.view = q.view;
-  r.photo = q.file.size() > 4 && q.file.compare(q.file.size() - 4, 4, ".png") == 0;
-  if (r.photo && !(q.options.pixel > 0)) throw std::runtime_error(q.file + ": a PNG silhouette needs --pixel (m per pixel)");
+  r.photo = file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0;
+  if (r.photo && !(q.options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
   if (r.photo && (q.views > 1 || q.axisymmetric))
-    throw std::runtime_error(q.file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
-  if (!r.photo) r.spheres = read_sphere_csv(q.file);
-  HeapAngleOptions& options = q.options;
-  options.view = q.view == "x" ? ViewAxis::X : ViewAxis::Y;
-  options.floor_z = q.floor_z;
+    throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  if (!r.photo) r.spheres = read_sphere_csv(file);
+  const HeapAngleOptions& options = q.options;
   q.axi.floor_z = q.floor_z;
-  if (q.band.size() == 2) {
-    options.band_low = q.axi.band_low = q.band[0];
-    options.band_high = q.axi.band_high = q.band[1];
-  }
+  q.axi.band_low = options.band_low;
+  q.axi.band_high = options.band_high;
   if (q.centre.size() == 2) q.axi.centre = glm::dvec2(q.centre[0], q.centre[1]);
   r.options = options;
   if (r.photo) {
-    BinaryImage image = read_silhouette_png(q.file, options.pixel, q.threshold, q.light_heap);
+    BinaryImage image = read_silhouette_png(file, options.pixel, q.threshold, q.light_heap);
     double floor = q.floor_z ? *q.floor_z : lowest_foreground(image);
     r.m = measure_heap_image(std::move(image), floor, options);
   } else {
@@ -396,21 +436,55 @@ HeapAngleRun measure_request(HeapAngleRequest& q) {
 }
 
 int run_heap_angle(int argc, char** argv) {
-  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit)."};
+  CLI::App app{"Angle of repose of a settled heap from its front-view silhouette (and a 3D sector fit); several "
+               "heaps of one rig: their readings, spread and its causes."};
   HeapAngleRequest q;
   add_heap_angle_options(app, q);
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
+  q.options.view = q.view == "x" ? ViewAxis::X : ViewAxis::Y;
+  q.options.floor_z = q.floor_z;
+  if (q.band.size() == 2) {
+    q.options.band_low = q.band[0];
+    q.options.band_high = q.band[1];
+  }
+  if (q.files.size() > 1) {
+    if (!q.png.empty() || !q.json.empty() || q.axisymmetric || q.data_rows)
+      return usage_error("--png, --json, --axisymmetric and --measures take one heap; several heaps give their spread");
+    print_heap_scatter(q.files, {q.options, q.side, q.views, q.turn});
+    return 0;
+  }
   HeapAngleRun r = measure_request(q);
   if (q.data_rows) print_measure_rows(r, q.side);
   else print_heap_text(r);
   if (!q.png.empty()) {
-    write_heap_angle_png(q.png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y");
+    write_heap_angle_png(q.png, r.m, r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y", slope_caption(r.m, q.side));
     if (!q.data_rows) std::printf("picture      %s\n", q.png.c_str());
   }
   if (!q.json.empty()) {
     write_file_atomically(q.json, heap_angle_json(r).dump(2) + "\n");
     if (!q.data_rows) std::printf("results      %s\n", q.json.c_str());
   }
+  return 0;
+}
+
+// `repose mesh hopper`: a conical hopper as ASCII STL, in the unit its numbers are given in (a
+// case's `scale` converts: 0.001 for millimetres).
+int run_mesh(int argc, char** argv) {
+  CLI::App app{"Write a wall mesh as ASCII STL. Shapes: hopper (a cone open at both ends, axis z, outlet at z = 0)."};
+  std::string shape, out;
+  double top = 0, outlet = 0, height = 0;
+  int sides = 48;
+  app.add_option("shape", shape, "hopper")->required()->check(CLI::IsMember({"hopper"}));
+  app.add_option("--top-diameter", top, "diameter of the top opening")->required()->check(finite_positive());
+  app.add_option("--outlet-diameter", outlet, "diameter of the outlet")->required()->check(finite_positive());
+  app.add_option("--height", height, "height from the outlet to the top")->required()->check(finite_positive());
+  app.add_option("--sides", sides, "facets around (default 48)")->check(whole_number(3, 100000));
+  app.add_option("--out", out, "the STL file")->required();
+  CLI11_PARSE(app, argc, argv);
+  TriangleMesh mesh = hopper_mesh(0.5 * top, 0.5 * outlet, height, sides);
+  write_file_atomically(out, [&](std::ostream& o) { write_ascii_stl(o, mesh, shape); });
+  std::printf("wrote %s: %s, %zu triangles, top %g, outlet %g, height %g (the case's `scale` makes metres)\n", out.c_str(),
+              shape.c_str(), mesh.triangles.size(), top, outlet, height);
   return 0;
 }
 
@@ -421,6 +495,7 @@ std::vector<Verb> geometry_verbs() {
       {"template", "write a shipped clump template (cabbage, cotton stalk, groups) as CSV", run_template},
       {"clump", "volume, mass, centre of mass, inertia and principal axes of a clump CSV", run_clump},
       {"stl", "read an STL mesh: triangles, bounds, area, watertightness", run_stl},
+      {"mesh", "write a wall mesh as ASCII STL: a conical hopper", run_mesh},
       {"heap-angle", "angle of repose of a settled heap from its front view (and 3D sectors)", run_heap_angle},
   };
 }

@@ -88,7 +88,7 @@ struct OptimizeRequest {
   std::vector<std::string> fit_paths, goals, fixes, fixes_coded, compare;
   bool minimize = false, maximize = false;
   std::optional<double> target, tolerance;
-  std::string within = "data", json_out;
+  std::string within = "cube", json_out;
 };
 
 // The optimum found and what it optimised: one response's goal, or the overall desirability.
@@ -128,14 +128,14 @@ std::vector<SavedFit> read_fits(const OptimizeRequest& q) {
 Box optimisation_box(const OptimizeRequest& q, const SavedFit& first, std::vector<std::string>& fixed_names) {
   const int k = static_cast<int>(first.factor_names.size());
   Box box;
-  if (q.within == "data") {
+  if (q.within == "axial" || q.within == "data") {
     box = Box{first.coded_min, first.coded_max};
   } else if (q.within == "cube") {
     box = Box::cube(k, 1);
   } else {
     double r = 0;
     if (!parse_number(q.within, r) || !(r > 0))
-      throw StatsError("--within '" + q.within + "' is not data, cube or a radius");
+      throw StatsError("--within '" + q.within + "' is not cube, axial or a radius");
     box = Box::cube(k, r);
   }
   for (const auto& s : q.fixes) {
@@ -316,11 +316,13 @@ int run_optimize(int argc, char** argv) {
   app.add_option("--goal", q.goals, "one per fit: min, max or target=V, optionally :LOW:HIGH")->delimiter(',');
   app.add_option("--fix", q.fixes, "NAME=VALUE: hold a factor at an actual value")->delimiter(',');
   app.add_option("--fix-coded", q.fixes_coded, "NAME=VALUE: hold a factor at a coded value")->delimiter(',');
-  app.add_option("--within", q.within, "region: data (the design's extent, default), cube (+-1) or a coded radius");
+  app.add_option("--within", q.within,
+                 "region: cube (the factorial +-1, default, as Design-Expert), axial (the design's extent: +-alpha of a "
+                 "central composite design) or a coded radius");
   app.add_option("--tolerance", q.tolerance, "width of the reported near-optimal set, in response units")->check(finite_positive());
   app.add_option("--compare", q.compare, "NAME=VALUE,...: a reported point (actual units) to compare")->delimiter(',');
   app.add_option("--json", q.json_out, "write the optimum and the near-optimal set to this file");
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
 
   OptimizeOutcome o = find_optimum(q);
   print_optimum(o);

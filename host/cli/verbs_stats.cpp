@@ -1,6 +1,8 @@
-// `repose design`, `repose fit`, `repose curve`: the calibration statistics
+// `repose design`, `repose fit`, `repose ascent-plot`, `repose curve`: the calibration statistics
 // (host/stats) on plain CSV tables. Every output file is written whole or not at all
 // (temporary file + rename), and every error names the file, line and column to fix.
+#include <filesystem>
+#include <map>
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdint>
@@ -22,6 +24,7 @@
 #include "stats/errors.h"
 #include "stats/fit_file.h"
 #include "stats/json.h"
+#include "stats/design_figures.h"
 #include "stats/optimize.h"
 #include "stats/report.h"
 #include "util/number_text.h"
@@ -113,8 +116,8 @@ int run_design(int argc, char** argv) {
   app.add_option("--steps", steps, "path: number of steps (default 5)")->check(whole_number(1, 1000));
   app.add_option("--step", step, "path: coded step of the factor with the largest effect (default 1)")->check(finite_positive());
   app.add_flag("--descent", descent, "path: descend instead of ascend");
-  app.add_option("--out", out, "output CSV (default: standard output)");
-  CLI11_PARSE(app, argc, argv);
+  app.add_option("--out", out, "output CSV (default: standard output)")->check(non_empty_path());
+  REPOSE_PARSE(app, argc, argv);
 
   Design d = type == "path" ? path_design(fit_path, step, steps, descent)
                             : factor_design(type, factor_list, centre, alpha, generators, fraction);
@@ -191,6 +194,45 @@ ChosenFit fit_largest_model(const DataSet& data, const std::string& model, std::
   return out;
 }
 
+// Design-Expert's views of a fit (stats/design_figures.h) into `dir`: the Pareto chart and the
+// half-normal plot of its effects, and with two factors or more its surface over the first two
+// (the others at their centre) in 3D. Returns the files written.
+std::vector<std::string> write_fit_figures(const ResponseSurface& fit, const DataSet& data, const std::string& dir) {
+  std::filesystem::create_directories(dir);
+  std::vector<std::string> files;
+  if (fit.residual.df > 0) {
+    std::vector<Effect> effects = standardised_effects(fit, data.factor_names);
+    write_pareto_chart(effects, fit.residual.df, 0.05, data.response, dir + "/pareto.png");
+    write_half_normal_plot(effects, data.response, dir + "/half_normal.png");
+    files = {"pareto.png", "half_normal.png"};
+  }
+  if (data.factor_names.size() >= 2) {
+    auto range = [&](int i) { return data.ranges.empty() ? Factor{data.factor_names[size_t(i)], -1, 1} : data.ranges[size_t(i)]; };
+    Factor a = range(0), b = range(1);
+    // The design's extent in the first two factors (its axial points included).
+    double e = std::max({1.0, data.coded.col(0).cwiseAbs().maxCoeff(), data.coded.col(1).cwiseAbs().maxCoeff()});
+    SurfacePicture s;
+    s.f = [&](double x, double y) {
+      Eigen::VectorXd c = Eigen::VectorXd::Zero(long(data.factor_names.size()));
+      c[0] = a.to_coded(x);
+      c[1] = b.to_coded(y);
+      return fit.predict(c);
+    };
+    s.a0 = a.to_actual(-e), s.a1 = a.to_actual(e), s.b0 = b.to_actual(-e), s.b1 = b.to_actual(e);
+    s.a_label = data.factor_names[0];
+    s.b_label = data.factor_names[1];
+    s.z_label = data.response;
+    s.title = data.response + ": the fitted model over " + s.a_label + " and " + s.b_label +
+              (data.factor_names.size() > 2 ? " (others at their centre)" : "");
+    for (long r = 0; r < data.coded.rows(); ++r)
+      if (data.factor_names.size() == 2 || data.coded.row(r).tail(data.coded.cols() - 2).isZero())
+        s.runs.push_back({a.to_actual(data.coded(r, 0)), b.to_actual(data.coded(r, 1)), data.y[r]});
+    write_surface_3d(s, dir + "/surface_3d.png");
+    files.push_back("surface_3d.png");
+  }
+  return files;
+}
+
 int run_fit(int argc, char** argv) {
   CLI::App app{"Fit a polynomial model to a CSV table and print its ANOVA like Design-Expert."};
   std::string table_path, response, model = "auto", json_out, snap, ss = "partial";
@@ -215,7 +257,11 @@ int run_fit(int argc, char** argv) {
   app.add_option("--ss", ss, "per-term sums of squares: partial (Type III) or sequential (Type I)")
       ->check(CLI::IsMember({"partial", "sequential"}));
   app.add_option("--json", json_out, "write the fit (for repose optimize) to this file");
-  CLI11_PARSE(app, argc, argv);
+  std::string figures;
+  app.add_option("--figures", figures,
+                 "write Design-Expert's views into this folder: Pareto chart and half-normal plot of the effects, the "
+                 "surface in 3D");
+  REPOSE_PARSE(app, argc, argv);
   if (!coded.empty() && !ranges.empty()) throw StatsError("give --coded or --ranges, not both");
 
   Table table = read_csv(table_path);
@@ -235,12 +281,50 @@ int run_fit(int argc, char** argv) {
   }
   std::printf("\n%s\n%s\n%s", format_fit_statistics(fit).c_str(), format_coefficients(fit).c_str(),
               format_equations(fit, response, factors, data.ranges).c_str());
+  if (!figures.empty()) {
+    std::printf("wrote");
+    for (const std::string& f : write_fit_figures(fit, data, figures)) std::printf(" %s/%s", figures.c_str(), f.c_str());
+    std::printf("\n");
+  }
   if (!json_out.empty()) {
     Json saved = fit_to_json(fit, data, table_path, chosen, result->removed);
     saved.set("provenance", Json::parse(input_provenance({table_path}).dump(), "provenance"));
     repose::write_file_atomically(json_out, saved.dump());
     std::printf("wrote %s\n", json_out.c_str());
   }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+// ---------------------------------------------------------------------------------------
+// The response along a steepest-ascent path, rows grouped by step (replicates: mean and standard
+// error), against the target.
+int run_ascent_plot(int argc, char** argv) {
+  CLI::App app{"Plot the response along a steepest-ascent (or descent) path against its target."};
+  std::string path, step_column = "step", response, png;
+  double target = 0;
+  app.add_option("table", path, "CSV table of the path's runs (repose design --type path, with the response added)")
+      ->required();
+  app.add_option("--step", step_column, "step column (default step)");
+  app.add_option("--response", response, "response column")->required();
+  app.add_option("--target", target, "the value the path seeks (the measured response)")->required()->check(finite_number());
+  app.add_option("--png", png, "the figure to write")->required();
+  CLI11_PARSE(app, argc, argv);
+  Table t = read_csv(path);
+  std::vector<double> steps = t.numeric_column(step_column), y = t.numeric_column(response);
+  std::map<double, std::vector<double>> by_step;
+  for (size_t r = 0; r < steps.size(); ++r) by_step[steps[r]].push_back(y[r]);
+  std::vector<PathPoint> points;
+  for (const auto& [step, values] : by_step) {
+    double n = double(values.size()), mean = 0, var = 0;
+    for (double v : values) mean += v / n;
+    for (double v : values) var += (v - mean) * (v - mean) / std::max(1.0, n - 1);
+    points.push_back({step, mean, n > 1 ? std::sqrt(var / n) : 0});
+    std::printf("step %s: %s = %s (%zu run%s)\n", num(step).c_str(), response.c_str(), num(mean).c_str(), values.size(),
+                values.size() == 1 ? "" : "s");
+  }
+  write_steepest_ascent_plot(points, target, response, png);
+  std::printf("wrote %s\n", png.c_str());
   return 0;
 }
 
@@ -255,7 +339,7 @@ int run_curve(int argc, char** argv) {
   app.add_option("--y", ycol, "response column")->required();
   app.add_option("--at", at, "measured response to invert")->required()->check(finite_number());
   app.add_option("--degree", degree, "polynomial degree (default 3)")->check(whole_number(1, 9));
-  CLI11_PARSE(app, argc, argv);
+  REPOSE_PARSE(app, argc, argv);
   Table t = read_csv(path);
   std::vector<double> x = t.numeric_column(xcol), y = t.numeric_column(ycol);
   CalibrationCurve c;
@@ -290,6 +374,7 @@ std::vector<Verb> stats_verbs() {
       {"design", "write a design (PB, factorial, fractional, CCD, BBD, steepest path) as CSV", run_design},
       {"fit", "fit a model to a CSV table; Design-Expert style ANOVA and equations", run_fit},
       {"curve", "fit a calibration curve to a sweep and invert it at a measured value", run_curve},
+      {"ascent-plot", "plot the response along a steepest-ascent path against its target", run_ascent_plot},
   };
 }
 

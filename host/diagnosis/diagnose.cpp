@@ -1,5 +1,7 @@
 #include "diagnosis/diagnose.h"
 
+#include <cstdio>
+
 #include "diagnosis/diagnose_stages.h"
 #include "diagnosis/diagnosis_report.h"
 
@@ -11,15 +13,19 @@ Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options) {
   Diagnosis d;
   d.baseline_model = predictor.role().baseline_model;
   d.heldout_available = c.heldout_available;
-  d.primary_measure = c.primary_measure;
-  d.primary_unit = c.primary_unit;
   d.scatter_scored = c.scatter_scored;
+  d.case_values = c.case_values;
 
   CandidateSelection selection = select_candidates(obs, options.candidates, c.scatter_scored);
   d.candidates = selection.untestable;
-  size_t nc = obs.conditions.size();
-  FitProgress progress(int((1 + selection.testable.size()) * (1 + (c.heldout_available ? nc : 0)) + 1),
-                       options.progress);
+  size_t planned = planned_simulations(c, selection.testable);
+  if (options.progress) {
+    std::string models = "baseline";
+    for (const ModelExtension* e : selection.testable) models += ", " + e->id;
+    std::fprintf(stderr, "diagnose: %zu models (%s) on %zu conditions: about %zu simulations planned\n",
+                 1 + selection.testable.size(), models.c_str(), obs.conditions.size(), planned);
+  }
+  SimulationProgress progress(predictor, planned, options.progress);
   c.progress = &progress;
 
   // 1. The baseline and what is wrong with it.

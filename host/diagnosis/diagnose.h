@@ -2,10 +2,12 @@
 // (README "Diagnosis", docs/diagnosis.md). It runs as stages that each return data
 // (diagnosis/diagnose_stages.h): fit the baseline; test its lack of fit against the replicate
 // scatter and the trends of its residuals; fit every candidate extension and compare it with the
-// baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error); the verdict names the
-// winner, or "ambiguous" when the data's design cannot separate the best two, or "adequate", or
-// "unexplained" when the baseline misses the data and no tested candidate removes that. The
-// findings in words are written from those results (diagnosis_report.h).
+// baseline (extra-sum-of-squares F test, AIC, leave-one-condition-out error on every measure, the
+// baseline's parameters straining against a bound); the verdict names the winner, or "ambiguous"
+// when the data's design cannot separate the best two or the evidence for one disagrees, or
+// "adequate", or "unexplained" when the baseline misses the data and no tested candidate removes
+// that. Fits run on a surrogate of each model's simulations (surrogate.h). The findings in words
+// are written from those results (diagnosis_report.h).
 #pragma once
 #include <string>
 #include <vector>
@@ -20,6 +22,12 @@ constexpr double kDiagnosisSignificance = 0.01;
 // chi^2 by which a rival refitted to the winner's predictions must miss them to be told apart
 // (3 sigma).
 constexpr double kSeparableChi2 = 9.0;
+// Modest in-sample support: an F test below this, with less held-out error, is evidence the verdict
+// must not overrule (it then names the candidate as `ambiguous`, never `adequate`).
+constexpr double kModestSignificance = 0.05;
+// A large held-out gain (percent less error over every measure, in standard errors): the heap
+// tests' threshold, far above what a candidate that fits noise reaches.
+constexpr double kLargeGainPercent = 30.0;
 
 struct LackOfFit {
   std::string measure;  // "all" for the overall test
@@ -33,6 +41,30 @@ struct LackOfFit {
 struct Trend {
   std::string measure, variable;  // variable: a set: key, or "t" within the series
   double slope = 0, se = 0, z = 0, p = 1;  // weighted regression of the residuals on the variable
+};
+
+// A measure's held-out error: each condition predicted by a fit to the others.
+struct MeasureError {
+  std::string measure;
+  double rms = 0;  // in its unit: RMS error of the mean or, with a given sigma, of the mean and the
+                   // replicate SD together (2-Wasserstein distance of normals)
+  double sds = 0;  // the same in standard errors of the measured mean (its replicate scatter / sqrt(n))
+};
+
+// A fitted parameter on an end of its search range: the model strains to explain the data.
+struct BoundFit {
+  std::string parameter;
+  double value = 0, lo = 0, hi = 0;
+  bool upper = false;
+};
+
+// How a candidate stands against the baseline, from every test the diagnosis computes.
+enum class Standing {
+  NoBetter,          // no test favours it enough
+  Beats,             // F test p < 1 % and less held-out error over every measure (the one meaning)
+  ModestSupport,     // F test p < 5 % and less held-out error (or a lower AIC and a large gain)
+  StrainedBaseline,  // the baseline strains (a bound, a bent parameter) and the candidate gains largely
+  HeldOutAgainst,    // F test p < 1 %, but it predicts held-out conditions no better
 };
 
 struct ModelResult {
@@ -55,10 +87,14 @@ struct ModelResult {
   double change_d2 = 0;                // that change's chi^2 against the simulations' scatter
   int k = 0;
   double f = 0, p = 1;                 // against the baseline
-  double heldout_rms = 0;              // primary measure, its unit: RMS error of the mean, or with a
-                                       // given sigma of (mean, SD) together (see diagnose.cpp)
-  double heldout_z = 0;                // all groups, root mean square standardised error
-  bool significant = false;
+  std::vector<MeasureError> heldout_by_measure;  // every measure, in the data's order
+  double heldout_sds = 0;              // every measure: root mean square of their errors in standard errors
+  double heldout_gain = 0;             // a candidate: 100 (1 - heldout_sds / the baseline's)
+  bool significant = false;            // beats the baseline (Standing::Beats)
+  Standing standing = Standing::NoBetter;
+  std::vector<BoundFit> at_bound;      // fitted parameters on an end of their range
+  bool dropped_early = false;          // clearly worse after its design: not refined or confirmed
+  int points = 0;                      // parameter points simulated (its surrogate's design)
   std::string simulation_error;        // not tested because its simulation failed: the error
   int heaps = 0, refilled = 0;         // heaps simulated, and those whose grains did not fit the case's
   double fill_raised = 0;              // fill box by random insertion (heap_fill.h), and the most its box
@@ -85,7 +121,9 @@ struct Separation {
     HeapMeasure,       // the heap measure (measured or not) where the two fitted models differ most
     HeapAfterLift,     // bed heights alone: the heap after the lift (angle, run-out, convexity)
     Untested,          // a candidate that might explain the data could not be tested
+    MoreReplicates,    // the evidence for one candidate disagrees: more replicates would decide
   } kind = Kind::None;
+  double replicate_factor = 0;    // MoreReplicates: about how many times the replicates the F test needs
   std::string measure;            // HeapMeasure: which; Untested: the candidate
   double heap_sds = 0;            // HeapMeasure: the difference in SDs of one simulated heap
   double largest_difference = 0;  // DropTrajectory: m, between the two fitted trajectories
@@ -124,9 +162,14 @@ struct Diagnosis {
   double confidence = 0;
   std::vector<LackOfFit> lack_of_fit;
   std::vector<Trend> trends;
-  std::string primary_measure, primary_unit;
+  // The baseline's strain: its fitted parameters on a bound, and how far the fit moved them from
+  // the case's values (where the named or best candidate keeps them).
+  std::vector<double> case_values;   // the baseline's parameters as the case gives them
   bool heldout_available = false;  // leave-one-condition-out needs >= 3 conditions
   bool scatter_scored = false;     // the file gives sigma: replicate scatter is compared too
+  // Held-out error over every measure in standard errors (MeasureError::sds), of the baseline and
+  // of what the verdict names (the baseline again when it names none), and the gain in percent;
+  // per measure in the named model's and the baseline's heldout_by_measure.
   double heldout_error_baseline = 0, heldout_error_extended = 0, gain_percent = 0;
   double separation_chi2 = -1;     // how well the closest rival mimics the winner
   Separation separation;           // ambiguous: what would tell the two apart
@@ -142,7 +185,7 @@ struct DiagnoseOptions {
   unsigned threads = 2;
   std::vector<std::string> candidates;  // empty: every extension the data's measures can reveal
   int simulated_replicates = 8;         // per condition, for a model whose drop is stochastic (shape)
-  bool progress = true;
+  bool progress = true;  // the cost estimate before, and progress with an ETA on stderr
 };
 
 Diagnosis diagnose(const Observations& obs, const DiagnoseOptions& options);

@@ -53,56 +53,6 @@ std::string untestable_reason(const ModelExtension& e, const Observations& obs, 
   return "";
 }
 
-// The held-out prediction of every group: each condition predicted by a fit to the others.
-Prediction hold_out_each_condition(DiagnosisContext& c, const ModelExtension* ext, const ModelResult& r,
-                                   const Prediction& full) {
-  const Observations& obs = c.obs;
-  size_t nc = obs.conditions.size();
-  Prediction held = full;
-  for (size_t k = 0; k < nc; ++k) {
-    if (c.progress) c.progress->next(r.id + ", without " + obs.conditions[k].label);
-    std::vector<char> use(nc, 1), only(nc, 0);
-    use[k] = 0;
-    only[k] = 1;
-    ModelFit loo = fit_model(c.predictor, ext, use, r.params, 0.05, 30);
-    Prediction pred = r.k ? c.predictor.predict(ext, loo.params, only) : full;
-    held.replicates = pred.replicates;
-    for (size_t g = 0; g < obs.groups.size(); ++g)
-      if (obs.groups[g].condition == k) {
-        held.mean[g] = pred.mean[g];
-        held.var[g] = pred.var[g];
-      }
-  }
-  return held;
-}
-
-// Held-out error of the primary measure: RMS error of the mean or, when the file gives sigma (the
-// scatter is data too), the 2-Wasserstein distance between the measured and predicted normal
-// distributions of one value, sqrt((mean error)^2 + (SD error)^2), in the same unit; and the root
-// mean square standardised error over every group.
-void score_held_out(const DiagnosisContext& c, const Prediction& held, ModelResult& r) {
-  const Observations& obs = c.obs;
-  double se = 0, sz = 0;
-  int ne = 0;
-  std::vector<double> held_terms = group_chi_squares(obs, held);
-  for (size_t g = 0; g < obs.groups.size(); ++g) {
-    const ObservationGroup& grp = obs.groups[g];
-    double e = grp.mean - held.mean[g];
-    sz += held_terms[g];
-    if (grp.measure != c.primary_measure) continue;
-    double e2 = e * e;
-    if (grp.sigma_given && grp.values.size() >= 2) {
-      double sd_error = std::sqrt(grp.s2) - std::sqrt(grp.sd * grp.sd + held.var[g]);
-      e2 += sd_error * sd_error;
-    }
-    se += e2;
-    ++ne;
-  }
-  r.heldout = held.mean;
-  r.heldout_rms = std::sqrt(se / std::max(1, ne));
-  r.heldout_z = std::sqrt(sz / score_terms(obs));
-}
-
 // Two fitted heap models compared on every heap measure, measured or not (a simulated heap gives
 // them all): the one where their means over the conditions differ most, in SDs of one simulated
 // heap. Bed heights alone simulate no heap: then the heap after the lift is what to measure.
@@ -113,14 +63,15 @@ Separation heap_separation(DiagnosisContext& c, const ModelResult& best, const M
     s.kind = Separation::Kind::HeapAfterLift;
     return s;
   }
-  int reps = c.predictor.simulated_replicates();
+  // Both fitted models' fresh replicates (simulated for their scores).
+  int first = c.predictor.confirmation_first(), reps = c.predictor.confirmation_replicates();
   for (const std::string& m : heap_measure_names()) {
     double difference = 0, variance = 0;
     for (size_t k = 0; k < obs.conditions.size(); ++k) {
       double mean[2] = {0, 0}, square[2] = {0, 0};
       const ModelResult* models[2] = {&best, &second};
       for (int i = 0; i < 2; ++i)
-        for (int r = 0; r < reps; ++r) {
+        for (int r = first; r < first + reps; ++r) {
           double v = c.predictor.simulate(k, find_extension(models[i]->id), models[i]->params, r).values.at(m);
           mean[i] += v / reps;
           square[i] += v * v / reps;
@@ -171,31 +122,10 @@ Separation separation_of(DiagnosisContext& c, const ModelResult& best, const Mod
 
 }  // namespace
 
-FitProgress::FitProgress(int total, bool enabled)
-    : total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
-
-void FitProgress::next(const std::string& what) {
-  ++done_;
-  if (!enabled_) return;
-  double s = seconds();
-  double eta = done_ > 1 ? s / (done_ - 1) * (total_ - done_ + 1) : 0;
-  std::fprintf(stderr, "diagnose: fit %d/%d %-44s %6.1f s elapsed, ETA %.0f s\n", done_, total_, what.c_str(), s, eta);
-}
-
-double FitProgress::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-}
-
 DiagnosisContext describe_data(const Observations& obs, Predictor& predictor) {
   DiagnosisContext c(obs, predictor);
   c.heldout_available = obs.conditions.size() >= 3;
-  c.primary_measure = obs.measures.front();
-  for (const auto& g : obs.groups)
-    if (!g.series) {
-      c.primary_measure = g.measure;
-      break;
-    }
-  c.primary_unit = unit_of(c.primary_measure);
+  if (predictor.fits_baseline()) c.case_values = {predictor.case_baseline_value()};
   c.scatter_scored = std::any_of(obs.groups.begin(), obs.groups.end(),
                                  [](const ObservationGroup& g) { return g.sigma_given && g.values.size() >= 2; });
   c.noise_df = obs.noise_df();
@@ -234,35 +164,6 @@ CandidateSelection select_candidates(const Observations& obs, const std::vector<
   for (const auto& id : requested)
     if (!find_extension(id)) throw std::runtime_error("unknown extension '" + id + "'");
   return s;
-}
-
-ModelResult fit_and_hold_out(DiagnosisContext& c, const ModelExtension* ext, const ModelResult* baseline) {
-  const Observations& obs = c.obs;
-  ModelResult r;
-  r.id = ext ? ext->id : "baseline";
-  r.parameters = c.predictor.parameters(ext);
-  r.k = int(r.parameters.size());
-  if (c.progress) c.progress->next(r.id + ", all conditions");
-  std::vector<double> start;
-  if (ext && baseline) start = baseline->params;
-  std::vector<char> all(obs.conditions.size(), 1);
-  ModelFit full = fit_model(c.predictor, ext, all, start);
-  r.params = full.params;
-  r.fit_chi2 = full.chi2;
-  r.prediction = full.predicted;
-  r.chi2 = full.chi2;
-  if (full.predicted.replicates > 1) {  // stochastic: scored on fresh replicates
-    r.prediction = c.predictor.predict(ext, r.params, all, c.predictor.simulated_replicates(),
-                                       c.predictor.confirmation_replicates());
-    r.chi2 = chi_square(obs, r.prediction, all);
-  }
-  r.predicted = r.prediction.mean;
-  if (c.scatter_scored)
-    for (size_t g = 0; g < obs.groups.size(); ++g)
-      r.predicted_sd.push_back(std::sqrt(obs.groups[g].sd * obs.groups[g].sd + r.prediction.var[g]));
-  r.aic = r.chi2 + 2.0 * r.k;
-  if (c.heldout_available) score_held_out(c, hold_out_each_condition(c, ext, r, full.predicted), r);
-  return r;
 }
 
 std::vector<LackOfFit> lack_of_fit(const Observations& obs, const ModelResult& base, int noise_df) {
@@ -323,48 +224,6 @@ std::vector<Trend> residual_trends(const Observations& obs, const Prediction& pr
   return trends;
 }
 
-void compare_with_baseline(const Observations& obs, ModelResult& r, const ModelResult& base, int noise_df,
-                           bool heldout_available) {
-  ShrunkChange change = shrink_change(obs, base.prediction, r.prediction);
-  r.shrinkage = change.shrinkage;
-  r.change_d2 = change.d2;
-  // Fresh replicates and shrinking only take away: a candidate scores no better than on the
-  // replicates it was fitted to, on fresh ones, or with its change shrunk, whichever is worst.
-  r.chi2 = std::max(r.chi2, r.fit_chi2);
-  if (change.shrinkage < 1)
-    r.chi2 = std::max(r.chi2, chi_square(obs, change.prediction, std::vector<char>(obs.conditions.size(), 1)));
-  r.aic = r.chi2 + 2.0 * r.k;
-  int dk = std::max(1, r.k - base.k);
-  r.f = std::max(0.0, base.chi2 - r.chi2) / dk;
-  r.p = stats::f_upper_tail(r.f, dk, noise_df);
-  r.significant = r.p < kDiagnosisSignificance && (!heldout_available || r.heldout_z < base.heldout_z);
-}
-
-CandidateFits fit_candidates(DiagnosisContext& c, const std::vector<const ModelExtension*>& testable,
-                             const ModelResult& baseline) {
-  CandidateFits out;
-  for (const ModelExtension* ext : testable) {
-    out.tried.push_back(ext->id);
-    try {
-      ModelResult r = fit_and_hold_out(c, ext, &baseline);
-      compare_with_baseline(c.obs, r, baseline, c.noise_df, c.heldout_available);
-      Predictor::FillRecord fill = c.predictor.fills(r.id);
-      r.heaps = fill.heaps;
-      r.refilled = fill.fallback;
-      r.fill_raised = fill.most_raised;
-      out.fitted.push_back(r);
-    } catch (const std::runtime_error& e) {
-      ModelResult failed;
-      failed.id = ext->id;
-      failed.tested = false;
-      failed.simulation_error = e.what();
-      failed.untested_reason = std::string("its simulation failed: ") + e.what();
-      out.failed.push_back(failed);
-    }
-  }
-  return out;
-}
-
 namespace {
 
 // Significant candidates, best AIC first.
@@ -384,9 +243,8 @@ std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& base,
   if (significant.empty()) return out;
   std::vector<char> everything(c.obs.conditions.size(), 1);
   auto mimic = [&](const ModelResult& rival, const ModelResult& target) {
-    if (c.progress) c.progress->next("can " + rival.id + " mimic " + target.id + "?");
-    ModelFit m = fit_model(c.predictor, find_extension(rival.id), everything, rival.params, 0.08, 50, &target.prediction);
-    MimicTest t{rival.id, target.id, m.chi2, rival.aic - target.aic, false};
+    SurfaceMinimum m = c.surrogate(find_extension(rival.id)).fit(everything, &target.prediction, 3);
+    MimicTest t{rival.id, target.id, m.score, rival.aic - target.aic, false};
     t.close = t.chi2 < kSeparableChi2 || t.aic_difference < kAicClose;
     out.push_back(t);
   };
@@ -435,17 +293,53 @@ std::vector<std::string> untested_rivals(const Observations& obs, const std::vec
   return out;
 }
 
-Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results,
-                       const std::vector<MimicTest>& mimics, const std::vector<std::string>& untested,
-                       const std::vector<LackOfFit>& lack) {
+namespace {
+
+// No candidate beats the baseline. One whose evidence disagrees (the lowest AIC first) is named as
+// ambiguous: the baseline has no confident claim while such evidence stands. Else the baseline is
+// adequate, or the data unexplained when it misses them.
+Verdict undecided_verdict(const DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results,
+                          const std::vector<std::string>& untested, const std::vector<LackOfFit>& lack) {
   Verdict v;
-  std::vector<size_t> winners = significant_by_aic(results);
-  if (winners.empty()) {
+  int split = -1;
+  for (size_t k = 0; k < results.size(); ++k)
+    if (results[k].standing != Standing::NoBetter && results[k].standing != Standing::Beats &&
+        (split < 0 || results[k].aic < results[size_t(split)].aic))
+      split = int(k);
+  if (split < 0) {
     // A baseline that misses the data is not adequate because nothing tested beats it.
     bool missed = !lack.empty() && lack.front().p < kDiagnosisSignificance;
     v.verdict = missed ? "unexplained" : "adequate";
     return v;
   }
+  const ModelResult& named = results[size_t(split)];
+  v.verdict = "ambiguous";
+  v.winner = split;
+  v.cause.push_back(named.id);
+  v.cause.insert(v.cause.end(), untested.begin(), untested.end());
+  if (named.standing == Standing::HeldOutAgainst) {
+    // In-sample it wins, held out it does not: more conditions (or a wider range) would decide.
+    v.separation.kind = Separation::Kind::WiderCondition;
+    v.separation.condition = c.obs.variables.empty() ? "" : c.obs.variables.front();
+    return v;
+  }
+  // The F statistic grows about in proportion to the replicates: how many times as many put it
+  // at the 1 % level.
+  v.separation.kind = Separation::Kind::MoreReplicates;
+  int dk = std::max(1, named.k - base.k);
+  double needed = stats::f_critical(kDiagnosisSignificance, dk, c.noise_df);
+  v.separation.replicate_factor = named.f > 0 ? std::max(1.0, needed / named.f) : 0;
+  return v;
+}
+
+}  // namespace
+
+Verdict decide_verdict(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& results,
+                       const std::vector<MimicTest>& mimics, const std::vector<std::string>& untested,
+                       const std::vector<LackOfFit>& lack) {
+  Verdict v;
+  std::vector<size_t> winners = significant_by_aic(results);
+  if (winners.empty()) return undecided_verdict(c, base, results, untested, lack);
   v.winner = int(winners[0]);
   const ModelResult& best = results[winners[0]];
   v.cause.push_back(best.id);
@@ -498,9 +392,9 @@ Confidence verdict_confidence(const ModelResult& base, const std::vector<ModelRe
 HeldOutGain heldout_gain(const DiagnosisContext& c, const ModelResult& base, const Verdict& v,
                          const std::vector<ModelResult>& fitted) {
   HeldOutGain g;
-  g.baseline = base.heldout_rms;
-  g.extended = v.winner >= 0 ? fitted[size_t(v.winner)].heldout_rms : base.heldout_rms;
-  if (c.heldout_available && base.heldout_rms > 0) g.percent = 100.0 * (1.0 - g.extended / base.heldout_rms);
+  g.baseline = base.heldout_sds;
+  g.extended = v.winner >= 0 ? fitted[size_t(v.winner)].heldout_sds : base.heldout_sds;
+  if (c.heldout_available && base.heldout_sds > 0) g.percent = 100.0 * (1.0 - g.extended / base.heldout_sds);
   return g;
 }
 

@@ -10,6 +10,7 @@
 #include "io/provenance.h"
 #include "util/units.h"
 #include "util/atomic_file.h"
+#include "util/number_text.h"
 
 namespace repose {
 
@@ -19,6 +20,23 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 const PlotColour kBaseline{200, 40, 40}, kExtended{30, 90, 200}, kMeasured{0, 0, 0}, kOther{40, 150, 60};
+
+std::string standing_id(Standing s) {
+  switch (s) {
+    case Standing::Beats: return "beats";
+    case Standing::ModestSupport: return "modest_support";
+    case Standing::StrainedBaseline: return "strained_baseline";
+    case Standing::HeldOutAgainst: return "heldout_against";
+    case Standing::NoBetter: break;
+  }
+  return "no_better";
+}
+
+// The one meaning of "beats the baseline", stated once (report and diagnosis.json).
+const char* kBeatsMeaning =
+    "a candidate beats the baseline when its F test gives p < 1 % and its held-out error over every measure (each "
+    "condition predicted by a fit to the others, in standard errors of the measured means, root mean square over the "
+    "measures) is lower than the baseline's";
 
 json model_json(const ModelResult& r, bool heldout) {
   json j;
@@ -45,10 +63,20 @@ json model_json(const ModelResult& r, bool heldout) {
     j["f"] = r.f;
     j["p"] = r.p;
     j["beats_baseline"] = r.significant;
+    j["standing"] = standing_id(r.standing);
+    j["dropped_early"] = r.dropped_early;
   }
+  j["points"] = r.points;
+  j["at_bound"] = json::array();
+  for (const BoundFit& b : r.at_bound)
+    j["at_bound"].push_back({{"parameter", b.parameter}, {"value", b.value}, {"bound", b.upper ? "upper" : "lower"}});
   if (heldout) {
-    j["heldout_error"] = r.heldout_rms;
-    j["heldout_rms_standardised"] = r.heldout_z;
+    j["heldout_error"] = r.heldout_sds;  // standard errors, root mean square over every measure
+    if (r.id != "baseline") j["heldout_gain_percent"] = r.heldout_gain;
+    j["heldout_by_measure"] = json::array();
+    for (const MeasureError& e : r.heldout_by_measure)
+      j["heldout_by_measure"].push_back(
+          {{"measure", e.measure}, {"unit", unit_of(e.measure)}, {"error", e.rms}, {"standard_errors", e.sds}});
   }
   return j;
 }
@@ -60,11 +88,26 @@ const ModelResult* winner(const Diagnosis& d) {
   return nullptr;
 }
 
-// "rebound_height (m)": a measure with its unit for axis labels.
-std::string with_unit(const std::string& measure) {
+// How a measure is shown in the figures: lengths in millimetres (a residual of 0.004 m reads
+// 4 mm), other units as measured.
+struct Shown {
+  double scale = 1;
+  std::string unit;  // "" for a dimensionless measure
+};
+Shown shown(const std::string& measure) {
   for (const auto& m : known_measures())
-    if (measure == m.name) return measure + (std::string(m.unit) == "1" ? "" : " (" + std::string(m.unit) + ")");
-  return measure;
+    if (measure == m.name) {
+      std::string unit = m.unit;
+      if (unit == "m") return {1e3, "mm"};
+      return {1, unit == "1" ? "" : unit};
+    }
+  return {};
+}
+
+// "rebound_height (mm)": a measure with its unit as shown, for axis labels.
+std::string with_unit(const std::string& measure) {
+  Shown s = shown(measure);
+  return measure + (s.unit.empty() ? "" : " (" + s.unit + ")");
 }
 
 std::string safe(std::string s) {
@@ -91,6 +134,7 @@ void residual_figure(const Observations& obs, const Diagnosis& d, const ModelRes
   p.y_label = with_unit(m) + " residual";
   p.zero_line = true;
   PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  const double k = shown(m).scale;
   // The extended model's points sit a little to the right, so both error bars show.
   double lo = 1e300, hi = -1e300;
   for (const auto& c : obs.conditions)
@@ -100,13 +144,13 @@ void residual_figure(const Observations& obs, const Diagnosis& d, const ModelRes
     const auto& grp = obs.groups[g];
     if (grp.measure != m || !obs.conditions[grp.condition].variables.count(v)) continue;
     double x = obs.conditions[grp.condition].variables.at(v);
-    double se = grp.sd / std::sqrt(double(grp.values.size()));
+    double se = k * grp.sd / std::sqrt(double(grp.values.size()));
     b.x.push_back(x);
-    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    b.y.push_back(k * (grp.mean - d.baseline.predicted[g]));
     b.error.push_back(se);
     if (w) {
       e.x.push_back(x + shift);
-      e.y.push_back(grp.mean - w->predicted[g]);
+      e.y.push_back(k * (grp.mean - w->predicted[g]));
       e.error.push_back(se);
     }
   }
@@ -127,17 +171,19 @@ void measured_vs_simulated_figure(const Observations& obs, const Diagnosis& d, c
   p.x_label = "simulated " + with_unit(m);
   p.y_label = "measured " + with_unit(m);
   p.diagonal = true;
+  p.diagonal_label = "measured = simulated";
   PlotSeries b{"baseline", {}, {}, {}, kBaseline, false, true}, e{wname, {}, {}, {}, kExtended, false, true};
+  const double k = shown(m).scale;
   for (size_t g = 0; g < obs.groups.size(); ++g) {
     const auto& grp = obs.groups[g];
     if (grp.measure != m) continue;
-    double se = grp.sd / std::sqrt(double(grp.values.size()));
-    b.x.push_back(d.baseline.predicted[g]);
-    b.y.push_back(grp.mean);
+    double se = k * grp.sd / std::sqrt(double(grp.values.size()));
+    b.x.push_back(k * d.baseline.predicted[g]);
+    b.y.push_back(k * grp.mean);
     b.error.push_back(se);
     if (w) {
-      e.x.push_back(w->predicted[g]);
-      e.y.push_back(grp.mean);
+      e.x.push_back(k * w->predicted[g]);
+      e.y.push_back(k * grp.mean);
       e.error.push_back(se);
     }
   }
@@ -165,23 +211,24 @@ void series_figures(const Observations& obs, const Diagnosis& d, const ModelResu
   z.y_label = with_unit(m);
   PlotSeries zm{"measured", {}, {}, {}, kMeasured, false, true}, zb{"baseline", {}, {}, {}, kBaseline, true, false},
       ze{wname, {}, {}, {}, kExtended, true, false};
+  const double k = shown(m).scale;
   for (size_t g = 0; g < obs.groups.size(); ++g) {
     const auto& grp = obs.groups[g];
     if (grp.measure != m || !grp.series) continue;
     b.x.push_back(grp.t);
-    b.y.push_back(grp.mean - d.baseline.predicted[g]);
+    b.y.push_back(k * (grp.mean - d.baseline.predicted[g]));
     if (w) {
       e.x.push_back(grp.t);
-      e.y.push_back(grp.mean - w->predicted[g]);
+      e.y.push_back(k * (grp.mean - w->predicted[g]));
     }
     if (grp.condition == last) {
       zm.x.push_back(grp.t);
-      zm.y.push_back(grp.mean);
+      zm.y.push_back(k * grp.mean);
       zb.x.push_back(grp.t);
-      zb.y.push_back(d.baseline.predicted[g]);
+      zb.y.push_back(k * d.baseline.predicted[g]);
       if (w) {
         ze.x.push_back(grp.t);
-        ze.y.push_back(w->predicted[g]);
+        ze.y.push_back(k * w->predicted[g]);
       }
     }
   }
@@ -227,6 +274,28 @@ void confidence_json(const Diagnosis& d, json& j) {
   }
 }
 
+// Every fitted model's held-out error per measure, in its unit (RMS over the conditions).
+void heldout_markdown(const Diagnosis& d, std::ostringstream& md) {
+  md << "\nHeld-out error per measure (RMS over the conditions, each predicted by a fit to the others"
+     << (d.scatter_scored ? "; mean and replicate SD together" : "") << "):\n\n| model |";
+  // Lengths in mm, as the findings give them.
+  auto in_mm = [](const std::string& measure) { return unit_of(measure) == "m"; };
+  for (const MeasureError& e : d.baseline.heldout_by_measure)
+    md << " " << (in_mm(e.measure) ? e.measure + " (mm)" : with_unit(e.measure)) << " |";
+  md << "\n|---|";
+  for (size_t m = 0; m < d.baseline.heldout_by_measure.size(); ++m) md << "---|";
+  md << "\n";
+  auto row = [&](const ModelResult& r) {
+    if (!r.tested || r.heldout_by_measure.empty()) return;
+    md << "| " << r.id << " |";
+    for (const MeasureError& e : r.heldout_by_measure)
+      md << " " << format_g(in_mm(e.measure) ? 1000 * e.rms : e.rms, 4) << " |";
+    md << "\n";
+  };
+  row(d.baseline);
+  for (const auto& c : d.candidates) row(c);
+}
+
 // Which pairs of candidates the data tell apart, as a markdown table.
 void pairs_markdown(const Diagnosis& d, std::ostringstream& md) {
   if (d.pairs.empty()) return;
@@ -256,12 +325,21 @@ json diagnosis_json(const Observations& obs, const Diagnosis& d, const Figures& 
   j["baseline"] = model_json(d.baseline, d.heldout_available);
   j["candidates"] = json::array();
   for (const auto& c : d.candidates) j["candidates"].push_back(model_json(c, d.heldout_available));
-  j["primary_measure"] = d.primary_measure;
-  j["unit"] = d.primary_unit;
+  j["beats_baseline_means"] = kBeatsMeaning;
+  j["heldout_unit"] = "standard errors of the measured means, root mean square over every measure";
   if (d.heldout_available) {
     j["heldout_error_baseline"] = d.heldout_error_baseline;
     j["heldout_error_extended"] = d.heldout_error_extended;
     j["gain_percent"] = d.gain_percent;
+    // Per measure, of what the verdict names (the baseline again when it names none).
+    const ModelResult* named = winner(d);
+    if (!named) named = &d.baseline;
+    j["gain_by_measure"] = json::array();
+    for (size_t m = 0; m < named->heldout_by_measure.size() && m < d.baseline.heldout_by_measure.size(); ++m) {
+      const MeasureError &e = named->heldout_by_measure[m], &b = d.baseline.heldout_by_measure[m];
+      j["gain_by_measure"].push_back({{"measure", e.measure}, {"unit", unit_of(e.measure)}, {"baseline", b.rms},
+                                      {"extended", e.rms}, {"gain_percent", b.sds > 0 ? 100 * (1 - e.sds / b.sds) : 0.0}});
+    }
   } else {
     j["heldout_error_baseline"] = nullptr;
     j["heldout_error_extended"] = nullptr;
@@ -317,12 +395,13 @@ std::string report_markdown(const Observations& obs, const Diagnosis& d, const F
        << ";";
   md << "\n\n## Findings\n\n";
   for (const auto& s : d.statements) md << "- " << s << "\n";
-  md << "\n## Candidates\n\n| model | fitted parameters | chi^2 | AIC | F test p | held-out error (" << d.primary_unit
-     << ") | beats baseline |\n"
-        "|---|---|---|---|---|---|---|\n";
+  md << "\n## Candidates\n\nOne meaning throughout: " << kBeatsMeaning
+     << ". Held-out error in standard errors; per measure below.\n\n| model | fitted parameters | chi^2 | AIC | "
+        "Akaike weight | F test p | held-out error | held-out gain | beats baseline |\n"
+        "|---|---|---|---|---|---|---|---|---|\n";
   auto row = [&](const ModelResult& r) {
     if (!r.tested) {
-      md << "| " << r.id << " | not tested: " << r.untested_reason << " | | | | | |\n";
+      md << "| " << r.id << " | not tested: " << r.untested_reason << " | | | | | | | |\n";
       return;
     }
     std::string ps;
@@ -331,19 +410,20 @@ std::string report_markdown(const Observations& obs, const Diagnosis& d, const F
       std::snprintf(buf, sizeof buf, "%s%s = %.4g", k ? ", " : "", r.parameters[k].name.c_str(), r.params[k]);
       ps += buf;
     }
-    char p[32] = "", held[32] = "", buf[256];
-    if (r.id != "baseline") std::snprintf(p, sizeof p, "%.2g", r.p);
-    if (d.heldout_available) std::snprintf(held, sizeof held, "%.4g", r.heldout_rms);
-    std::snprintf(buf, sizeof buf, "| %.4g | %.4g | %s | %s | %s |\n", r.chi2, r.aic, p, held,
-                  r.id == "baseline" ? "" : (r.significant ? "yes" : "no"));
+    char p[32] = "", held[32] = "", gain[32] = "", weight[32] = "", buf[256];
+    bool candidate = r.id != "baseline";
+    if (candidate) std::snprintf(p, sizeof p, "%.2g", r.p);
+    if (d.heldout_available) std::snprintf(held, sizeof held, "%.4g", r.heldout_sds);
+    if (d.heldout_available && candidate) std::snprintf(gain, sizeof gain, "%+.3g %%", r.heldout_gain);
+    for (const auto& [id, w] : d.weights)
+      if (id == r.id) std::snprintf(weight, sizeof weight, "%.3g", w);
+    std::snprintf(buf, sizeof buf, "| %.4g | %.4g | %s | %s | %s | %s | %s |\n", r.chi2, r.aic, weight, p, held, gain,
+                  !candidate ? "" : r.significant ? "yes" : "no");
     md << "| " << r.id << " | " << ps << " " << buf;
   };
   row(d.baseline);
   for (const auto& c : d.candidates) row(c);
-  if (d.heldout_available)
-    md << "\nHeld-out error: " << d.primary_measure << " RMS (" << d.primary_unit
-       << "), each condition predicted by a fit to the others. Baseline " << d.heldout_error_baseline
-       << ", extended " << d.heldout_error_extended << ", gain " << d.gain_percent << " %.\n";
+  if (d.heldout_available) heldout_markdown(d, md);
   pairs_markdown(d, md);
   md << "\n## Figures\n\n";
   for (const auto& [file, caption] : figures) md << caption << ":\n\n![" << caption << "](" << file << ")\n\n";

@@ -55,26 +55,99 @@ std::string trend_statement(const Trend& t) {
          (t.slope > 0 ? "under" : "over") + "-predicts at large " + (t.variable == "t" ? "t" : per) + ".";
 }
 
+// "repose_angle 1.31 deg vs 1.06 deg, bed_height 1.1 mm vs 4.0 mm": a candidate's held-out error
+// per measure against the baseline's.
+std::string per_measure(const ModelResult& r, const ModelResult& base) {
+  std::string out;
+  for (size_t m = 0; m < r.heldout_by_measure.size() && m < base.heldout_by_measure.size(); ++m) {
+    const MeasureError &e = r.heldout_by_measure[m], &b = base.heldout_by_measure[m];
+    std::string unit = unit_of(e.measure);
+    out += (out.empty() ? "" : ", ") + e.measure + " " + in_unit(e.rms, unit) + " vs " + in_unit(b.rms, unit);
+  }
+  return out;
+}
+
+// What the tests say of a candidate, in the one meaning of "beats the baseline".
+std::string standing_words(const ModelResult& r) {
+  std::string gain = num(std::abs(r.heldout_gain), 3) + " % " + (r.heldout_gain >= 0 ? "less" : "more") + " held-out error";
+  switch (r.standing) {
+    case Standing::Beats: return "beats the baseline (F test p < 1 %, " + gain + ").";
+    case Standing::HeldOutAgainst:
+      return "does not beat the baseline: its F test favours it (p < 1 %), but it predicts held-out conditions no "
+             "better (" + gain + ").";
+    case Standing::ModestSupport:
+      return "does not beat the baseline by the rule (F test p = " + num(r.p, 2) + ", above 1 %), yet predicts "
+             "held-out conditions better (" + gain + ") and has the lower AIC: modest evidence for it.";
+    case Standing::StrainedBaseline:
+      return "does not beat the baseline by the rule (F test p = " + num(r.p, 2) + "), yet predicts held-out "
+             "conditions far better (" + gain + ") where the baseline strains (below): evidence for it.";
+    case Standing::NoBetter: break;
+  }
+  if (r.heldout_gain > 0)
+    return "does not beat the baseline (F test p = " + num(r.p, 2) + "; " + gain + ", not enough to outweigh it).";
+  return "is no better than the baseline (F test p = " + num(r.p, 2) + "; " + gain + ").";
+}
+
 std::string candidate_statement(const Diagnosis& d, const ModelResult& r) {
   if (!r.simulation_error.empty()) return r.id + ": not tested, its simulation failed (" + r.simulation_error + ").";
   const ModelResult& base = d.baseline;
   // A stochastic candidate is scored on fresh replicates, its change from the baseline shrunk.
-  std::string scored = r.prediction.replicates > 1
+  std::string scored = r.dropped_early
+                           ? " (clearly worse on its " + std::to_string(r.points) +
+                                 "-point design: not refined, its score and held-out errors read from its surrogate)"
+                       : r.prediction.replicates > 1
                            ? " (fresh replicates; its change from the baseline, chi^2 " + num(r.change_d2, 3) +
                                  " against the simulations' scatter, kept at " + num(r.shrinkage, 2) + ")"
                            : std::string();
   return r.id + ": " + fitted_values(r) + "; chi^2 " + num(base.chi2) + " -> " + num(r.chi2) + scored + " (F = " + num(r.f, 3) +
          ", p = " + num(r.p, 2) + "), AIC " + num(base.aic) + " -> " + num(r.aic) +
-         (d.heldout_available ? ", held-out error " + in_unit(r.heldout_rms, d.primary_unit) + " vs " +
-                                    in_unit(base.heldout_rms, d.primary_unit) + " (baseline)"
-                              : std::string()) +
-         (r.significant ? ": beats the baseline." : ": no better than the baseline.");
+         (d.heldout_available ? "; held-out error " + num(r.heldout_sds, 3) + " vs " + num(base.heldout_sds, 3) +
+                                    " standard errors over every measure (" + per_measure(r, base) + "), so it "
+                              : std::string(", so it ")) +
+         standing_words(r);
+}
+
+// A model's fitted parameters on a bound: for the baseline evidence of an effect, and no calibration.
+std::string bound_statement(const ModelResult& r, bool baseline) {
+  std::string list;
+  for (const BoundFit& b : r.at_bound)
+    list += (list.empty() ? "" : ", ") + b.parameter + " at " + num(b.value) + ", the " + (b.upper ? "top" : "bottom") +
+            " of its search range (" + num(b.lo) + "-" + num(b.hi) + ")";
+  if (baseline)
+    return "The baseline's fit lies on a bound: " + list + ". The baseline strains to explain the data: that is "
+           "evidence for an effect, and its fitted values are not a calibration.";
+  return r.id + "'s fit lies on a bound: " + list + ": its best value may lie beyond the range searched.";
+}
+
+// How far the baseline's fit moved its parameters from the case's values (a tenth of the range or
+// more), where the named (or best) candidate keeps them.
+std::string moved_statement(const Diagnosis& d, const ModelResult& other) {
+  std::string moved;
+  for (size_t k = 0; k < d.baseline.params.size() && k < d.case_values.size() && k < other.params.size(); ++k) {
+    const FreeParameter& p = d.baseline.parameters[k];
+    double shift = std::abs(p.to_unit(d.baseline.params[k]) - p.to_unit(d.case_values[k]));
+    if (shift < 0.1) continue;  // within a tenth of its range: a calibration's refinement, not a strain
+    moved += (moved.empty() ? "" : "; ") + p.name + " from the case's " + num(d.case_values[k]) + " to " +
+             num(d.baseline.params[k]) + " (" + num(100 * shift, 2) + " % of its range), where " + other.id +
+             " keeps it at " + num(other.params[k]);
+  }
+  return moved.empty() ? "" : "The baseline's fit moved " + moved + ".";
 }
 
 const ModelResult* candidate(const Diagnosis& d, const std::string& id) {
   for (const auto& c : d.candidates)
     if (c.id == id) return &c;
   return nullptr;
+}
+
+// The candidate the baseline's parameters are compared with: the named cause, else the fitted
+// candidate with the lowest AIC.
+const ModelResult* compared_candidate(const Diagnosis& d) {
+  if (!d.cause.empty()) return candidate(d, d.cause[0]);
+  const ModelResult* best = nullptr;
+  for (const auto& c : d.candidates)
+    if (c.tested && c.simulation_error.empty() && (!best || c.aic < best->aic)) best = &c;
+  return best;
 }
 
 // "air_drag (needs a series), shape (needs sigma)": the candidates the data could not test.
@@ -105,6 +178,11 @@ void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
                   "beyond the candidates.");
   } else if (d.verdict == "effect") {
     out.push_back("Verdict: effect. The cause is " + d.cause[0] + " (" + fitted_values(*candidate(d, d.cause[0])) + ").");
+  } else if (d.cause.size() == 1 + d.untested_rivals.size() && !candidate(d, d.cause[0])->significant) {
+    const ModelResult& named = *candidate(d, d.cause[0]);
+    out.push_back("Verdict: ambiguous. The evidence for " + named.id + " (" + fitted_values(named) +
+                  ") disagrees: it " + standing_words(named) + " The baseline is not adequate while that stands. " +
+                  "To decide, measure " + d.separating_measurement + ".");
   } else if (d.separation.kind == Separation::Kind::Untested) {
     std::string names;
     for (const auto& c : d.untested_rivals) names += (names.empty() ? "" : " and ") + c;
@@ -126,6 +204,15 @@ void verdict_statements(const Diagnosis& d, std::vector<std::string>& out) {
       others += (others.empty() ? "" : ", ") + id + " " + num(w, 2);
   out.push_back("Confidence " + num(d.confidence, 2) + ": the Akaike weight of " + named +
                 (others.empty() ? std::string(" (every other model below 0.005)") : " (" + others + ")") + ".");
+  // A baseline outweighed in-sample: say by which candidate, and why it is not named.
+  const ModelResult* heavier = compared_candidate(d);
+  if (d.cause.empty() && heavier && heavier->aic < d.baseline.aic)
+    out.push_back("The baseline's weight is the lower: " + heavier->id + " fits these data better (AIC " +
+                  num(heavier->aic, 4) + " against " + num(d.baseline.aic, 4) + "), but " +
+                  (d.heldout_available ? "predicts held-out conditions no better (" + num(heavier->heldout_gain, 3) +
+                                             " % gain) and its F test gives p = " + num(heavier->p, 2)
+                                       : "its F test gives p = " + num(heavier->p, 2)) +
+                  ": not enough to name it.");
 }
 
 // The pairs of candidates, told apart or not.
@@ -137,6 +224,25 @@ std::string pairs_statement(const Diagnosis& d) {
   }
   return "These data tell apart " + (apart.empty() ? std::string("no pair") : apart) +
          (not_apart.empty() ? std::string("") : "; not " + not_apart) + " (each refitted to the other's predictions).";
+}
+
+// The held-out gain of what the verdict names, over every measure and per measure; a loss is
+// stated as such, never as a gain.
+std::string gain_statement(const Diagnosis& d, const ModelResult& named) {
+  std::string measures;
+  for (size_t m = 0; m < named.heldout_by_measure.size() && m < d.baseline.heldout_by_measure.size(); ++m) {
+    const MeasureError &e = named.heldout_by_measure[m], &b = d.baseline.heldout_by_measure[m];
+    double gain = b.sds > 0 ? 100 * (1 - e.sds / b.sds) : 0;
+    std::string unit = unit_of(e.measure);
+    measures += (measures.empty() ? "" : "; ") + e.measure + (d.scatter_scored ? " (mean and replicate SD)" : "") +
+                " to " + in_unit(e.rms, unit) + " (RMS) against " + in_unit(b.rms, unit) + ", " + num(std::abs(gain), 3) +
+                " % " + (gain >= 0 ? "less" : "more") + " error";
+  }
+  std::string over = "leaving each condition out in turn, the " + named.id + " model predicts the held-out means to " +
+                     num(d.heldout_error_extended, 3) + " standard errors (RMS over every measure) against the "
+                     "baseline's " + num(d.heldout_error_baseline, 3) + ": " + num(std::abs(d.gain_percent), 3) + " % " +
+                     (d.gain_percent >= 0 ? "less" : "more") + " error. Per measure: " + measures + ".";
+  return (d.gain_percent > 0 ? "Gain: " : "No gain: ") + over;
 }
 
 }  // namespace
@@ -168,6 +274,12 @@ std::string separation_in_words(const Separation& s, const Observations& obs) {
              " on average, " + num(s.heap_sds, 2) + " SDs of one heap";
     case Separation::Kind::HeapAfterLift:
       return "the heap after the lift (repose_angle, runout, profile_convexity): a bed alone shows packing only";
+    case Separation::Kind::MoreReplicates:
+      return "more replicates per condition" +
+             (s.replicate_factor > 0 ? " (about " + num(s.replicate_factor, 2) +
+                                           " times as many bring its F test to the 1 % level if its effect is real)"
+                                     : std::string()) +
+             ", or more conditions";
     case Separation::Kind::Untested:
       return "To decide, make " + s.measure + " testable (its reason is in the candidates table) or measure what only "
              "the named cause changes";
@@ -188,9 +300,15 @@ std::vector<std::string> diagnosis_statements(const Observations& obs, const Dia
                     "the trend tests count " + num(n.inflation, 3) + " frames as one.");
   out.push_back(lack_of_fit_statement(d.lack_of_fit.front()));
   for (const Trend& t : d.trends) out.push_back(trend_statement(t));
+  if (!d.baseline.at_bound.empty()) out.push_back(bound_statement(d.baseline, true));
+  if (const ModelResult* other = compared_candidate(d)) {
+    std::string moved = moved_statement(d, *other);
+    if (!moved.empty()) out.push_back(moved);
+  }
   for (const std::string& id : d.tried) {
     const ModelResult& r = *candidate(d, id);
     out.push_back(candidate_statement(d, r));
+    if (!r.at_bound.empty()) out.push_back(bound_statement(r, false));
     if (r.refilled > 0)
       out.push_back(r.id + ": " + std::to_string(r.refilled) + " of its " + std::to_string(r.heaps) +
                     " heaps did not fit the case's fill box by random insertion and were filled largest grain first" +
@@ -203,11 +321,7 @@ std::vector<std::string> diagnosis_statements(const Observations& obs, const Dia
                   " (separable at 3 sigma above " + num(kSeparableChi2, 2) + "); AIC difference " + num(m.aic_difference, 3) + ".");
   if (!d.pairs.empty()) out.push_back(pairs_statement(d));
   verdict_statements(d, out);
-  if (d.heldout_available && !d.cause.empty())
-    out.push_back("Gain: leaving each condition out in turn, the " + d.cause[0] + " model predicts " + d.primary_measure +
-                  (d.scatter_scored ? " (mean and replicate SD)" : "") + " to " +
-                  in_unit(d.heldout_error_extended, d.primary_unit) + " (RMS), the baseline to " +
-                  in_unit(d.heldout_error_baseline, d.primary_unit) + ": " + num(d.gain_percent, 3) + " % less error.");
+  if (d.heldout_available && !d.cause.empty()) out.push_back(gain_statement(d, *candidate(d, d.cause[0])));
   return out;
 }
 

@@ -10,11 +10,12 @@
 
 #include "case/case_loader.h"
 #include "experiments/experiment.h"
+#include "util/input_error.h"
 
 namespace repose {
 
-struct DataError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+struct DataError : BadInput {  // bad input: exit code 2
+  using BadInput::BadInput;
 };
 
 struct Measurement {

@@ -1,5 +1,5 @@
-// Fitting a model's free parameters to the measured groups, minimised by Nelder-Mead in the unit
-// cube of the parameters' search ranges (log ranges for strengths spanning decades). The score:
+// The score a model's free parameters are fitted by (on its surrogate, surrogate.h, in the unit
+// cube of the parameters' search ranges, log ranges for strengths spanning decades):
 //   chi^2 = sum over groups of (mean - predicted)^2 / (V/n + v/R)
 //         + sum over groups with n >= 2, when the file gives sigma, of (n-1) [s^2/V - 1 - ln(s^2/V)]
 // with n replicates measured, s^2 their sample variance, v the model's replicate variance from R
@@ -17,14 +17,6 @@
 #include "diagnosis/predictor.h"
 
 namespace repose {
-
-struct ModelFit {
-  std::vector<double> params;      // fitted values, in the order of Predictor::parameters
-  Prediction predicted;            // every group (only the fitted conditions are meaningful)
-  double chi2 = 0;                 // over the fitted conditions
-  int groups = 0;                  // groups in the fit
-  int evaluations = 0;
-};
 
 // Every group's terms of the score (above): against the measured means and scatter or, when
 // `target` is given, against another model's prediction as if it were the truth (mean, and
@@ -53,11 +45,5 @@ ShrunkChange shrink_change(const Observations& obs, const Prediction& baseline, 
 // How many chi^2 terms the score has over all groups: one per mean, plus one per replicate
 // variance when sigma is given (the degrees of freedom before fitting).
 int score_terms(const Observations& obs);
-
-// Fits `extension` (nullptr: the baseline) on the conditions marked in `use`, starting from
-// `start` (empty: the middle of each range, the case's restitution).
-ModelFit fit_model(Predictor& predictor, const ModelExtension* extension, const std::vector<char>& use,
-                   const std::vector<double>& start = {}, double step = 0.15, int max_evaluations = 80,
-                   const Prediction* target = nullptr);
 
 }  // namespace repose

@@ -26,14 +26,16 @@ void write_plot_png(const Plot& plot, const std::string& path, int width, int he
   Chart chart(width, height, x0 - px, x1 + px, y0 - py, y1 + py);
   if (plot.zero_line) chart.horizontal(0, {120, 120, 120});
   if (plot.diagonal) chart.polyline({x0 - px, x1 + px}, {x0 - px, x1 + px}, {120, 120, 120});
-  std::vector<std::pair<std::string, Colour>> legend;
+  std::vector<LegendEntry> legend;
+  if (plot.diagonal) legend.push_back({plot.diagonal_label, {120, 120, 120}, Mark::Line});
   for (const auto& s : plot.series) {
     for (size_t k = 0; k < s.x.size(); ++k) {
       if (k < s.error.size() && s.error[k] > 0) chart.error_bar(s.x[k], s.y[k] - s.error[k], s.y[k] + s.error[k], s.colour);
       if (s.points) chart.square(s.x[k], s.y[k], s.colour, 3);
     }
     if (s.line) chart.polyline(s.x, s.y, s.colour, 2);
-    if (!s.label.empty()) legend.push_back({s.label, s.colour});
+    // The entry shows what the series draws: its line, else its squares.
+    if (!s.label.empty()) legend.push_back({s.label, s.colour, s.line ? Mark::Line : Mark::Square});
   }
   chart.title(plot.title);
   chart.labels(plot.x_label, plot.y_label);

@@ -23,7 +23,8 @@ struct Plot {
   std::string title, x_label, y_label;
   std::vector<PlotSeries> series;
   bool zero_line = false;     // a horizontal line at y = 0
-  bool diagonal = false;      // the line y = x (measured vs simulated)
+  bool diagonal = false;      // the line y = x (measured vs simulated), with this legend entry
+  std::string diagonal_label = "y = x";
 };
 
 // Throws std::runtime_error naming the path when it cannot write.

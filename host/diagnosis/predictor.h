@@ -60,7 +60,9 @@ class Predictor {
 
   // The prediction for every group whose condition is marked in `use`. A stochastic model is
   // simulated as replicates first_replicate ... first_replicate + replicates - 1 (replicates 0:
-  // simulated_replicates()); a fit uses 0 ... R - 1, the confirmation of a fitted model fresh ones.
+  // simulated_replicates()); a surrogate's design point uses 0 ... its count - 1 (a clump's common
+  // orientations) or fills of its own (a heap, surrogate.h), the confirmation of a fitted model
+  // fresh ones.
   Prediction predict(const ModelExtension* extension, const std::vector<double>& params, const std::vector<char>& use,
                      int first_replicate = 0, int replicates = 0);
   // One condition's experiment, replicate r (cached). Thread-safe.
@@ -83,8 +85,10 @@ class Predictor {
   const Observations& observations() const { return obs_; }
   size_t simulations() const { return simulations_; }
   int simulated_replicates() const { return replicates_; }
-  // Replicates of a fitted stochastic model's confirmation: fresh fills or orientations, none of
-  // which its fit saw (diagnose_stages.h, confirm_on_fresh_replicates).
+  // A fitted stochastic model's confirmation: fresh fills or orientations, replicates
+  // confirmation_first() ... + confirmation_replicates() - 1, none of which its fit saw
+  // (diagnose_stages.h, fit_and_hold_out).
+  int confirmation_first() const { return replicates_; }
   int confirmation_replicates() const { return std::max(8, 2 * replicates_); }
 
  private:

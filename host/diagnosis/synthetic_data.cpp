@@ -10,6 +10,7 @@
 #include "case/case_loader.h"
 #include "diagnosis/extensions.h"
 #include "experiments/registry.h"
+#include "util/progress.h"
 #include "util/atomic_file.h"
 #include "util/math.h"
 #include "util/number_text.h"
@@ -132,6 +133,8 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
   if (with_series) wanted.push_back(series->name);
   Gaussian noise(truth.seed);
   Rows rows(truth, key, series != role.measures.end(), csv_path);
+  int per_condition = kind->stochastic(plain) ? truth.replicates : 1;
+  TaskProgress progress("synth-data: simulation", int(truth.heights.size()) * per_condition, truth.progress);
   for (size_t ci = 0; ci < truth.heights.size(); ++ci) {
     std::string value = text(truth.heights[ci]);
     CaseSpec spec = load_case(truth.case_path, {{key, value}});
@@ -143,6 +146,7 @@ void write_synthetic_data(const SyntheticTruth& truth, const std::string& csv_pa
     for (int rep = 1; rep <= (stochastic ? truth.replicates : 1); ++rep) {
       CaseSpec replicate = spec;
       if (stochastic) kind->reseed(replicate, 1000000 + 10000 * truth.seed + 100 * ci + uint64_t(rep));
+      progress.next(key + " = " + value + (stochastic ? ", replicate " + std::to_string(rep) : ""));
       runs.push_back(kind->simulate_for_diagnosis(replicate, wanted, true));
     }
     auto run_of = [&](int rep) -> const DiagnosticOutcome& { return runs[stochastic ? size_t(rep - 1) : 0]; };

@@ -47,6 +47,7 @@ struct SyntheticTruth {
                                          // tracking error drifts from frame to frame)
   bool write_sigma = false;              // a sigma column (the noise SDs): the scatter becomes data
   uint64_t seed = 1;                     // noise; and the orientations of a clump body (shape)
+  bool progress = false;                 // a line per simulation on stderr, with its ETA
 };
 
 // Writes the CSV (the case column relative to the CSV's folder) atomically.

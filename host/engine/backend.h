@@ -86,6 +86,10 @@ class Backend {
   virtual std::vector<uint32_t> read_control() = 0;
   // Force on each wall from the current contact forces.
   virtual std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) = 0;
+  // The wall_reduce sums (store_wall_force): per wall its running force sum, then its peak.
+  virtual std::vector<gpu::vec4> wall_sums() = 0;
+  // The last step's force on the owner of each of the list's first `contacts` entries.
+  virtual std::vector<gpu::vec4> contact_forces(uint32_t contacts) = 0;
   // Bytes of device (or, for the CPU twin, host) memory held by the simulation buffers.
   virtual size_t memory_bytes() const = 0;
 };

@@ -21,7 +21,7 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::BucketsPlusOne: return t + 2;
     case BufferCount::Pairs: return size_t(l.n_materials) * l.n_materials;
     case BufferCount::WallRows: return size_t(l.batch_steps) * l.n_walls;
-    case BufferCount::Walls: return l.n_walls;
+    case BufferCount::WallSums: return 3 * size_t(l.n_walls);
     case BufferCount::Bodies: return l.n_bodies;
     case BufferCount::Control: return gpu::kControlWords;
     case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;

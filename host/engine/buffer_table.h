@@ -12,7 +12,7 @@ namespace repose {
 
 enum class BufferCount {
   Particles, ParticlesPlusOne, Contacts, ContactsTwice, Transposed, Buckets, BucketsPlusOne, Pairs, WallRows,
-  Walls, Bodies, Control, CandidateSlots
+  WallSums, Bodies, Control, CandidateSlots
 };
 enum class BufferNeed { Always, FullEntries, Bodies, RollingSprings, Alias };
 enum class BufferKeep { Scratch, State, File, Constant, Walls };

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
+#include <new>
+
+#include <sys/mman.h>
 
 #include "contact_lanes.h"
 #include "engine/buffer_table.h"
@@ -19,10 +23,32 @@ std::string CpuBackend::describe() const {
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
 
+void CpuBackend::FreeArena::operator()(std::byte* p) const { std::free(p); }
+
+std::unique_ptr<std::byte, CpuBackend::FreeArena> CpuBackend::zeroed_arena(size_t bytes) {
+  constexpr size_t kHuge = size_t(2) << 20;
+  void* p = nullptr;
+  if (bytes >= kHuge && posix_memalign(&p, kHuge, (bytes + kHuge - 1) / kHuge * kHuge) == 0)
+    madvise(p, bytes, MADV_HUGEPAGE);  // advice only: without huge pages the memory is as good
+  else
+    p = std::malloc(bytes);
+  if (!p) throw std::bad_alloc();
+  std::memset(p, 0, bytes);
+  return std::unique_ptr<std::byte, FreeArena>(static_cast<std::byte*>(p));
+}
+
 void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
   layout_ = l;
-  for (uint32_t b = 0; b < gpu::kBindingCount; ++b)
-    storage_[b].assign(std::max<size_t>(binding_bytes(b, l), 16), std::byte{0});
+  arena_.reset();  // the old buffers go first, so a larger list never holds both
+  std::array<size_t, gpu::kBindingCount> offset{};
+  size_t total = 0;
+  for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
+    offset[b] = total;
+    storage_[b].length = std::max<size_t>(binding_bytes(b, l), 16);
+    total += (storage_[b].length + 63) / 64 * 64;  // each binding on its own cache lines
+  }
+  arena_ = zeroed_arena(total);
+  for (uint32_t b = 0; b < gpu::kBindingCount; ++b) storage_[b].begin = arena_.get() + offset[b];
   for_each_constant(constants, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
   point_buffers();
 }
@@ -62,6 +88,9 @@ void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* time
                           : d.groups;
     if (d.kernel == KernelId::Scan) {
       if (groups > 0) gpu::run_scan(buf_, d.scan);
+    } else if (d.kernel == KernelId::WallReduce) {  // a fixed tree per wall, as the shader's
+      buf_.push = d.sim;
+      gpu::run_wall_reduce(buf_, layout_.n_walls);
     } else {
       buf_.push = d.sim;
       gpu::run_kernel(d.kernel, buf_, uint64_t(groups) * d.sim.workgroup, pool_);
@@ -80,6 +109,14 @@ std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
   buf_.push = push;
   gpu::run_wall_reduce(buf_, layout_.n_walls);
   return std::vector<gpu::vec4>(buf_.wall_force, buf_.wall_force + layout_.n_walls);
+}
+
+std::vector<gpu::vec4> CpuBackend::wall_sums() {
+  return std::vector<gpu::vec4>(buf_.wall_force + layout_.n_walls, buf_.wall_force + 3 * layout_.n_walls);
+}
+
+std::vector<gpu::vec4> CpuBackend::contact_forces(uint32_t contacts) {
+  return std::vector<gpu::vec4>(buf_.contact_force, buf_.contact_force + std::min(contacts, layout_.capacity));
 }
 
 size_t CpuBackend::memory_bytes() const {

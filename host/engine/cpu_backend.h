@@ -24,6 +24,8 @@ class CpuBackend : public Backend {
   void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
   std::vector<uint32_t> read_control() override;
   std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;
+  std::vector<gpu::vec4> contact_forces(uint32_t contacts) override;
+  std::vector<gpu::vec4> wall_sums() override;
   size_t memory_bytes() const override;
   // Binding b's array (kernel tests compare raw buffers with the Vulkan backend).
   const gpu::Buffers& buffers() const { return buf_; }
@@ -34,8 +36,22 @@ class CpuBackend : public Backend {
   void put(uint32_t binding, const std::vector<T>& src);
   ThreadPool pool_;
   Layout layout_;
-  // One block of memory per binding of the buffer table (none for aliases).
-  std::array<std::vector<std::byte>, gpu::kBindingCount> storage_;
+  // Zeroed host memory for every binding at once, aligned to 2 MiB and advised as transparent
+  // huge pages when it is that large: the kernels' scattered reads of partners' rows then miss
+  // the TLB far less.
+  struct FreeArena {
+    void operator()(std::byte* p) const;
+  };
+  static std::unique_ptr<std::byte, FreeArena> zeroed_arena(size_t bytes);
+  struct Binding {
+    std::byte* begin = nullptr;
+    size_t length = 0;
+    std::byte* data() const { return begin; }
+    size_t size() const { return length; }
+  };
+  std::unique_ptr<std::byte, FreeArena> arena_;
+  // Each binding of the buffer table (none for aliases): its part of the arena.
+  std::array<Binding, gpu::kBindingCount> storage_;
   gpu::Buffers buf_;
 };
 

@@ -363,7 +363,8 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius. With clumps twice the smallest radius: their rebuilds cost far
   // more than the few candidates a wider skin adds (sub-spheres of one body never pair); the
-  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin.
+  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin, except with
+  // spinning friction, whose limiter counts list entries (below).
   double default_skin = (spec.bodies.empty() ? 0.5 : 2.0) * r_min;
   m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : default_skin;
   double r_cell = r_max;
@@ -371,6 +372,7 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   m.cell = 2 * r_cell + m.skin;
   m.table_size = next_pow2(std::max<uint32_t>(1024, 2 * m.n_particles));
   m.max_interval = spec.neighbour.rebuild_interval > 0 ? spec.neighbour.rebuild_interval : 0;
+  m.still_interval = m.max_interval;
 
   // Moving walls: rebuild before any wall point can travel half the skin.
   double extent = 0;
@@ -389,6 +391,9 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
     auto steps = static_cast<uint32_t>(std::max(1.0, std::floor(0.5 * m.skin / (wall_speed * m.dt))));
     m.max_interval = m.max_interval ? std::min(m.max_interval, steps) : steps;
   }
+  // Spinning friction's limiter counts a body's list entries (contacts.h spin_stop_share), so
+  // when the list is rebuilt shows in its results: such a case keeps one schedule throughout.
+  if (needs_spinning_friction(spec)) m.still_interval = m.max_interval;
 }
 
 }  // namespace

@@ -54,6 +54,7 @@ struct Model {
   double cell = 0;               // hash cell edge
   uint32_t table_size = 0;       // hash buckets
   uint32_t max_interval = 0;     // forced rebuild interval (walls that move), 0: none
+  uint32_t still_interval = 0;   // the same while no wall moves ([neighbour] rebuild_interval)
   double total_mass = 0;          // of the particles that move (fixed ones are excluded)
   double air_drag = 0;           // extension air_drag: 0.5 rho_air C_d pi (SimPush::air_drag), 0: off
   double rolling_damping = 0;    // kFlagRollingSpring: eta_r (SimPush::rolling_damping)

@@ -32,7 +32,7 @@ std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>
   std::string out;
   char line[256];
   std::snprintf(line, sizeof line, "%-12s %9s %8s %9s %8s %9s %9s   ms per step:", "phase", "steps", "sim s",
-                "wall s", "steps/s", "rebuilds", "contacts");
+                "wall s", "steps/s", "rebuild/k", "contacts");
   out += line;
   for (const char* s : kKernelStages) {
     out += ' ';

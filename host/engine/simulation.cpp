@@ -7,6 +7,19 @@
 
 namespace repose {
 
+uint32_t first_contact_capacity(const Model& m) {
+  return 6 * m.n_particles + 4 * static_cast<uint32_t>(m.walls.size()) + 64;
+}
+
+uint32_t grown_capacity(uint32_t needed) { return needed + needed / 4 + 64; }
+
+uint32_t restored_capacity(const Model& m, const HostState& s) {
+  uint32_t needed = s.control.size() == gpu::kControlWords
+                        ? std::max(s.control[gpu::kCtlContacts], s.control[gpu::kCtlMaxContacts])
+                        : 0u;
+  return std::max(first_contact_capacity(m), grown_capacity(needed));
+}
+
 Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
                        uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
@@ -24,8 +37,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   state_.row_start.assign(model_.n_particles + 1, 0u);
   state_.trans_start.assign(model_.n_particles + 1, 0u);
   state_.bodies = model_.bodies;
-  // Room for ~6 contacts per particle plus walls; grown on overflow.
-  allocate(first_capacity ? first_capacity : 6 * model_.n_particles + 4 * layout_.n_walls + 64);
+  allocate(first_capacity ? first_capacity : first_contact_capacity(model_));
   if (layout_.n_bodies) {
     backend_->execute(body_place_program(model_, layout_, variant_));
     backend_->download_state(state_);
@@ -60,7 +72,7 @@ void Simulation::allocate(uint32_t capacity) {
 // attempt's largest list, reached after contacts went missing, is no state of the run), so the
 // redone evaluation starts where an ample list's would.
 void Simulation::grow(uint32_t needed) {
-  allocate(std::max(layout_.capacity, needed + needed / 4 + 64));
+  allocate(std::max(layout_.capacity, grown_capacity(needed)));
 }
 
 // Walls of the coming steps: velocity Verlet evaluates forces at the end of a step, symplectic
@@ -77,13 +89,78 @@ void Simulation::upload_walls(uint32_t steps) {
   backend_->upload_walls(w);
 }
 
+namespace {
+
+// True when some wall moves between the start of step `first` and the end of `steps` steps
+// (velocity Verlet evaluates a step's walls at its end).
+bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
+  double t0 = double(first) * m.dt, t1 = double(first + steps + 1) * m.dt;
+  for (const ModelWall& w : m.walls) {
+    const WallMotion& motion = w.motion;
+    bool moves = motion.velocity[0] != 0 || motion.velocity[1] != 0 || motion.velocity[2] != 0 ||
+                 motion.angular_rate != 0;
+    if (moves && motion.start_time < t1 && motion.stop_time > t0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
+  // A batch in which no wall moves forces no rebuilds for walls: the skin check alone suffices.
+  bool still = !walls_move_during(model_, step_, steps);
   std::vector<Dispatch> program;
   for (uint32_t s = 0; s < steps; ++s) {
-    auto one = step_program(model_, layout_, variant_, s);
+    auto one = step_program(model_, layout_, variant_, s, still);
     program.insert(program.end(), one.begin(), one.end());
+    if (summing_walls_) {
+      // After the step's forces: each wall's, summed over the batch from its first step.
+      Dispatch d;
+      d.kernel = KernelId::WallReduce;
+      d.groups = layout_.n_walls;
+      d.sim = base_push(model_, layout_, variant_);
+      d.sim.wall_sums = s == 0 ? 2u : 1u;
+      program.push_back(d);
+    }
   }
   return program;
+}
+
+void Simulation::sum_wall_forces() {
+  if (model_.walls.empty()) return;
+  summing_walls_ = true;
+  wall_sum_.assign(3 * model_.walls.size(), 0.0);
+  wall_peak_.assign(model_.walls.size(), 0.0);
+}
+
+// A batch's sums (each batch starts them anew, so a batch redone after an overflow counts once),
+// added in batch order in double.
+void Simulation::add_batch_wall_sums() {
+  std::vector<gpu::vec4> sums = backend_->wall_sums();
+  size_t n = model_.walls.size();
+  for (size_t w = 0; w < n; ++w) {
+    wall_sum_[3 * w] += sums[w].x;
+    wall_sum_[3 * w + 1] += sums[w].y;
+    wall_sum_[3 * w + 2] += sums[w].z;
+    wall_peak_[w] = std::max(wall_peak_[w], double(sums[n + w].w));
+  }
+}
+
+std::vector<WallImpulse> Simulation::take_wall_impulses() {
+  std::vector<WallImpulse> out;
+  for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0, 0});
+  if (!summing_walls_) return out;
+  auto group = model_.wall_groups();
+  for (size_t w = 0; w < group.size(); ++w) {
+    WallImpulse& g = out[group[w]];
+    g.jx += wall_sum_[3 * w] * model_.dt;
+    g.jy += wall_sum_[3 * w + 1] * model_.dt;
+    g.jz += wall_sum_[3 * w + 2] * model_.dt;
+    g.peak = std::max(g.peak, std::sqrt(wall_peak_[w]));
+  }
+  std::fill(wall_sum_.begin(), wall_sum_.end(), 0.0);
+  std::fill(wall_peak_.begin(), wall_peak_.end(), 0.0);
+  return out;
 }
 
 void Simulation::advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch) {
@@ -104,14 +181,18 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     }
     uint32_t rebuilds_before = rebuilds();
     backend_->download_state(state_);
+    if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;
     profile_.rebuilds += rebuilds() - rebuilds_before;
     profile_.contact_steps += double(contacts()) * k;
     profile_.wall_seconds += since(t0);
     if (on_batch) on_batch(*this);
+    if (observer_) observer_(*this);
   }
 }
+
+std::vector<gpu::vec4> Simulation::contact_forces() { return backend_->contact_forces(contacts()); }
 
 RunProfile Simulation::take_profile() {
   RunProfile p = std::move(profile_);

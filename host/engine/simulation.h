@@ -19,6 +19,14 @@ struct WallForce {
   double fx = 0, fy = 0, fz = 0;
 };
 
+// What a wall took between two readings: the impulse (the integral of its force over the steps,
+// N s) and the largest force at one step (N; for a mesh, of its most loaded triangle).
+struct WallImpulse {
+  std::string name;
+  double jx = 0, jy = 0, jz = 0;
+  double peak = 0;
+};
+
 struct EnergySummary {
   double translational = 0;
   double rotational = 0;
@@ -28,9 +36,18 @@ struct EnergySummary {
 // Translational and rotational kinetic energy of the spheres, or of the bodies when there are.
 EnergySummary kinetic_energy(const HostState& state);
 
+// The contact-list capacity a simulation starts with: room for ~6 contacts per particle plus
+// walls (a settled bed of equal spheres holds ~4.6 per particle with the default skin); it grows
+// on overflow.
+uint32_t first_contact_capacity(const Model& m);
+// The capacity a list grows to when it needs `needed` entries: a quarter more, and some.
+uint32_t grown_capacity(uint32_t needed);
+// The capacity a simulation of m holds after restoring state s (Simulation::restore).
+uint32_t restored_capacity(const Model& m, const HostState& s);
+
 class Simulation {
  public:
-  // first_capacity: contact-list entries to start with (0: room for ~6 contacts per particle);
+  // first_capacity: contact-list entries to start with (0: first_contact_capacity);
   // the list grows on overflow, so it only changes how often that happens, never the results.
   Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant = {},
              uint32_t max_batch_steps = 200, uint32_t first_capacity = 0);
@@ -55,6 +72,17 @@ class Simulation {
   // Force of the particles on each named wall (a mesh's triangles summed), from the last step's
   // contacts; names as Model::wall_group_names().
   std::vector<WallForce> wall_forces();
+  // From now on every step also sums each wall's force and keeps its peak (one more kernel per
+  // step: opt-in); take_wall_impulses() returns them per named wall since the previous call (or
+  // since this one) and starts anew.
+  void sum_wall_forces();
+  std::vector<WallImpulse> take_wall_impulses();
+  bool sums_wall_forces() const { return summing_walls_; }
+  // The last step's force on the owner i of each contact-list entry (state().partner, row_start).
+  std::vector<gpu::vec4> contact_forces();
+  // Called after every batch of every advance() from now on, after its on_batch (frames written
+  // as an experiment goes); empty: none.
+  void set_observer(std::function<void(Simulation&)> observer) { observer_ = std::move(observer); }
   // Replaces particle velocities etc. on the device (used by experiment drivers and tests).
   void set_state(const HostState& s);
   // Continues from a state written by write_state_file after `step` steps of this same model:
@@ -72,6 +100,7 @@ class Simulation {
   void grow(uint32_t needed);
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
+  void add_batch_wall_sums();
   Model model_;
   ConstantData constants_;
   std::unique_ptr<Backend> backend_;
@@ -82,6 +111,9 @@ class Simulation {
   uint32_t retries_ = 0;
   bool profiling_ = false;
   RunProfile profile_;
+  std::function<void(Simulation&)> observer_;
+  bool summing_walls_ = false;
+  std::vector<double> wall_sum_, wall_peak_;  // per wall row: sum x, y, z (N, steps) and peak^2 (N^2)
 };
 
 }  // namespace repose

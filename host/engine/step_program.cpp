@@ -53,7 +53,7 @@ KernelVariant KernelVariant::fastest_for(const std::string& backend, const Model
   return v;
 }
 
-Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps) {
+Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps, uint32_t capacity) {
   if ((m.flags & gpu::kFlagsNeedFullEntries) != 0u && v.lean) {
     const char* option = (m.flags & gpu::kFlagRollingSpring) ? "rolling = \"epsd\" stores each contact's rolling torque"
                                                               : "spinning_friction stores each contact's torques";
@@ -68,10 +68,11 @@ Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps
   l.lean_contacts = v.lean;
   l.rolling_springs = (m.flags & gpu::kFlagRollingSpring) != 0;
   l.n_bodies = static_cast<uint32_t>(m.bodies.size());
+  l.capacity = capacity;
   return l;
 }
 
-gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) {
+gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, bool walls_still) {
   gpu::SimPush p{};
   p.n_particles = l.n_particles;
   p.n_walls = l.n_walls;
@@ -82,7 +83,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v) 
             (l.n_bodies ? gpu::kFlagBodies : 0u);
   p.n_bodies = l.n_bodies;
   p.wall_slot = 0;
-  uint32_t interval = m.max_interval;
+  uint32_t interval = walls_still ? m.still_interval : m.max_interval;
   if (v.rebuild_interval && (!interval || v.rebuild_interval < interval)) interval = v.rebuild_interval;
   p.max_interval = interval;
   p.workgroup = v.workgroup;
@@ -221,9 +222,9 @@ std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
 }
 
 std::vector<Dispatch> step_program(const Model& m, const Layout& l, const KernelVariant& v,
-                                   uint32_t wall_slot) {
+                                   uint32_t wall_slot, bool walls_still) {
   ProgramBuilder b;
-  b.push = base_push(m, l, v);
+  b.push = base_push(m, l, v, walls_still);
   b.push.wall_slot = wall_slot;
   uint32_t g = groups(l.n_particles, v.workgroup);
   if (m.integrator == Integrator::VelocityVerlet) {

@@ -27,12 +27,15 @@ struct KernelVariant {
   static KernelVariant fastest_for(const std::string& backend, const Model& m);
 };
 
-// The buffer layout of model m run with variant v, `batch_steps` wall states per upload (the list
-// capacity is the simulation's to choose). Throws std::invalid_argument for lean entries with an
-// option that needs full ones (gpu::kFlagsNeedFullEntries).
-Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps);
+// The buffer layout of model m run with variant v, `batch_steps` wall states per upload and a
+// list of `capacity` entries (the simulation's to choose; 0 until it does). Throws
+// std::invalid_argument for lean entries with an option that needs full ones
+// (gpu::kFlagsNeedFullEntries).
+Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps, uint32_t capacity = 0);
 
-gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v);
+// walls_still: no wall moves during the steps this push serves, so no rebuild is forced for walls
+// (Model::still_interval instead of max_interval; results do not depend on when lists are built).
+gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, bool walls_still = false);
 
 // Workgroups per dispatch row along x: gpu::kMaxGroupsX, or less with the environment variable
 // REPOSE_MAX_GROUPS_X (tests lower it to run the split dispatches of large runs on small ones).
@@ -46,6 +49,6 @@ std::vector<Dispatch> initial_forces_program(const Model& m, const Layout& l,
                                              const KernelVariant& v, uint32_t wall_slot);
 // One step of the model's integrator; walls at row `wall_slot` of the uploaded batch.
 std::vector<Dispatch> step_program(const Model& m, const Layout& l, const KernelVariant& v,
-                                   uint32_t wall_slot);
+                                   uint32_t wall_slot, bool walls_still = false);
 
 }  // namespace repose

@@ -4,6 +4,7 @@
 
 #include "engine/buffer_table.h"
 #include "engine/step_program.h"
+#include "util/memory_info.h"
 #include "vk/vk_check.h"
 
 namespace repose {
@@ -11,14 +12,14 @@ namespace repose {
 using namespace gpu;
 
 VulkanBackend::VulkanBackend(int device_index, uint32_t workgroup)
-    : ctx_(device_index), kernels_(ctx_, workgroup) {}
+    : ctx_(vk::Context::open(device_index)), kernels_(*ctx_, workgroup) {}
 
 VulkanBackend::~VulkanBackend() {
-  if (queries_) vkDestroyQueryPool(ctx_.device(), queries_, nullptr);
+  if (queries_) vkDestroyQueryPool(ctx_->device(), queries_, nullptr);
 }
 
 std::string VulkanBackend::describe() const {
-  return "vulkan (" + ctx_.info().name + ", " + ctx_.info().driver + ")";
+  return "vulkan (" + ctx_->info().name + ", " + ctx_->info().driver + ")";
 }
 
 template <class T>
@@ -32,27 +33,30 @@ static void down(const vk::Buffer& src, std::vector<T>& dst, size_t count) {
   src.download(dst.data(), count * sizeof(T));
 }
 
-// Refuses a layout the device cannot hold or dispatch, before anything is allocated.
-void VulkanBackend::check_fits(const Layout& l) const {
-  const vk::DeviceInfo& d = ctx_.info();
-  auto gib = [](double bytes) { return std::to_string(bytes / 1073741824.0).substr(0, 5) + " GiB"; };
+std::string vulkan_fit_problem(const vk::DeviceInfo& d, const Layout& l) {
   size_t total = 0;
   for (uint32_t i = 0; i < kBindingCount; ++i) {
     size_t bytes = binding_bytes(i, l);
     total += bytes;
     if (bytes > d.max_storage_range || (d.max_allocation && bytes > d.max_allocation))
-      throw vk::VulkanError(std::string("buffer ") + kBufferTable[i].name + " needs " + gib(bytes) + ", above what '" +
-                            d.name + "' binds as one storage buffer (" + d.limits_text() + ")");
+      return std::string("buffer ") + kBufferTable[i].name + " needs " + format_bytes(double(bytes)) + ", above what '" +
+             d.name + "' binds as one storage buffer (" + d.limits_text() + ")";
   }
   if (d.device_local_bytes && total > d.device_local_bytes)
-    throw vk::VulkanError("the simulation needs " + gib(total) + " of device memory; '" + d.name + "' has " +
-                          gib(d.device_local_bytes));
+    return "needs " + format_bytes(double(total)) + " of device memory, " + format_bytes(double(d.device_local_bytes)) +
+           " available on '" + d.name + "'";
   // The largest dispatch: one invocation per particle, bucket or contact-list entry.
   uint64_t most = std::max<uint64_t>({uint64_t(l.n_particles) + 1, uint64_t(l.table_size) + 2, l.capacity, l.n_walls});
   uint32_t groups = uint32_t((most + gpu::kDefaultWorkgroup - 1) / gpu::kDefaultWorkgroup);
   if (max_groups_x() > d.max_groups[0] || gpu::dispatch_rows(groups, max_groups_x()) > d.max_groups[1])
-    throw vk::VulkanError("'" + d.name + "' cannot dispatch " + std::to_string(groups) + " workgroups (" +
-                          d.limits_text() + ")");
+    return "'" + d.name + "' cannot dispatch " + std::to_string(groups) + " workgroups (" + d.limits_text() + ")";
+  return "";
+}
+
+// Refuses a layout the device cannot hold or dispatch, before anything is allocated.
+void VulkanBackend::check_fits(const Layout& l) const {
+  std::string problem = vulkan_fit_problem(ctx_->info(), l);
+  if (!problem.empty()) throw vk::VulkanError(problem);
 }
 
 void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
@@ -63,11 +67,11 @@ void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
     size_t bytes = binding_bytes(i, l);
     VkBufferUsageFlags extra = i == kBindControl ? VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT : 0;
     buffers_[i] = vk::Buffer();
-    buffers_[i] = vk::Buffer(ctx_, std::max<size_t>(bytes, 16), extra);
+    buffers_[i] = vk::Buffer(*ctx_, std::max<size_t>(bytes, 16), extra);
     bound[i] = &buffers_[i];
   }
   // Zero everything once so no kernel ever reads uninitialised memory.
-  ctx_.submit_and_wait([&](VkCommandBuffer cb) {
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     for (auto& buf : buffers_)
       if (buf.handle() != VK_NULL_HANDLE) vkCmdFillBuffer(cb, buf.handle(), 0, VK_WHOLE_SIZE, 0);
   });
@@ -88,15 +92,15 @@ void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBi
 void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
   if (times && needed > query_capacity_) {
-    if (queries_) vkDestroyQueryPool(ctx_.device(), queries_, nullptr);
+    if (queries_) vkDestroyQueryPool(ctx_->device(), queries_, nullptr);
     VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
     qi.queryCount = needed;
-    VK_CHECK(vkCreateQueryPool(ctx_.device(), &qi, nullptr, &queries_));
+    VK_CHECK(vkCreateQueryPool(ctx_->device(), &qi, nullptr, &queries_));
     query_capacity_ = needed;
   }
   VkBuffer control = b(kBindControl).handle();
-  ctx_.submit_and_wait([&](VkCommandBuffer cb) {
+  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     if (times) vkCmdResetQueryPool(cb, queries_, 0, needed);
     uint32_t q = 0;
     for (const Dispatch& d : program) {
@@ -114,11 +118,11 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* t
   });
   if (times) {
     std::vector<uint64_t> stamps(needed);
-    VK_CHECK(vkGetQueryPoolResults(ctx_.device(), queries_, 0, needed, needed * sizeof(uint64_t),
+    VK_CHECK(vkGetQueryPoolResults(ctx_->device(), queries_, 0, needed, needed * sizeof(uint64_t),
                                    stamps.data(), sizeof(uint64_t),
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     VkPhysicalDeviceProperties props;
-    vkGetPhysicalDeviceProperties(ctx_.physical(), &props);
+    vkGetPhysicalDeviceProperties(ctx_->physical(), &props);
     double period = props.limits.timestampPeriod * 1e-9;
     for (size_t i = 0; i < program.size(); ++i)
       (*times)[kernel_shader_name(program[i].kernel)] +=
@@ -141,6 +145,18 @@ std::vector<vec4> VulkanBackend::wall_forces(const SimPush& push) {
   execute({d}, nullptr);
   std::vector<vec4> f;
   down(b(kBindWallForce), f, layout_.n_walls);
+  return f;
+}
+
+std::vector<vec4> VulkanBackend::wall_sums() {
+  std::vector<vec4> all;
+  down(b(kBindWallForce), all, 3 * size_t(layout_.n_walls));
+  return std::vector<vec4>(all.begin() + layout_.n_walls, all.end());
+}
+
+std::vector<vec4> VulkanBackend::contact_forces(uint32_t contacts) {
+  std::vector<vec4> f;
+  down(b(kBindContactForce), f, std::min(contacts, layout_.capacity));
   return f;
 }
 

@@ -12,6 +12,11 @@
 
 namespace repose {
 
+// Why the device cannot hold or dispatch a simulation of this layout (a buffer above its storage
+// range or allocation size, more memory than its device-local heap, too many workgroups), or ""
+// when it can. VulkanBackend refuses such a layout; engine/memory_need.h asks before a run.
+std::string vulkan_fit_problem(const vk::DeviceInfo& device, const Layout& layout);
+
 class VulkanBackend : public Backend {
  public:
   VulkanBackend(int device_index, uint32_t workgroup);
@@ -24,17 +29,20 @@ class VulkanBackend : public Backend {
   void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
   std::vector<uint32_t> read_control() override;
   std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;
+  std::vector<gpu::vec4> contact_forces(uint32_t contacts) override;
+  std::vector<gpu::vec4> wall_sums() override;
   size_t memory_bytes() const override;
 
-  vk::Context& context() { return ctx_; }
+  vk::Context& context() { return *ctx_; }
   // The first `bytes` of binding b's buffer (kernel tests compare raw buffers with the twin).
   void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
-  uint64_t validation_messages() const { return ctx_.validation_messages(); }
+  void write_binding(uint32_t binding, const void* src, size_t bytes) { buffers_[binding].upload(src, bytes); }
+  uint64_t validation_messages() const { return ctx_->validation_messages(); }
 
  private:
   vk::Buffer& b(uint32_t binding) { return buffers_[binding]; }
   void check_fits(const Layout& l) const;
-  vk::Context ctx_;
+  std::shared_ptr<vk::Context> ctx_;  // shared by the process's simulations (vk::Context::open)
   vk::KernelSet kernels_;
   Layout layout_;
   std::array<vk::Buffer, gpu::kBindingCount> buffers_;

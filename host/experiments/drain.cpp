@@ -80,7 +80,8 @@ void measure_drained(const CaseSpec& spec, const WallSpec& gate, const HostState
   opts.floor_z = r.floor_z;
   r.heap = measure_heap_angle(r.spheres, opts);
   double opening = ex.view == "x" ? gate.point[1] : gate.point[0];  // the picture's horizontal axis
-  const SlopeFit& side = opening > r.heap.crest ? r.heap.right : r.heap.left;
+  r.side = opening > r.heap.crest ? "right" : "left";
+  const SlopeFit& side = r.side == "right" ? r.heap.right : r.heap.left;
   if (side.valid) {
     r.angle_deg = side.angle_deg;
     return;
@@ -131,17 +132,16 @@ std::vector<std::string> DrainExperiment::responses() const {
 ExperimentOutcome DrainExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
   auto r = std::make_shared<const DrainResult>(run_drain(spec, run, run.strict));
   ExperimentOutcome o;
-  if (!r->sloped) {
+  if (!r->sloped) {  // what stayed in the box is still written, with the reason
     o.status = OutcomeStatus::NoSlope;
     o.problem = r->problem;
-    return o;
   }
   o.values = {{"drained_angle", r->angle_deg}, {"drained_fraction", r->drained_fraction},
               {"settle_time", r->settle_time}, {"particles_left", double(r->particles_left)}};
   OrderedJson& j = o.json;
   j["experiment"] = "drain";
   j["case"] = spec.path;
-  j["drained_angle_deg"] = r->angle_deg;
+  j["drained_angle_deg"] = r->sloped ? OrderedJson(r->angle_deg) : OrderedJson(nullptr);
   j["left"] = slope_json(r->heap.left);
   j["right"] = slope_json(r->heap.right);
   j["floor_z"] = r->floor_z;
@@ -149,16 +149,19 @@ ExperimentOutcome DrainExperiment::run(const CaseSpec& spec, const ExperimentRun
   j["particles_left"] = r->particles_left;
   j["settle_time"] = r->settle_time;
   o.files.push_back(text_file("heap.csv", [r](std::ostream& out) {
-    out << "x,y,z,radius\n";
+    out << "x_m,y_m,z_m,radius_m\n";
     for (const auto& s : r->spheres) out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
   }));
   std::string horizontal = settings_of<DrainSettings>(spec.experiment).view == "x" ? "y" : "x";
-  o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
-  o.lines.push_back(printf_text("drain %s: drained angle of repose %.2f deg, %.1f %% of the particles drained, %zu left, "
+  HeapPictureCaption caption = slope_caption(r->heap, r->side);
+  o.files.push_back({"heap.png", [r, horizontal, caption](const std::string& path) {
+                       write_heap_angle_png(path, r->heap, horizontal, caption);
+                     }});
+  if (r->sloped)
+    o.lines.push_back(printf_text("drain %s: drained angle of repose %.2f deg, %.1f %% of the particles drained, %zu left, "
                                 "settled at %.3g s",
                                 spec.name.c_str(), r->angle_deg, 100 * r->drained_fraction, r->particles_left,
                                 r->settle_time));
-  o.written = [](const std::string& dir) { return "wrote " + dir + "/drain.json, heap.png, heap.csv"; };
   return o;
 }
 

@@ -31,6 +31,7 @@ struct DrainResult {
   bool sloped = true;             // false: no measurable slope (require_slope off; angle 0)
   std::string problem;            // then: why, in words
   HeapAngle heap;                 // the front-view measurement of what stayed
+  std::string side;               // the picture's slope that faces the opening: "left" or "right"
   double floor_z = 0;             // m
   double drained_fraction = 0;    // of the particles (by count), below the floor when settled
   size_t particles_left = 0;      // in the box, measured

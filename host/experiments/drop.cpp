@@ -13,8 +13,11 @@
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/experiment_simulation.h"
+#include "experiments/replicates.h"
 #include "util/atomic_file.h"
 #include "util/math.h"
+#include "util/progress.h"
 
 namespace repose {
 
@@ -44,14 +47,6 @@ double centre_rise(const std::vector<double>& z) {
   return refined(top, 1.0) - refined(bottom, -1.0);
 }
 
-// Mean and sample standard deviation (0 for fewer than two values).
-std::pair<double, double> mean_sd(const std::vector<double>& x) {
-  double mean = 0, var = 0;
-  for (double v : x) mean += v / double(x.size());
-  for (double v : x) var += (v - mean) * (v - mean) / double(std::max<size_t>(1, x.size() - 1));
-  return {mean, std::sqrt(var)};
-}
-
 }  // namespace
 
 namespace {
@@ -67,10 +62,7 @@ void place_body(CaseSpec& spec, const DropSurface& surface, double height, const
   auto sphere = std::find_if(spec.spheres.begin(), spec.spheres.end(), [](const SphereSpec& s) { return !s.fixed; });
   if (sphere == spec.spheres.end()) {
     BodySpec& body = *std::find_if(spec.bodies.begin(), spec.bodies.end(), [](const BodySpec& b) { return !b.fixed; });
-    if (options.random_orientation) {
-      std::mt19937_64 engine(spec.seed);
-      body.orientation = random_orientation([&engine] { return unit_interval(engine()); });
-    }
+    if (options.random_orientation) random_body_orientation(spec, spec.seed);
     body.velocity = body.angular_velocity = {0, 0, 0};
     lowest = 1e300;
     for (const SphereSpec& s : body_spheres(body, spec.templates[size_t(body.template_index)]))
@@ -93,8 +85,12 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
   Model model = build_model(spec);
   uint32_t frame_steps = std::max<uint32_t>(1, uint32_t(std::lround(1.0 / (ex.camera_fps * model.dt))));
   double frame_dt = frame_steps * model.dt;
-  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                 KernelVariant::fastest_for(options.backend, model), frame_steps);
+  Simulation sim = experiment_simulation(model, options, frame_steps, frame_steps);
+  // The run ends past the rebound's apex: before lift-off at most as long again as the fall
+  // (a rebound to the release height), after it when the upward speed is spent.
+  Progress progress(spec.name + " " + options.label, uint64_t(spec.experiment.max_time / model.dt) + 1, model.dt, options.progress);
+  double fall_time = std::sqrt(2 * ex.drop_height / g_down);
+  progress.expect_end_time(2 * fall_time, "(at most: a rebound to the release height)");
   auto height = [&](const HostState& s) {
     double low = 1e300;
     for (size_t i = 0; i < s.pos.size(); ++i)
@@ -140,8 +136,12 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
       r.rebound_height_exact = h + v * v / (2 * g_down);  // free flight from here on
     }
     prev_speed = v;
+    if (left) progress.expect_end_time(sim.time() + std::max(0.0, v) / g_down, "(to the rebound's apex)");
+    else if (touched) progress.expect_end_time(std::max(2 * fall_time, sim.time()), "(at most: the body is on the plate)");
+    progress.update(sim.step(), printf_text("lowest point %.4g m", h));
     if (left && v < 0) break;  // past the apex
   }
+  progress.finish();
   if (!left) {
     if (options.require_rebound) throw std::runtime_error(no_rebound(spec));
     r.rebounded = false;
@@ -162,6 +162,13 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
 }
 
 }  // namespace
+
+DropOptions drop_options(const ExperimentRunOptions& run, bool require_rebound) {
+  DropOptions options;
+  static_cast<ExperimentRunOptions&>(options) = run;
+  options.require_rebound = require_rebound;
+  return options;
+}
 
 DropResult drop_onto(const CaseSpec& input, const DropSurface& surface, const DropOptions& options) {
   double g_down = -dot(input.gravity, surface.up);
@@ -251,7 +258,7 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   j["camera_fps"] = settings_of<DropSettings>(spec.experiment).camera_fps;
   auto track = std::make_shared<DropResult>(r);
   o.files.push_back(text_file("trajectory.csv", [track](std::ostream& out) {
-    out << "t,height,centre\n";
+    out << "t_s,height_m,centre_m\n";
     for (size_t k = 0; k < track->trajectory.size(); ++k)
       out << track->trajectory[k].first << "," << track->trajectory[k].second << "," << track->centre_trajectory[k]
           << "\n";
@@ -263,7 +270,6 @@ ExperimentOutcome DropExperiment::outcome(const CaseSpec& spec, const DropResult
   o.files.push_back({"wall_forces.csv", [forces](const std::string& path) {
                        write_file_atomically(path, [&](std::ostream& out) { forces->write_csv(out); });
                      }});
-  o.written = [](const std::string& dir) { return "wrote " + dir + "/drop.json, trajectory.csv and wall_forces.csv"; };
   return o;
 }
 
@@ -277,9 +283,9 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
   for (int k = 0; k < run.replicates; ++k) {
     CaseSpec replicate = spec;
     replicate.seed = spec.seed + uint64_t(k);
-    DropOptions options;
-    static_cast<ExperimentRunOptions&>(options) = run;
-    options.require_rebound = false;
+    DropOptions options = drop_options(run, false);
+    options.label = printf_text("drop, replicate %d of %d", k + 1, run.replicates);
+    options.frames.name += printf_text("_replicate%d", k + 1);
     DropResult r = k == 0 ? first : drop(replicate, options);
     if (!r.rebounded) {
       list.push_back({{"seed", replicate.seed}, {"problem", no_rebound(replicate)}});
@@ -312,18 +318,19 @@ void DropExperiment::add_replicates(ExperimentOutcome& o, const CaseSpec& spec, 
 }
 
 ExperimentOutcome DropExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
-  DropOptions options;
-  static_cast<ExperimentRunOptions&>(options) = run;
-  options.require_rebound = run.strict;
+  DropOptions options = drop_options(run, run.strict);
+  if (run.replicates > 1) {
+    options.label = printf_text("drop, replicate 1 of %d", run.replicates);
+    options.frames.name += "_replicate1";
+  }
   DropResult r = drop(spec, options);
+  ExperimentOutcome o = outcome(spec, r);
   if (!r.rebounded) {
-    ExperimentOutcome o;
     o.status = OutcomeStatus::NoRebound;
     o.problem = no_rebound(spec);
-    o.trajectory = r.trajectory;
+    o.lines.clear();
     return o;
   }
-  ExperimentOutcome o = outcome(spec, r);
   if (run.replicates > 1) add_replicates(o, spec, run, r);
   return o;
 }

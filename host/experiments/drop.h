@@ -10,6 +10,7 @@
 #include "engine/step_program.h"
 #include "experiments/wall_force_series.h"
 #include "experiments/experiment.h"
+#include "experiments/run_options.h"
 
 namespace repose {
 
@@ -23,7 +24,9 @@ struct DropSettings : ExperimentSettings {
 struct DropOptions : ExperimentRunOptions {
   bool random_orientation = true;  // a clump falls at a random orientation drawn from the seed
   bool require_rebound = true;     // false: a body that never leaves the plate is a result
+  std::string label = "drop";      // the progress line's ("drop, replicate 2 of 3")
 };
+DropOptions drop_options(const ExperimentRunOptions& run, bool require_rebound);
 
 struct DropResult {
   double drop_height = 0;           // H, m

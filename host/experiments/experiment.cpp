@@ -25,12 +25,25 @@ const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome) {
   return outcome;
 }
 
+OrderedJson with_status(const ExperimentOutcome& outcome) {
+  OrderedJson j;
+  bool measured = outcome.status == OutcomeStatus::Measured;
+  j["status"] = measured ? "measured" : "failed";
+  if (!measured) j["reason"] = outcome.problem;
+  for (const auto& [key, value] : outcome.json.items())
+    if (key != "status" && key != "reason") j[key] = value;
+  return j;
+}
+
 std::vector<std::string> write_outcome(const ExperimentOutcome& outcome, const std::string& json_name,
                                        const std::string& dir) {
-  write_file_atomically(dir + "/" + json_name, [&](std::ostream& o) { o << outcome.json.dump(2) << "\n"; });
+  // The result last: a failed series leaves no complete-looking JSON beside it.
   for (const OutputFile& f : outcome.files) f.write(dir + "/" + f.name);
+  write_file_atomically(dir + "/" + json_name, [&](std::ostream& o) { o << outcome.json.dump(2) << "\n"; });
   std::vector<std::string> lines = outcome.lines;
-  if (outcome.written) lines.push_back(outcome.written(dir));
+  std::string wrote = "wrote " + dir + "/" + json_name;
+  for (const OutputFile& f : outcome.files) wrote += ", " + f.name;
+  lines.push_back(wrote);
   return lines;
 }
 

@@ -35,6 +35,9 @@ enum class OutcomeStatus {
   DidNotMove,    // tilt: the body held on up to max_angle (or max_time)
   NoSlope,       // repose: the heap shows no measurable slope
   StillRolling,  // roll: still rolling at max_time (the distance so far)
+  DidNotRoll,    // roll: the body rests on the incline
+  NotSettled,    // repose: something still moved at max_time
+  Failed,        // the run stopped on an error (its text is the problem)
 };
 
 // A file of `repose experiment` besides ID.json: its name in the output folder and its writer.
@@ -54,8 +57,7 @@ struct ExperimentOutcome {
   std::vector<std::pair<double, double>> trajectory;  // a camera track (t, height of the lowest point)
   OrderedJson json;                      // `repose experiment` writes it as TYPE.json
   std::vector<OutputFile> files;         // and these beside it
-  std::vector<std::string> lines;        // and prints these
-  std::function<std::string(const std::string& dir)> written;  // "wrote DIR/..." (what it wrote)
+  std::vector<std::string> lines;        // and prints these (then "wrote DIR/ID.json, FILE, ...")
 };
 
 // How to run it.
@@ -171,7 +173,11 @@ T& edit_settings(ExperimentSpec& ex) {
 // could not take the reading.
 const ExperimentOutcome& measured_or_throw(const ExperimentOutcome& outcome);
 
-// Writes ID.json, every file, and returns the lines to print (the outcome's and "wrote ...").
+// The outcome's JSON led by its status: "measured", or "failed" with the reason (the problem).
+OrderedJson with_status(const ExperimentOutcome& outcome);
+
+// Writes every file, then ID.json (each whole or not at all; the JSON last, so a failed file leaves
+// no result beside it), and returns the lines to print (the outcome's and "wrote ...", naming each).
 std::vector<std::string> write_outcome(const ExperimentOutcome& outcome, const std::string& json_name,
                                        const std::string& dir);
 

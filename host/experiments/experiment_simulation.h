@@ -16,10 +16,14 @@ inline uint64_t steps_in(double seconds, double dt) {
   return std::max<uint64_t>(1, uint64_t(std::llround(seconds / dt)));
 }
 
+// The simulation, writing frames as it goes when the options ask for them.
 inline Simulation experiment_simulation(const Model& model, const ExperimentRunOptions& options,
                                         uint64_t sample_steps, uint64_t max_batch) {
-  return Simulation(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
-                    KernelVariant::fastest_for(options.backend, model), uint32_t(std::min(sample_steps, max_batch)));
+  Simulation sim(model, make_backend(options.backend, options.device, options.threads, gpu::kDefaultWorkgroup),
+                 KernelVariant::fastest_for(options.backend, model), uint32_t(std::min(sample_steps, max_batch)));
+  if (options.wall_impulses) sim.sum_wall_forces();
+  record_frames(sim, options.frames);
+  return sim;
 }
 
 }  // namespace repose

@@ -67,14 +67,45 @@ double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
   return lift_end;
 }
 
+// What the progress line expects: the fill ends at the lift's start; the lift at lift_end, or
+// sooner with end_when_clear once the lifted wall's force, falling as it rises, reaches zero; the
+// run-out once the largest kinetic energy, decaying exponentially, falls below settle_energy.
+struct HeapEta {
+  FallingTrend wall_force{1.0, false}, energy{1.0, true};
+  void tell(Progress& progress, const ReposeSettings& ex, const WallSpec& lift, double lift_end, size_t phase,
+            double t, double force, double e) {
+    static const char* names[] = {"fill", "lift", "run-out"};
+    progress.set_label(names[phase]);
+    if (phase == 2) {
+      energy.add(t, e);
+      double settled = energy.reaches(ex.settle_energy);
+      if (settled < 0) progress.expect_unknown_end("(until settled: not yet calming)");
+      else progress.expect_end_time(settled, "(until settled)");
+      return;
+    }
+    double end = lift_end;
+    if (phase == 1 && ex.end_when_clear) {
+      wall_force.add(t, force);
+      double clear = wall_force.reaches(0.0);
+      if (clear > 0) end = std::min(end, clear);
+    }
+    progress.expect_end_time(end, phase == 0 ? printf_text("(filling to %g s, then the lift: at most to %g s%s)",
+                                                           lift.motion.start_time, lift_end,
+                                                           ex.end_when_clear ? ", sooner once clear of the heap" : "")
+                                             : "(the lift's end, then the run-out)");
+  }
+};
+
 // Fill, lift and run-out, sampled every 0.05 s, until the lift is over (or the lifted wall clear
 // of the heap twice running) and no particle is faster than settle_energy; the bed height when
-// the lift starts, energies, wall forces and the time per phase go into r.
+// the lift starts, energies, wall forces and the time per phase go into r. Not settled by
+// max_time: r.settled false (an error unless measure_unsettled), with everything so far.
 void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options, const WallSpec& lift,
                        double lift_end, bool measure_unsettled, Simulation& sim, ReposeResult& r) {
   const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   uint64_t sample_steps = steps_in(0.05, r.dt);
   Progress progress(spec.name + " repose", uint64_t(spec.experiment.max_time / r.dt) + 1, r.dt, options.progress);
+  HeapEta eta;
   // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
   auto names = sim.model().wall_group_names();
   size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
@@ -91,7 +122,6 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
     double e = max_kinetic_energy(sim.state());
     r.energy.push_back({sim.time(), e});
     r.wall_forces.sample(sim);
-    progress.update(sim.step(), "max E " + std::to_string(e).substr(0, 8) + " J");
     RunProfile sample = sim.take_profile();
     sample.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sample_start).count();
     r.phases[phase].second.add(sample);
@@ -99,19 +129,23 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
     bool clear = sim.time() > lift.motion.start_time && f.fx == 0 && f.fy == 0 && f.fz == 0;
     bool lift_over = sim.time() >= lift_end || (ex.end_when_clear && clear && clear_before);
     clear_before = clear;
+    eta.tell(progress, ex, lift, lift_end, lift_over ? 2 : phase, sim.time(), std::sqrt(f.fx * f.fx + f.fy * f.fy + f.fz * f.fz), e);
+    progress.update(sim.step(), printf_text("largest kinetic energy %.3g J", e));
     bool out_of_time = sim.time() >= spec.experiment.max_time;
-    if ((lift_over && e < ex.settle_energy) || (out_of_time && measure_unsettled)) {
+    if ((lift_over && e < ex.settle_energy) || out_of_time) {
       r.settle_time = sim.time();
       r.kinetic_energy = e;
       r.settled = !out_of_time || (lift_over && e < ex.settle_energy);
       break;
     }
-    if (out_of_time)
-      throw std::runtime_error(spec.path + ": the heap had not settled (largest kinetic energy " + std::to_string(e) +
-                               " J of a particle, settle_energy " + std::to_string(ex.settle_energy) +
-                               ") by max_time = " + std::to_string(spec.experiment.max_time) + " s");
   }
   progress.finish();
+  if (!r.settled) {
+    r.problem = spec.path + ": the heap had not settled (largest kinetic energy " + format_number(r.kinetic_energy) +
+                " J of a particle, settle_energy " + format_number(ex.settle_energy) + ") by max_time = " +
+                format_number(spec.experiment.max_time) + " s";
+    if (!measure_unsettled) throw std::runtime_error(r.problem);
+  }
 }
 
 // The heap's particles: those whose bottom is not below the heap floor (those that fell off a
@@ -246,12 +280,22 @@ std::shared_ptr<const ExperimentSettings> read_repose_keys(const Section& s) {
 
 namespace {
 
+// heap.png's title: the headline angle (r.angle_deg) and how it was measured; the front view's
+// slopes that count towards it are drawn.
+HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
+  HeapPictureCaption caption = slope_caption(r.heap, settings_of<ReposeSettings>(spec.experiment).heap_side);
+  caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
+  if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
+  return caption;
+}
+
 OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   OrderedJson j;
   j["experiment"] = "repose";
   j["case"] = spec.path;
   j["heap_side"] = settings_of<ReposeSettings>(spec.experiment).heap_side;
   j["angle_deg"] = r.angle_deg;
+  j["angle_measured_as"] = heap_caption(spec, r).measured_as;  // as heap.png's title and the console say
   j["left"] = slope_json(r.heap.left);
   j["right"] = slope_json(r.heap.right);
   j["mean_deg"] = std::isfinite(r.heap.mean_deg) ? OrderedJson(r.heap.mean_deg) : OrderedJson(nullptr);
@@ -275,17 +319,20 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
 
 void add_repose_files(ExperimentOutcome& o, const std::shared_ptr<const ReposeResult>& r, const CaseSpec& spec) {
   o.files.push_back(text_file("energy.csv", [r](std::ostream& out) {
-    out << "t,largest_kinetic_energy\n";
+    out << "t_s,largest_kinetic_energy_J\n";
     for (const auto& [t, e] : r->energy) out << t << "," << e << "\n";
   }));
   o.files.push_back(text_file("heap.csv", [r](std::ostream& out) {
-    out << "x,y,z,radius\n";
+    out << "x_m,y_m,z_m,radius_m\n";
     for (const auto& s : r->spheres) out << s.centre.x << "," << s.centre.y << "," << s.centre.z << "," << s.radius << "\n";
   }));
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
   std::string horizontal = settings_of<ReposeSettings>(spec.experiment).view == "x" ? "y" : "x";  // the picture's horizontal axis
-  o.files.push_back({"heap.png", [r, horizontal](const std::string& path) { write_heap_angle_png(path, r->heap, horizontal); }});
+  HeapPictureCaption caption = heap_caption(spec, *r);
+  o.files.push_back({"heap.png", [r, horizontal, caption](const std::string& path) {
+                       write_heap_angle_png(path, r->heap, horizontal, caption);
+                     }});
 }
 
 // With --profile: where each phase's time went, by kernel stage and by kernel.
@@ -305,9 +352,12 @@ std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& 
   auto side = [](const SlopeFit& s) { return s.valid ? std::to_string(s.angle_deg).substr(0, 5) + " deg" : std::string("none"); };
   std::vector<std::string> lines;
   std::string angle = std::isfinite(r.angle_deg) ? printf_text("%.2f deg", r.angle_deg) : "not measured (no valid slope)";
-  lines.push_back(printf_text("repose %s: angle of repose %s (left %s, right %s), heap %.3g m high, %zu particles",
-                              spec.name.c_str(), angle.c_str(), side(r.heap.left).c_str(), side(r.heap.right).c_str(),
-                              r.heap.heap_height, r.particles_measured));
+  // The headline as heap.png's title states it: the number, how it was measured, then the front view.
+  lines.push_back(printf_text("repose %s: angle of repose %s (%s; front view: left %s, right %s), heap %.3g m high, "
+                              "%zu particles",
+                              spec.name.c_str(), angle.c_str(), heap_caption(spec, r).measured_as.c_str(),
+                              side(r.heap.left).c_str(), side(r.heap.right).c_str(), r.heap.heap_height,
+                              r.particles_measured));
   for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
     lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
                                 p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));
@@ -324,14 +374,16 @@ std::vector<std::string> ReposeExperiment::responses() const {
 }
 
 ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
-  auto r = std::make_shared<const ReposeResult>(run_repose(spec, run, false, run.strict));
+  // Not strict: a heap unsettled at max_time or without a slope is measured as it stands and
+  // reported with that status.
+  auto r = std::make_shared<const ReposeResult>(run_repose(spec, run, !run.strict, run.strict));
   ExperimentOutcome o;
-  if (!r->sloped) {
-    o.status = OutcomeStatus::NoSlope;
+  if (!r->settled || !r->sloped) {
+    o.status = r->settled ? OutcomeStatus::NoSlope : OutcomeStatus::NotSettled;
     o.problem = r->problem;
-    return o;
   }
-  if (!run.picture_path.empty()) write_heap_angle_png(run.picture_path, r->heap);
+  if (!run.picture_path.empty())
+    write_heap_angle_png(run.picture_path, r->heap, settings_of<ReposeSettings>(spec.experiment).view == "x" ? "y" : "x", heap_caption(spec, *r));
   o.values = {{"angle", r->angle_deg}, {"heap_height", r->heap.heap_height}, {"settle_time", r->settle_time},
               {"particles_measured", double(r->particles_measured)}};
   if (r->heap_3d && r->heap_3d->valid_sectors > 0) o.values["angle_3d"] = r->heap_3d->mean_deg;
@@ -342,7 +394,6 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
   o.lines = repose_lines(spec, *r);
   if (run.profile)
     for (const std::string& line : profile_lines(run.backend, *r)) o.lines.push_back(line);
-  o.written = [](const std::string& dir) { return "wrote " + dir + "/repose.json, heap.png, heap.csv, energy.csv, wall_forces.csv"; };
   return o;
 }
 

@@ -10,6 +10,7 @@
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
+#include "experiments/replicates.h"
 #include "experiments/tilt.h"
 #include "util/atomic_file.h"
 #include "util/progress.h"
@@ -75,42 +76,73 @@ std::vector<WallSpec> incline_walls(const Incline& in, double extent, int materi
   return {incline, floor};
 }
 
+// What the progress line expects: on the incline, how far the body is from the foot (its end
+// cannot be told before it meets the floor); on the floor, when its speed, falling linearly under
+// the constant rolling torque, reaches stop_speed.
+void tell_progress(Progress& progress, FallingTrend& slowing, const RollSample& s, bool on_floor, double stop_speed) {
+  if (!on_floor) {
+    progress.expect_unknown_end(s.speed < stop_speed ? "(the body has not started rolling)"
+                                                     : printf_text("(%.3g m to the foot)", -s.x));
+    return;
+  }
+  slowing.add(s.time, s.speed);
+  double stop = slowing.reaches(stop_speed);
+  if (stop < 0) progress.expect_unknown_end("(on the floor, not slowing yet)");
+  else progress.expect_end_time(stop, "(until the body stops)");
+}
+
 // Samples every 5 ms until the body, past the foot (x > 0: the centre is above its contact
 // point on the floor), is slower than stop_speed or no longer moves forward (the constant
-// rolling torque rocks a stopped body back and forth by a hair).
-void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options, bool require_stop, RollResult& r) {
+// rolling torque rocks a stopped body back and forth by a hair). A body that stays slower than
+// stop_speed on the incline for kStuckTime after its release does not roll (it rests on its
+// ridges): the run ends there rather than at max_time.
+constexpr double kStuckTime = 2.0;
+
+void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options, RollResult& r) {
   const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
+  const double max_time = spec.experiment.max_time;
   Model model = build_model(spec);
   uint64_t sample_steps = steps_in(0.005, model.dt);
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
-  Progress progress(spec.name + " roll", uint64_t(spec.experiment.max_time / model.dt) + 1, model.dt, options.progress);
+  Progress progress(spec.name + " roll", uint64_t(max_time / model.dt) + 1, model.dt, options.progress);
+  FallingTrend slowing(0.5, false);
   bool on_floor = false;
-  double previous_x = -1e300;
+  double previous_x = -1e300, still_since = 0;
   while (true) {
-    if (sim.time() >= spec.experiment.max_time && !require_stop) {
+    if (sim.time() >= max_time) {
+      r.ending = RollEnding::StillRolling;
+      r.problem = spec.path + ": the body had not stopped on the floor after max_time = " + format_number(max_time) +
+                  " s (" + (on_floor ? "rolled " + format_number(previous_x) + " m along it" :
+                                       "still on the incline at x = " + format_number(previous_x) + " m") + ")";
       r.rolling_distance = std::max(0.0, previous_x);
       r.stop_time = sim.time();
-      r.stopped = false;
       break;
     }
-    if (sim.time() >= spec.experiment.max_time)
-      throw std::runtime_error(spec.path + ": the body had not stopped on the floor after max_time = " +
-                               std::to_string(spec.experiment.max_time) + " s");
     sim.advance(sample_steps);
-    double x = body_centre(sim.state())[0], speed = body_speed(sim.state());
-    r.trajectory.push_back({sim.time(), x, speed});
+    RollSample s{sim.time(), body_centre(sim.state())[0], body_speed(sim.state())};
+    r.trajectory.push_back(s);
     r.wall_forces.sample(sim);
-    progress.update(sim.step(), "x " + std::to_string(x).substr(0, 6) + " m");
-    if (!on_floor && x > 0) {
+    if (!on_floor && s.x > 0) {
       on_floor = true;
-      r.speed_at_foot = speed;
+      r.speed_at_foot = s.speed;
     }
-    if (on_floor && (speed < ex.stop_speed || x <= previous_x)) {
-      r.rolling_distance = std::max(x, previous_x);
+    tell_progress(progress, slowing, s, on_floor, ex.stop_speed);
+    progress.update(sim.step(), printf_text("x %.4f m, %.3g m/s", s.x, s.speed));
+    if (on_floor && (s.speed < ex.stop_speed || s.x <= previous_x)) {
+      r.rolling_distance = std::max(s.x, previous_x);
       r.stop_time = sim.time();
       break;
     }
-    previous_x = x;
+    if (on_floor || s.speed >= ex.stop_speed) still_since = s.time;
+    if (s.time - still_since >= kStuckTime) {
+      r.ending = RollEnding::DidNotRoll;
+      r.problem = spec.path + printf_text(": the body did not roll: it rested on the incline at x = %.4g m, slower than "
+                                          "stop_speed = %g m/s for %g s (a clump resting on its ridges, or rolling "
+                                          "friction above tan(incline_angle)?)", s.x, ex.stop_speed, kStuckTime);
+      r.stop_time = sim.time();
+      break;
+    }
+    previous_x = s.x;
   }
   progress.finish();
 }
@@ -127,7 +159,8 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
   RollResult r;
   r.incline_deg = ex.incline_deg;
   r.slope_distance = in.S;
-  run_until_stopped(spec, options, require_stop, r);
+  run_until_stopped(spec, options, r);
+  if (r.ending != RollEnding::Stopped && require_stop) throw std::runtime_error(r.problem);
   r.mu_r = in.S * std::sin(in.beta) / (in.S * std::cos(in.beta) + r.rolling_distance);
   return r;
 }
@@ -159,13 +192,14 @@ std::vector<std::string> RollExperiment::responses() const {
   return {"rolling_distance", "mu_r", "stop_time", "speed_at_foot"};
 }
 
-ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
-  auto r = std::make_shared<RollResult>(run_roll(spec, run, run.strict));
+namespace {
+
+ExperimentOutcome roll_outcome(const CaseSpec& spec, const std::shared_ptr<const RollResult>& r) {
   ExperimentOutcome o;
-  if (!r->stopped) {
-    o.status = OutcomeStatus::StillRolling;
-    o.problem = spec.path + ": the body had not stopped on the floor after max_time = " +
-                std::to_string(spec.experiment.max_time) + " s";
+  bool stopped = r->ending == RollEnding::Stopped;
+  if (!stopped) {
+    o.status = r->ending == RollEnding::DidNotRoll ? OutcomeStatus::DidNotRoll : OutcomeStatus::StillRolling;
+    o.problem = r->problem;
   }
   o.values = {{"rolling_distance", r->rolling_distance}, {"mu_r", r->mu_r}, {"stop_time", r->stop_time},
               {"speed_at_foot", r->speed_at_foot}};
@@ -176,19 +210,75 @@ ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["incline_deg"] = r->incline_deg;
   j["slope_distance"] = r->slope_distance;
   j["rolling_distance"] = r->rolling_distance;
-  j["mu_r"] = r->mu_r;
+  j["mu_r"] = stopped ? OrderedJson(r->mu_r) : OrderedJson(nullptr);  // the formula needs a stop
   j["speed_at_foot"] = r->speed_at_foot;
   j["stop_time"] = r->stop_time;
   o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
-    out << "t,x,speed\n";
+    out << "t_s,x_m,speed_m_per_s\n";
     for (const auto& s : r->trajectory) out << s.time << "," << s.x << "," << s.speed << "\n";
   }));
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
-  o.lines.push_back(printf_text(
-      "roll %s: beta = %.3g deg, S = %.4g m, rolling distance L = %.4g m, mu_r = S sin(beta) / (S cos(beta) + L) = %.4f",
-      spec.name.c_str(), r->incline_deg, r->slope_distance, r->rolling_distance, r->mu_r));
-  o.written = [](const std::string& dir) { return "wrote " + dir + "/roll.json, trajectory.csv, wall_forces.csv"; };
+  if (stopped)
+    o.lines.push_back(printf_text(
+        "roll %s: beta = %.3g deg, S = %.4g m, rolling distance L = %.4g m, mu_r = S sin(beta) / (S cos(beta) + L) = %.4f",
+        spec.name.c_str(), r->incline_deg, r->slope_distance, r->rolling_distance, r->mu_r));
+  return o;
+}
+
+}  // namespace
+
+ExperimentOutcome RollExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
+  if (run.replicates > 1) return replicated(spec, run);
+  return roll_outcome(spec, std::make_shared<const RollResult>(run_roll(spec, run, run.strict)));
+}
+
+// Replicates 1..N: seeds seed ... seed+N-1, the body at a random orientation drawn from each (the
+// case's own orientation is not used); the outcome is replicate 1's files and the mean L of the
+// replicates that stopped, with every replicate in roll.json. One that does not roll is recorded
+// as such and the others go on.
+ExperimentOutcome RollExperiment::replicated(const CaseSpec& spec, const ExperimentRun& run) const {
+  ExperimentOutcome o;
+  OrderedJson list = OrderedJson::array();
+  std::vector<double> L;
+  for (int k = 0; k < run.replicates; ++k) {
+    CaseSpec replicate = spec;
+    replicate.seed = spec.seed + uint64_t(k);
+    random_body_orientation(replicate, replicate.seed);
+    ExperimentRun one = run;
+    one.replicates = 1;
+    one.frames.name += printf_text("_replicate%d", k + 1);
+    auto r = std::make_shared<const RollResult>(run_roll(replicate, one, false));
+    if (k == 0) o = roll_outcome(spec, r);
+    bool stopped = r->ending == RollEnding::Stopped;
+    if (stopped) L.push_back(r->rolling_distance);
+    OrderedJson entry = {{"seed", replicate.seed}};
+    if (stopped) entry["rolling_distance"] = r->rolling_distance;
+    else entry["problem"] = r->problem;
+    list.push_back(entry);
+    o.lines.push_back(stopped ? printf_text("  replicate %d (seed %llu): L = %.4g m", k + 1, (unsigned long long)replicate.seed,
+                                            r->rolling_distance)
+                              : printf_text("  replicate %d (seed %llu): %s", k + 1, (unsigned long long)replicate.seed,
+                                            r->ending == RollEnding::DidNotRoll ? "did not roll" : "still rolling at max_time"));
+  }
+  auto [mean, sd] = mean_sd(L);
+  const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
+  double beta = ex.incline_deg * kPi / 180;
+  double mu_r = ex.slope_distance * std::sin(beta) / (ex.slope_distance * std::cos(beta) + mean);
+  o.json["replicates"] = {{"runs", list}, {"counted", L.size()}, {"rolling_distance_mean", mean},
+                          {"rolling_distance_sd", sd}, {"mu_r_of_mean", L.empty() ? OrderedJson(nullptr) : OrderedJson(mu_r)}};
+  if (L.empty()) {
+    o.status = OutcomeStatus::DidNotRoll;
+    o.problem = spec.path + ": no replicate stopped on the floor (" + std::to_string(run.replicates) + " orientations)";
+    if (run.strict) throw std::runtime_error(o.problem);
+    return o;
+  }
+  o.status = OutcomeStatus::Measured;
+  o.problem.clear();
+  o.values["rolling_distance"] = mean;
+  o.values["mu_r"] = mu_r;
+  o.lines.push_back(printf_text("  L over %zu of %d replicates: mean %.4g m, sd %.3g m (se %.3g); mu_r of the mean L = %.4f",
+                                L.size(), run.replicates, mean, sd, sd / std::sqrt(double(L.size())), mu_r));
   return o;
 }
 

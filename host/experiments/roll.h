@@ -18,13 +18,18 @@ struct RollSample {
   double speed = 0;  // m/s
 };
 
+// How a roll ended: the body stopped on the floor (L measured), was still rolling at max_time,
+// or never rolled down the incline (it rests on it).
+enum class RollEnding { Stopped, StillRolling, DidNotRoll };
+
 struct RollResult {
   double incline_deg = 0, slope_distance = 0;
   double rolling_distance = 0;  // L, m, from the foot of the incline to where the body stopped
   double mu_r = 0;              // the study's formula
   double stop_time = 0;
   double speed_at_foot = 0;     // m/s when the centre passed the foot
-  bool stopped = true;          // false: still rolling at max_time (only when not required)
+  RollEnding ending = RollEnding::Stopped;  // anything else only when a stop is not required
+  std::string problem;          // not Stopped: what happened, in words
   std::vector<RollSample> trajectory;
   WallForceSeries wall_forces;
 };
@@ -32,7 +37,8 @@ struct RollResult {
 // The case's particles are the body and its first [[wall]] gives the plates' material; the rig
 // (an incline rectangle and a floor plane meeting at x = 0, rolling towards +x, z up) replaces
 // the case's walls. Throws std::runtime_error naming the case when the body does not stop on
-// the floor by max_time, unless `require_stop` is false: then L is where it got to by then.
+// the floor by max_time or never rolls, unless `require_stop` is false: then L is where it got
+// to by then (0 on the incline) and `ending` says why.
 RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_stop = true);
 
 // The [experiment] keys of a roll case: both methods, so the tilt's and the incline's.
@@ -66,12 +72,16 @@ class RollExperiment : public Experiment {
   std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override { return read_roll_keys(s); }
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  bool takes_replicates() const override { return true; }
   const DiagnosisRole* diagnosis() const override;
   Interaction& tested_contact(CaseSpec& spec) const override;
   std::string diagnosis_problem(const CaseSpec& spec) const override;
   DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
                                            bool strict) const override;
   std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;
+
+ private:
+  ExperimentOutcome replicated(const CaseSpec& spec, const ExperimentRun& run) const;
 };
 
 const Experiment& roll_experiment();

@@ -1,8 +1,9 @@
-// How an experiment runs (not what it measures): backend, threads, progress on stderr.
+// How an experiment runs (not what it measures): backend, threads, progress on stderr, frames.
 #pragma once
 #include <string>
 
 #include "engine/backend.h"
+#include "io/frame_recorder.h"
 
 namespace repose {
 
@@ -12,6 +13,8 @@ struct ExperimentRunOptions {
   unsigned threads = 1;
   bool progress = false;  // progress with ETA on stderr (host/util/progress.h)
   bool profile = false;   // time every kernel (results carry per-phase profiles either way)
+  FrameRequest frames;    // VTK frames as the experiment goes (`repose experiment --frames`)
+  bool wall_impulses = false;  // wall_forces.csv: each wall's peak and impulse between samples
 };
 
 }  // namespace repose

@@ -89,7 +89,8 @@ std::string no_motion_message(const CaseSpec& spec, double angle_deg) {
 
 }  // namespace
 
-TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion) {
+TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, bool require_motion,
+                    double expected_onset_deg) {
   CaseSpec spec = input;
   const TiltSettings& ex = settings_of<TiltSettings>(spec.experiment);
   const WallSpec& plate = set_tilt(spec);
@@ -99,10 +100,19 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, 
   uint64_t sample_steps = steps_in(sample_dt, model.dt);
   double end_time = std::min(spec.experiment.max_time, plate.motion.stop_time);
   Simulation sim = experiment_simulation(model, options, sample_steps, 500);
-  Progress progress(spec.name + " tilt", uint64_t(end_time / model.dt) + 1, model.dt, options.progress);
+  Progress progress(spec.name + " " + spec.experiment.type, uint64_t(end_time / model.dt) + 1, model.dt, options.progress);
+  // The onset is expected about a degree past atan(coefficient) (README, the slide curve); once
+  // the plate is past that, the run ends at the latest at max_angle.
+  double expected_onset_time = expected_onset_deg > 0 ? ex.settle_time + (expected_onset_deg + 1) / ex.tilt_rate_deg : -1;
+  auto expect = [&](double t) {
+    if (t < expected_onset_time) progress.expect_end_time(expected_onset_time, printf_text("(onset expected near %.1f deg)", expected_onset_deg + 1));
+    else progress.expect_end_time(end_time, "(up to max_angle)");
+  };
+  expect(0);
 
   TiltResult r;
-  sim.advance(uint64_t(std::llround(ex.settle_time / model.dt)));
+  sim.advance(uint64_t(std::llround(ex.settle_time / model.dt)),
+              [&](const Simulation& s) { progress.update(s.step(), "settling before the tilt"); });
   TiltTracker body(ex, plate, sim.state(), sim.time());
   TiltSample previous{sim.time(), 0, 0};
   double previous_speed = 0;
@@ -114,7 +124,8 @@ TiltResult run_tilt(const CaseSpec& input, const ExperimentRunOptions& options, 
     TiltSample s = body.sample(sim.state(), sim.time(), sample_steps, model.dt);
     r.trajectory.push_back(s);
     r.wall_forces.sample(sim);
-    progress.update(sim.step(), "tilt " + std::to_string(s.angle_deg).substr(0, 5) + " deg");
+    expect(sim.time());
+    progress.update(sim.step(), printf_text("tilt %.2f deg, moved %.3g mm", s.angle_deg, 1e3 * s.displacement));
     // Speed relative to the plate over the last sample interval.
     double speed = (s.displacement - previous.displacement) / (s.time - previous.time);
     if (ex.onset_speed > 0 ? speed >= ex.onset_speed : s.displacement >= ex.onset_distance) {
@@ -167,14 +178,25 @@ std::vector<std::string> TiltExperiment::responses() const {
   return {"onset_angle_deg", "tan_alpha", "onset_time", "rolled_fraction"};
 }
 
+// atan of the tested contact's coefficient, in degrees; -1 when the case names no such contact.
+double TiltExperiment::expected_onset_deg(const CaseSpec& spec) const {
+  CaseSpec probe = spec;
+  try {
+    double coefficient = tested_contact(probe).*role_.baseline_field;
+    return coefficient > 0 ? std::atan(coefficient) * 180 / kPi : -1;
+  } catch (const std::runtime_error&) {
+    return -1;
+  }
+}
+
 ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun& run) const {
-  auto r = std::make_shared<TiltResult>(run_tilt(spec, run, run.strict));
+  auto r = std::make_shared<TiltResult>(run_tilt(spec, run, run.strict, expected_onset_deg(spec)));
+  const TiltSettings& ex = settings_of<TiltSettings>(spec.experiment);
   ExperimentOutcome o;
   if (!r->moved) {
     o.status = OutcomeStatus::DidNotMove;
-    o.problem = spec.path + ": the body did not move up to max_angle = " + format_number(settings_of<TiltSettings>(spec.experiment).max_angle_deg) +
+    o.problem = spec.path + ": the body did not move up to max_angle = " + format_number(ex.max_angle_deg) +
                 " degrees (or max_time)";
-    return o;
   }
   o.values = {{"onset_angle_deg", r->onset_angle_deg}, {"tan_alpha", r->tan_alpha}, {"onset_time", r->onset_time},
               {"rolled_fraction", r->rolled_fraction}};
@@ -182,23 +204,28 @@ ExperimentOutcome TiltExperiment::run(const CaseSpec& spec, const ExperimentRun&
   j["experiment"] = spec.experiment.type;
   j["method"] = "tilt";
   j["case"] = spec.path;
-  j["tilt_rate_deg_per_s"] = settings_of<TiltSettings>(spec.experiment).tilt_rate_deg;
-  j["onset_distance"] = settings_of<TiltSettings>(spec.experiment).onset_distance;
-  j["onset_angle_deg"] = r->onset_angle_deg;
-  j["onset_time"] = r->onset_time;
-  j[quantity_] = r->tan_alpha;
-  j["rolled_fraction"] = r->rolled_fraction;
+  j["tilt_rate_deg_per_s"] = ex.tilt_rate_deg;
+  // The onset criterion the case used: a speed relative to the plate, or a displacement along it.
+  if (ex.onset_speed > 0) j["onset_speed"] = ex.onset_speed;
+  else j["onset_distance"] = ex.onset_distance;
+  if (r->moved) {
+    j["onset_angle_deg"] = r->onset_angle_deg;
+    j["onset_time"] = r->onset_time;
+    j[quantity_] = r->tan_alpha;
+    j["rolled_fraction"] = r->rolled_fraction;
+  } else {
+    j["largest_angle_deg"] = r->trajectory.empty() ? 0.0 : r->trajectory.back().angle_deg;
+  }
   o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
-    out << "t,angle_deg,displacement\n";
+    out << "t_s,angle_deg,displacement_m\n";
     for (const auto& s : r->trajectory) out << s.time << "," << s.angle_deg << "," << s.displacement << "\n";
   }));
   if (!r->wall_forces.rows.empty())
     o.files.push_back(text_file("wall_forces.csv", [r](std::ostream& out) { r->wall_forces.write_csv(out); }));
-  o.lines.push_back(printf_text("%s %s: the body starts to %s at alpha = %.3f deg, %s = tan(alpha) = %.4f (rolled fraction %.2f)",
-                                type_.c_str(), spec.name.c_str(), motion_.c_str(), r->onset_angle_deg, quantity_.c_str(),
-                                r->tan_alpha, r->rolled_fraction));
-  std::string type = type_;
-  o.written = [type](const std::string& dir) { return "wrote " + dir + "/" + type + ".json, trajectory.csv, wall_forces.csv"; };
+  if (r->moved)
+    o.lines.push_back(printf_text("%s %s: the body starts to %s at alpha = %.3f deg, %s = tan(alpha) = %.4f (rolled fraction %.2f)",
+                                  type_.c_str(), spec.name.c_str(), motion_.c_str(), r->onset_angle_deg, quantity_.c_str(),
+                                  r->tan_alpha, r->rolled_fraction));
   return o;
 }
 

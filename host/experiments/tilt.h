@@ -45,7 +45,9 @@ struct TiltSettings : ExperimentSettings {
 // Onset: the body centre moved onset_distance relative to the plate. Throws std::runtime_error
 // naming the case when the body never moves up to max_angle, or at max_time (unless
 // `require_motion` is false: then moved is false).
-TiltResult run_tilt(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_motion = true);
+// expected_onset_deg (> 0): where the progress line expects the onset (atan of the coefficient).
+TiltResult run_tilt(const CaseSpec& spec, const ExperimentRunOptions& options = {}, bool require_motion = true,
+                    double expected_onset_deg = -1);
 
 // The [experiment] keys of a tilting plate, and their reader.
 std::vector<std::string> tilt_keys();
@@ -75,6 +77,7 @@ class TiltExperiment : public Experiment {
                                            bool strict) const override;
 
  private:
+  double expected_onset_deg(const CaseSpec& spec) const;
   std::string id_, type_, motion_, quantity_;
   DiagnosisRole role_;
 };

@@ -11,6 +11,7 @@
 #include <ostream>
 #include <stdexcept>
 
+#include "util/atomic_file.h"
 #include "util/input_error.h"
 #include "util/input_file.h"
 
@@ -82,6 +83,8 @@ std::vector<Sphere> parse_sphere_csv(std::istream& in, const std::string& source
     if (!have_header) {
       for (size_t i = 0; i < fields.size(); ++i) {
         std::string name = lower(fields[i].text);
+        // A unit suffix may name the metres the values are in (heap.csv writes x_m ... radius_m).
+        if (name.size() > 2 && name.compare(name.size() - 2, 2, "_m") == 0) name.resize(name.size() - 2);
         if (name == "r") name = "radius";
         for (size_t k = 0; k < kNames.size(); ++k)
           if (name == kNames[k]) {
@@ -160,11 +163,7 @@ void write_sphere_csv(std::ostream& out, const std::vector<Sphere>& spheres) {
 }
 
 void write_sphere_csv(const std::string& path, const std::vector<Sphere>& spheres) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(path + ": cannot open for writing");
-  write_sphere_csv(out, spheres);
-  out.flush();
-  if (!out) throw std::runtime_error(path + ": write failed");
+  write_file_atomically(path, [&](std::ostream& out) { write_sphere_csv(out, spheres); });
 }
 
 }  // namespace repose

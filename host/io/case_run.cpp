@@ -6,18 +6,23 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "case/case_loader.h"
 #include "engine/backend_factory.h"
 #include "engine/escape_check.h"
+#include "engine/memory_need.h"
 #include "engine/model.h"
 #include "engine/simulation.h"
 #include "io/output_dir.h"
 #include "io/provenance.h"
+#include "io/restart_state.h"
 #include "io/run_output.h"
 #include "io/run_summary.h"
 #include "io/state_file.h"
+#include "util/input_error.h"
+#include "util/number_text.h"
 #include "util/progress.h"
 #include "util/stop_signal.h"
 
@@ -31,46 +36,25 @@ namespace fs = std::filesystem;
 // exact in a double.
 constexpr double kMostSteps = 1e12;
 
-struct StartPoint {
-  HostState state;
-  StateFileInfo info;  // step 0 for a new run
-  bool restarting = false;
-};
-
-StartPoint read_restart(const std::string& path, const Model& model) {
-  StartPoint start;
-  if (path.empty()) return start;
-  start.state = read_state_file(path, start.info);
-  start.restarting = true;
-  if (!start.info.restartable())
-    throw std::runtime_error(path + ": a version " + std::to_string(start.info.version) +
-                             " state file holds no restart data (written before restarts existed)");
-  if (start.info.time != double(start.info.step) * model.dt)
-    throw std::runtime_error(path + ": written with another time step than this case's (t = " +
-                             std::to_string(start.info.time) + " s at step " + std::to_string(start.info.step) +
-                             "): restart with the case and --set values it was run with");
-  return start;
-}
-
 uint64_t steps_of(double seconds, double dt, const char* what) {
   double steps = std::round(seconds / dt);
   if (!(steps <= kMostSteps))
-    throw std::runtime_error(std::string(what) + " of " + std::to_string(seconds) + " s is " + std::to_string(steps) +
-                             " steps of " + std::to_string(dt) + " s: more than 1e12 steps cannot be meant");
+    throw BadInput(std::string(what) + ": " + format_g(seconds, 6) + " s is " + format_g(steps, 4) + " steps of " +
+                   format_g(dt, 4) + " s: more than 1e12 steps cannot be meant");
   return uint64_t(steps);
 }
 
 // The step to stop at: --steps or --time more, or the case's end time.
 uint64_t target_step(const CaseRunOptions& o, const Model& m, uint64_t start) {
   if (o.steps) {
-    if (double(*o.steps) > kMostSteps) throw std::runtime_error("--steps above 1e12 cannot be meant");
+    if (double(*o.steps) > kMostSteps) throw BadInput("--steps above 1e12 cannot be meant");
     return start + *o.steps;
   }
   if (o.time) return start + steps_of(*o.time, m.dt, "--time");
   uint64_t end = steps_of(m.end_time, m.dt, "end_time");
   if (start >= end)
-    throw std::runtime_error("the restart state is at step " + std::to_string(start) + ", the case ends at step " +
-                             std::to_string(end) + " (end_time): give --steps or --time to run further");
+    throw BadInput("the restart state is at step " + std::to_string(start) + ", the case ends at step " +
+                   std::to_string(end) + " (end_time): give --steps or --time to run further");
   return end;
 }
 
@@ -86,17 +70,18 @@ std::string folder_case_hash(const std::string& dir) {
   }
 }
 
-// Readies the folder; true when a restart continues the run already in it.
-bool open_folder(const std::string& dir, const CaseRunOptions& o, const CaseSpec& spec) {
-  std::error_code ec;
-  bool occupied = fs::is_directory(dir, ec) && !fs::is_empty(dir, ec);
-  if (!o.restart.empty() && occupied && !o.overwrite) {
-    std::string there = folder_case_hash(dir);
-    if (there == case_hash(spec)) return true;
-    throw OutputError("--out " + dir + " holds " + (there.empty() ? "other files" : "a run of another case (or other --set values)") +
-                      ": continue a run in its own folder with the case and --set values it ran with, or choose another --out");
+// Readies the claimed folder; true when a restart continues the run already in it.
+bool open_folder(const OutputFolder& folder, const CaseRunOptions& o, const CaseSpec& spec) {
+  if (!o.restart.empty() && folder.holds_files() && !o.overwrite) {
+    std::string there = folder_case_hash(folder.dir());
+    if (there != case_hash(spec))
+      throw OutputError("--out " + folder.dir() + " holds " +
+                        (there.empty() ? "other files" : "a run of another case (or other --set values)") +
+                        ": continue a run in its own folder with the case and --set values it ran with, or choose another --out");
+    folder.remove_leftovers({"frames"});  // a killed run's half-written temporaries
+    return true;
   }
-  prepare_output_dir(dir, o.overwrite, {spec.path, o.restart});
+  folder.make_ready(o.overwrite, {spec.path, o.restart});
   return false;
 }
 
@@ -134,9 +119,8 @@ void print_result(const Simulation& sim, const RunOutput& output, const RunInfo&
               output.name().c_str(), (unsigned long long)sim.step(), sim.time(), sim.contacts(), e.total(),
               wall > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / wall : 0.0,
               format_duration(wall).c_str());
-  for (const auto& w : info.wall_forces)
-    if (w.fx != 0 || w.fy != 0 || w.fz != 0)
-      std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
+  for (const auto& w : info.wall_forces)  // every wall, untouched ones too (0 N)
+    std::printf("  force on %-10s (%.4g, %.4g, %.4g) N\n", w.name.c_str(), w.fx, w.fy, w.fz);
   std::printf("wrote %s/summary.json", output.dir().c_str());
   if (output.frames_written()) std::printf(", %u frames in %s/frames", output.frames_written(), output.dir().c_str());
   if (!state_out.empty()) std::printf(", state %s", state_out.c_str());
@@ -159,59 +143,20 @@ int finish_run(const Simulation& sim, RunOutput& output, RunInfo& info, const Ca
   output.write_series();
   info.status = "finished";
   write_run_summary(output.dir() + "/summary.json", sim, info);
-  if (!o.state_out.empty()) write_state_file(o.state_out, sim.state(), sim.step(), sim.time());
+  if (!o.state_out.empty()) write_state_file(o.state_out, sim.state(), sim.step(), sim.time(), output.case_hash());
   print_result(sim, output, info, o.state_out);
   return 0;
 }
 
-}  // namespace
-
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
-  // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
-  Model model = build_model(spec);
-  KernelVariant variant = o.variant.empty() ? KernelVariant::fastest_for(o.backend, model) : KernelVariant::parse(o.variant);
-  StartPoint start = read_restart(o.restart, model);
-  Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
-
-  // Every path is usable before the first step.
-  std::string dir = o.out_dir.empty() ? "out/" + spec.name : o.out_dir;
-  bool state_in_folder = !o.state_out.empty() && path_is_within(o.state_out, dir);
-  if (!o.state_out.empty() && !state_in_folder) check_file_writable(o.state_out, "--state-out");
-  bool continuing = open_folder(dir, o, spec);
-  if (state_in_folder) check_file_writable(o.state_out, "--state-out");
-
-  auto engine = make_backend(o.backend, o.device, o.threads, variant.workgroup);
-  RunInfo info;
-  info.backend = engine->describe();
-  info.variant = variant.name();
-  Provenance prov = provenance_of(spec, o.overrides);
-  prov.backend = o.backend;
-  prov.device = info.backend;
-  info.provenance = provenance_json(prov);
-  if (start.restarting) info.restart = {o.restart, start.info.step};
-
-  Simulation sim(std::move(model), std::move(engine), variant, schedule.batch);
-  if (start.restarting) sim.restore(start.state, start.info.step);
+// Steps to the schedule's target, writing frames and checkpoints as they fall due; returns the
+// signal that stopped it (0 when it got there).
+int step_to_target(Simulation& sim, RunOutput& output, const Schedule& schedule, const CaseRunOptions& o,
+                   const std::function<void()>& checkpointed) {
   const Model& m = sim.model();
-  RunOutput output(dir, spec.name, m, schedule.frame_every, m.vtk);
-  output.begin(sim.step(), continuing);
-  auto summary = [&](const char* status) {
-    info.status = status;
-    info.frames = output.frames_written();
-    write_run_summary(dir + "/summary.json", sim, info);
-  };
-  summary("running");
-  if (!o.quiet)
-    std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.0f%% of Rayleigh %.3g s), steps %llu to %llu on %s\n",
-                 spec.name.c_str(), m.n_particles, m.walls.size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
-                 (unsigned long long)sim.step(), (unsigned long long)schedule.target, info.backend.c_str());
-
   EscapeCheck escapes(m);
   bool escape_told = false;
   install_stop_handlers();
-  if (!start.restarting && output.frame_due(0)) output.frame(sim);
-  Progress progress(spec.name, schedule.target, m.dt, !o.quiet, sim.step());
-  auto t0 = std::chrono::steady_clock::now();
+  Progress progress(output.name(), schedule.target, m.dt, !o.quiet, sim.step());
   int signal = 0;
   while (sim.step() < schedule.target && !(signal = stop_requested())) {
     sim.advance(schedule.next_stop(sim.step()) - sim.step(), [&](const Simulation& s) {
@@ -226,14 +171,87 @@ int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& o) {
     if (output.frame_due(sim.step())) output.frame(sim);
     if (schedule.checkpoint_every && sim.step() % schedule.checkpoint_every == 0) {
       output.checkpoint(sim);
-      summary("running");
+      checkpointed();
     }
   }
-  if (!signal) signal = stop_requested();
   progress.finish();
-  info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  info.wall_forces = sim.wall_forces();
-  return finish_run(sim, output, info, o, signal);
+  return signal ? signal : stop_requested();
+}
+
+RunInfo run_info(const CaseSpec& spec, const CaseRunOptions& o, const Backend& engine, const KernelVariant& variant) {
+  RunInfo info;
+  info.backend = engine.describe();
+  info.variant = variant.name();
+  Provenance prov = provenance_of(spec, o.overrides);
+  prov.backend = o.backend;
+  prov.device = info.backend;
+  info.provenance = provenance_json(prov);
+  return info;
+}
+
+}  // namespace
+
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& o) {
+  // Everything the user gave is checked before the folder is touched: the restart state (its
+  // checksum, consistency and case), the step counts, the paths.
+  Model model = build_model(spec);
+  // Every variant gives the same bytes; the default is each backend's fastest (README, Speed).
+  KernelVariant variant = o.variant.empty() ? KernelVariant::fastest_for(o.backend, model) : KernelVariant::parse(o.variant);
+  const std::string hash = case_hash(spec);
+  bool restarting = !o.restart.empty();
+  RestartPoint start = restarting ? read_restart_state(o.restart, model, hash) : RestartPoint{};
+  Schedule schedule = make_schedule(model, target_step(o, model, start.info.step));
+  // The model holds the particles now: the case's own copies (~200 B each) are let go.
+  std::vector<SphereSpec>().swap(spec.spheres);
+  std::vector<BodySpec>().swap(spec.bodies);
+  // The memory it needs fits (or the run is refused), before anything is written.
+  uint32_t restart_capacity = restarting ? restored_capacity(model, start.state) : 0;
+  MemoryNeed need = check_run_memory(model, variant, schedule.batch, o.backend, o.device,
+                                     model.vtk && schedule.frame_every > 0, restart_capacity);
+  if (!o.quiet) std::fprintf(stderr, "%s: memory: %s\n", spec.name.c_str(), describe_memory_need(need).c_str());
+  std::string dir = o.out_dir.empty() ? "out/" + spec.name : o.out_dir;
+  bool state_in_folder = !o.state_out.empty() && path_is_within(o.state_out, dir);
+  if (!o.state_out.empty() && !state_in_folder) check_file_writable(o.state_out, "--state-out");
+  OutputFolder folder(dir);  // ours alone until the run ends
+  bool continuing = open_folder(folder, o, spec);
+  if (state_in_folder) check_file_writable(o.state_out, "--state-out");
+
+  auto engine = make_backend(o.backend, o.device, o.threads, variant.workgroup);
+  RunInfo info = run_info(spec, o, *engine, variant);
+  if (restarting) info.restart = {o.restart, start.info.step};
+  Simulation sim(std::move(model), std::move(engine), variant, schedule.batch);
+  if (restarting) sim.restore(start.state, start.info.step);
+  if (o.wall_impulses) sim.sum_wall_forces();
+  const Model& m = sim.model();
+  RunOutput output(dir, spec.name, hash, m, schedule.frame_every, m.vtk, o.wall_impulses);
+  auto summary = [&](const std::string& status) {
+    info.status = status;
+    info.frames = output.frames_written();
+    write_run_summary(dir + "/summary.json", sim, info);
+  };
+  auto t0 = std::chrono::steady_clock::now();
+  try {
+    output.begin(sim.step(), continuing);
+    summary("running");
+    if (!o.quiet)
+      std::fprintf(stderr, "%s: %u particles, %zu walls, dt %.3g s (%.2g%% of Rayleigh %.3g s), steps %llu to %llu on %s\n",
+                   spec.name.c_str(), m.n_particles, m.wall_group_names().size(), m.dt, 100 * m.dt / m.rayleigh_time, m.rayleigh_time,
+                   (unsigned long long)sim.step(), (unsigned long long)schedule.target, info.backend.c_str());
+    if (!restarting && output.frame_due(0)) output.frame(sim);
+    int signal = step_to_target(sim, output, schedule, o, [&] { summary("running"); });
+    info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    info.wall_forces = sim.wall_forces();
+    return finish_run(sim, output, info, o, signal);
+  } catch (const std::exception& e) {
+    // The summary tells what stopped the run, with the system's reason for a failed write.
+    info.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    try {
+      summary(std::string("failed: ") + e.what());
+    } catch (const std::exception& also) {
+      std::fprintf(stderr, "repose run: the summary could not say so either: %s\n", also.what());
+    }
+    throw;
+  }
 }
 
 }  // namespace repose

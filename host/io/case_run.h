@@ -1,5 +1,6 @@
 // `repose run`: a case simulated into its output folder, safe to interrupt and to continue.
-// - The folder belongs to this run (io/output_dir.h); every path is checked before the first step.
+// - The folder belongs to this run (io/output_dir.h: locked against every other process while it
+//   runs); every path and the restart state are checked before the first step.
 // - Frames, wall forces, the .pvd series and summary.json are written as the run goes
 //   (io/run_output.h); summary.json says "running", "finished" or "interrupted".
 // - `[output] checkpoint_interval` writes checkpoint.state every so many simulated seconds.
@@ -31,10 +32,14 @@ struct CaseRunOptions {
   std::string restart;                 // a state file to continue from
   std::vector<std::string> overrides;  // --set KEY=VALUE as given (for the provenance)
   bool quiet = false;
+  bool wall_impulses = false;          // wall_forces.csv also gives each wall's peak and impulse per row
 };
 
 // Returns the exit code: 0 when the run finished, 128 + the signal when one stopped it. Throws
-// OutputError for an unusable folder or file, std::runtime_error for a state that does not fit.
-int run_case_to_folder(const CaseSpec& spec, const CaseRunOptions& options);
+// BadInput (OutputError for an unusable or busy folder, InputError for a restart state that is
+// damaged, changed, inconsistent or of another case) before anything is written; a failure during
+// the run (WriteError: a full disk) ends summary.json as "failed: REASON" and is rethrown.
+// The case is taken by value: its particles are let go once the model holds them.
+int run_case_to_folder(CaseSpec spec, const CaseRunOptions& options);
 
 }  // namespace repose

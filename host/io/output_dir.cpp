@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "util/atomic_file.h"
+
 namespace repose {
 
 namespace fs = std::filesystem;
@@ -18,24 +20,65 @@ bool path_is_within(const std::string& inner, const std::string& dir) {
   return mismatch.first == b.end();
 }
 
-void prepare_output_dir(const std::string& dir, bool overwrite, const std::vector<std::string>& protect) {
+OutputFolder::OutputFolder(std::string dir) : dir_(std::move(dir)) {
   std::error_code ec;
-  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
-    throw OutputError("--out " + dir + " is a file, not a folder");
-  if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) {
-    if (!overwrite)
-      throw OutputError("--out " + dir + " is not empty: an older run's files would mix with this one's. "
-                        "Choose another --out, or pass --overwrite to delete what it holds first");
-    if (path_is_within(fs::current_path().string(), dir))
-      throw OutputError("--overwrite would delete " + dir + ", which holds the working directory");
-    for (const auto& keep : protect)
-      if (!keep.empty() && path_is_within(keep, dir))
-        throw OutputError("--overwrite would delete " + keep + ", which this run reads: choose another --out");
-    for (const auto& entry : fs::directory_iterator(dir)) fs::remove_all(entry.path());
+  if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) throw OutputError("--out " + dir_ + " is a file, not a folder");
+  for (fs::path p = fs::absolute(dir_, ec); !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+    created_.push_back(p.string());
+    if (p == p.parent_path()) break;
   }
-  fs::create_directories(dir, ec);
-  if (ec) throw OutputError("cannot create the output folder " + dir + ": " + ec.message());
-  check_file_writable((fs::path(dir) / "summary.json").string(), "--out");
+  fs::create_directories(dir_, ec);
+  if (ec) {
+    remove_created();
+    throw OutputError("cannot create the output folder " + dir_ + ": " + ec.message());
+  }
+  try {
+    lock_ = std::make_unique<FileLock>((fs::path(dir_) / kFolderLock).string());
+  } catch (const FileBusy& busy) {
+    remove_created();
+    throw OutputError("--out " + dir_ + " is in use by " + busy.holder() + ": wait for it to finish, or choose another --out");
+  } catch (const std::exception& e) {
+    remove_created();
+    throw OutputError("--out " + dir_ + " cannot be written: " + e.what());
+  }
+}
+
+OutputFolder::~OutputFolder() {
+  lock_.reset();
+  remove_created();
+}
+
+void OutputFolder::remove_created() const {
+  std::error_code ec;
+  for (const auto& d : created_)
+    if (!fs::remove(d, ec)) break;  // not empty (or gone): its parents are not empty either
+}
+
+bool OutputFolder::holds_files() const {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir_, ec))
+    if (entry.path().filename() != kFolderLock) return true;
+  return false;
+}
+
+void OutputFolder::make_ready(bool overwrite, const std::vector<std::string>& protect) const {
+  if (!holds_files()) return;
+  if (!overwrite)
+    throw OutputError("--out " + dir_ + " is not empty: an older run's files would mix with this one's. "
+                      "Choose another --out, or pass --overwrite to delete what it holds first");
+  if (path_is_within(fs::current_path().string(), dir_))
+    throw OutputError("--overwrite would delete " + dir_ + ", which holds the working directory");
+  for (const auto& keep : protect)
+    if (!keep.empty() && path_is_within(keep, dir_))
+      throw OutputError("--overwrite would delete " + keep + ", which this run reads: choose another --out");
+  for (const auto& entry : fs::directory_iterator(dir_))
+    if (entry.path().filename() != kFolderLock) fs::remove_all(entry.path());
+}
+
+int OutputFolder::remove_leftovers(const std::vector<std::string>& sub) const {
+  int removed = remove_leftover_temporaries(dir_);
+  for (const auto& s : sub) removed += remove_leftover_temporaries((fs::path(dir_) / s).string());
+  return removed;
 }
 
 void check_file_writable(const std::string& path, const std::string& what) {

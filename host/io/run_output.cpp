@@ -2,8 +2,9 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <fstream>
 
+#include "io/csv_columns.h"
 #include "io/state_file.h"
 #include "util/atomic_file.h"
 
@@ -11,11 +12,11 @@ namespace repose {
 
 namespace fs = std::filesystem;
 
-RunOutput::RunOutput(std::string dir, std::string name, const Model& model, uint64_t frame_every, bool vtk)
-    : dir_(std::move(dir)), name_(std::move(name)), model_(model), frame_every_(frame_every),
-      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), bounds_(drawing_bounds(model)) {
-  for (const auto& sub : model.subs) body_ids_.push_back(sub.info.x);
-}
+RunOutput::RunOutput(std::string dir, std::string name, std::string case_hash, const Model& model, uint64_t frame_every,
+                     bool vtk, bool impulses)
+    : dir_(std::move(dir)), name_(std::move(name)), case_hash_(std::move(case_hash)), model_(model), frame_every_(frame_every),
+      vtk_(vtk && frame_every > 0), walls_(!model.walls.empty()), impulses_(impulses), bounds_(drawing_bounds(model)),
+      labels_(particle_labels(model)) {}
 
 std::string RunOutput::frame_file(const char* kind, uint64_t index) const {
   char file[64];
@@ -30,16 +31,16 @@ void RunOutput::begin(uint64_t step, bool continuing) {
   if (vtk_) fs::create_directories(dir_ + "/frames");
   if (continuing) remove_frames_from(next_frame_);
   if (!walls_) return;
-  if (continuing && fs::exists(dir_ + "/wall_forces.csv")) {
+  std::string csv = dir_ + "/wall_forces.csv";
+  if (continuing && fs::exists(csv)) {
     keep_wall_force_rows(next_frame_);
-    wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::app);
-  } else {
-    wall_csv_.open(dir_ + "/wall_forces.csv", std::ios::trunc);
-    wall_csv_ << "time";
-    for (const auto& name : model_.wall_group_names()) wall_csv_ << "," << name << ".fx," << name << ".fy," << name << ".fz";
-    wall_csv_ << "\n";
+    wall_csv_ = std::make_unique<FileOutput>(csv, FileOutput::Mode::Append);
+    return;
   }
-  if (!wall_csv_) throw std::runtime_error("cannot write " + dir_ + "/wall_forces.csv");
+  wall_csv_ = std::make_unique<FileOutput>(csv, FileOutput::Mode::Truncate);
+  std::ostream& out = wall_csv_->stream();
+  out << wall_force_csv_header(model_.wall_group_names(), impulses_) << "\n";
+  wall_csv_->flush();
 }
 
 void RunOutput::remove_frames_from(uint64_t index) const {
@@ -69,32 +70,36 @@ void RunOutput::frame(Simulation& sim) {
   next_frame_ = index + 1;
   ++frames_written_;
   if (vtk_) {
-    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), body_ids_);
+    write_vtk_frame(dir_ + "/" + frame_file("", index), sim.state(), sim.time(), labels_);
+    write_contact_frame(dir_ + "/" + frame_file("contacts_", index), sim.state(),
+                        touching_pairs(sim.state(), sim.contact_forces(), labels_), sim.time());
     if (walls_) write_wall_frame(dir_ + "/" + frame_file("walls_", index), model_, sim.time(), bounds_);
   }
-  if (wall_csv_.is_open()) {
-    wall_csv_ << sim.time();
-    for (const auto& w : sim.wall_forces()) wall_csv_ << "," << w.fx << "," << w.fy << "," << w.fz;
-    wall_csv_ << "\n";
-    wall_csv_.flush();  // a killed run keeps every row up to its last frame
-    if (!wall_csv_) throw std::runtime_error("error while writing " + dir_ + "/wall_forces.csv");
+  if (wall_csv_) {
+    std::ostream& out = wall_csv_->stream();
+    out << wall_force_csv_row(sim.time(), sim.wall_forces(),
+                              impulses_ ? sim.take_wall_impulses() : std::vector<WallImpulse>{})
+        << "\n";
+    wall_csv_->flush();  // a killed run keeps every row up to its last frame
   }
 }
 
 void RunOutput::write_series() const {
   if (!vtk_) return;
-  std::vector<SeriesEntry> particles, walls;
+  std::vector<SeriesEntry> particles, contacts, walls;
   for (uint64_t k = first_frame_; k < next_frame_; ++k) {
     double t = double(k * frame_every_) * model_.dt;
     if (fs::exists(dir_ + "/" + frame_file("", k))) particles.push_back({t, frame_file("", k)});
+    if (fs::exists(dir_ + "/" + frame_file("contacts_", k))) contacts.push_back({t, frame_file("contacts_", k)});
     if (walls_ && fs::exists(dir_ + "/" + frame_file("walls_", k))) walls.push_back({t, frame_file("walls_", k)});
   }
   write_pvd(dir_ + "/" + name_ + ".pvd", particles);
+  write_pvd(dir_ + "/" + name_ + "_contacts.pvd", contacts);
   if (walls_) write_pvd(dir_ + "/" + name_ + "_walls.pvd", walls);
 }
 
 void RunOutput::checkpoint(const Simulation& sim) const {
-  write_state_file(checkpoint_path(), sim.state(), sim.step(), sim.time());
+  write_state_file(checkpoint_path(), sim.state(), sim.step(), sim.time(), case_hash_);
   write_series();
 }
 

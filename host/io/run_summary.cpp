@@ -37,7 +37,11 @@ void write_run_summary(const std::string& path, const Simulation& sim, const Run
       info.wall_seconds > 0 ? double(m.n_particles) * double(sim.step() - info.restart.step) / info.wall_seconds : 0.0;
   if (!info.restart.file.empty()) j["restarted_from"] = {{"file", info.restart.file}, {"step", info.restart.step}};
   j["provenance"] = info.provenance;
-  write_file_atomically(path, [&](std::ostream& out) { out << j.dump(2) << "\n"; });
+  // A failed run says so even on a full disk (over the old summary's bytes if need be).
+  if (info.status.rfind("failed: ", 0) == 0)
+    write_status_file(path, j.dump(2) + "\n");
+  else
+    write_file_atomically(path, j.dump(2) + "\n");
 }
 
 }  // namespace repose

@@ -13,7 +13,7 @@ struct RunInfo {
   double wall_seconds = 0;
   unsigned frames = 0;
   std::vector<WallForce> wall_forces;  // at the end of the run (Simulation::wall_forces)
-  std::string status = "finished";     // "running", "finished", "interrupted by SIGINT" ...
+  std::string status = "finished";     // "running", "finished", "interrupted by SIGINT", "failed: REASON"
   struct {
     std::string file;  // the state file a restarted run continued from ("" for a new run)
     uint64_t step = 0;

@@ -9,25 +9,35 @@
 
 namespace repose {
 
-// Version 4 adds what a restart needs beyond the physics (the neighbour-list bookkeeping:
-// control counters, positions at the last rebuild, the contacts' owners and transposed index).
-// Version 3 added the rolling springs. Versions 2 and 3 still read, but cannot be restarted.
-constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '4'};
+// Version 5 adds the case's hash and a checksum of every byte (a changed or damaged file is
+// refused). Version 4 added what a restart needs beyond the physics (the neighbour-list
+// bookkeeping: control counters, positions at the last rebuild, the contacts' owners and
+// transposed index). Version 3 added the rolling springs. Versions 2 to 4 still read, but cannot
+// be restarted.
+constexpr char kStateMagic[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '5'};
+constexpr char kStateMagicV4[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '4'};
 constexpr char kStateMagicV3[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '3'};
 constexpr char kStateMagicV2[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
+constexpr int kStateVersion = 5;
 // Control words 0 .. kRestartControlWords-1 (need-rebuild flag to old-contact count) are stored;
 // the dispatch sizes after them depend on the kernel variant and are recomputed on restart.
 constexpr uint32_t kRestartControlWords = 8;
+// The case hash field: 16 hex digits (io/provenance.h), zero bytes when written without one.
+constexpr size_t kStateCaseHashBytes = 16;
 
 struct StateFileInfo {
   uint64_t step = 0;
   double time = 0;
   int version = 0;
-  bool restartable() const { return version >= 4; }
+  std::string case_hash;  // of the case that wrote it (version 5), "" when not recorded
+  bool restartable() const { return version >= 5; }
 };
 
-void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time);
-// Reads a file written by write_state_file; throws naming the file when it is not one.
+// `case_hash`: the hash of the case it belongs to (case_hash(spec)), checked on restart.
+void write_state_file(const std::string& path, const HostState& state, uint64_t step, double time,
+                      const std::string& case_hash = "");
+// Reads a file written by write_state_file: its length, checksum and every index, count and
+// number (io/state_validation.h). Throws InputError naming the file and what is wrong.
 HostState read_state_file(const std::string& path, uint64_t* step = nullptr, double* time = nullptr);
 HostState read_state_file(const std::string& path, StateFileInfo& info);
 

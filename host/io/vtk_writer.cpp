@@ -1,5 +1,6 @@
 #include "io/vtk_writer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -158,16 +159,30 @@ Bounds drawing_bounds(const Model& m) {
   return b;
 }
 
-void write_vtk_frame(const std::string& path, const HostState& s, double time, const std::vector<uint32_t>& body_ids) {
+ParticleLabels particle_labels(const Model& model) {
+  ParticleLabels labels;
+  labels.materials = model.material;
+  for (const auto& sub : model.subs) labels.body_ids.push_back(sub.info.x);
+  return labels;
+}
+
+void write_vtk_frame(const std::string& path, const HostState& s, double time, const ParticleLabels& labels) {
   size_t n = s.pos.size();
-  std::vector<float> radius(n), speed(n);
-  std::vector<int32_t> id(n), body(n), offsets(n);
+  std::vector<float> radius(n), speed(n), orientation(4 * n);
+  std::vector<int32_t> id(n), body(n), material(n), offsets(n);
   for (size_t i = 0; i < n; ++i) {
     radius[i] = s.pos[i].w;
     const auto& v = s.vel[i];
     speed[i] = std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
     id[i] = int32_t(i);
-    body[i] = body_ids.empty() ? int32_t(i) : int32_t(body_ids[i]);
+    body[i] = labels.body_ids.empty() ? int32_t(i) : int32_t(labels.body_ids[i]);
+    material[i] = labels.materials.empty() ? 0 : int32_t(labels.materials[i]);
+    // The engine keeps (x, y, z, w); written (w, x, y, z) as case files give orientations.
+    gpu::vec4 q = labels.body_ids.empty() || s.bodies.empty() ? gpu::vec4(0, 0, 0, 1) : s.bodies[labels.body_ids[i]].quat;
+    orientation[4 * i] = q.w;
+    orientation[4 * i + 1] = q.x;
+    orientation[4 * i + 2] = q.y;
+    orientation[4 * i + 3] = q.z;
     offsets[i] = int32_t(i + 1);
   }
   Appended data;
@@ -176,6 +191,8 @@ void write_vtk_frame(const std::string& path, const HostState& s, double time, c
   point_data += array_element("Float32", "speed", 1, data.add(speed));
   point_data += array_element("Int32", "id", 1, data.add(id));
   point_data += array_element("Int32", "body_id", 1, data.add(body));
+  point_data += array_element("Int32", "material", 1, data.add(material));
+  point_data += array_element("Float32", "orientation", 4, data.add(orientation));
   point_data += array_element("Float32", "velocity", 3, data.add(xyz(s.vel)));
   point_data += array_element("Float32", "angular_velocity", 3, data.add(xyz(s.omega)));
   point_data += array_element("Float32", "force", 3, data.add(xyz(s.force)));
@@ -187,6 +204,52 @@ void write_vtk_frame(const std::string& path, const HostState& s, double time, c
     out << kHeader << time_field(time) << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfVerts=\"" << n
         << "\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
         << point_data << points << verts << "    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _"
+        << data.bytes() << "\n  </AppendedData>\n</VTKFile>\n";
+  }, true);
+}
+
+std::vector<ContactLine> touching_pairs(const HostState& s, const std::vector<gpu::vec4>& forces,
+                                        const ParticleLabels& labels) {
+  std::vector<ContactLine> lines;
+  size_t n = s.pos.size();
+  if (s.row_start.size() < n + 1) return lines;
+  size_t listed = std::min<size_t>(forces.size(), s.partner.size());
+  for (size_t i = 0; i < n; ++i)
+    for (size_t c = s.row_start[i]; c < s.row_start[i + 1] && c < listed; ++c) {
+      uint32_t j = s.partner[c];
+      if (j >= n) continue;  // a wall (wall_forces.csv)
+      if (!labels.body_ids.empty() && labels.body_ids[i] == labels.body_ids[j]) continue;
+      const gpu::vec4 &a = s.pos[i], &b = s.pos[j];
+      double dx = double(a.x) - b.x, dy = double(a.y) - b.y, dz = double(a.z) - b.z;
+      double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+      if (!(d < double(a.w) + double(b.w)) || d == 0) continue;
+      const gpu::vec4& f = forces[c];
+      lines.push_back({uint32_t(i), j, float((f.x * dx + f.y * dy + f.z * dz) / d), f});
+    }
+  return lines;
+}
+
+void write_contact_frame(const std::string& path, const HostState& s, const std::vector<ContactLine>& lines,
+                         double time) {
+  std::vector<int32_t> connectivity, offsets;
+  std::vector<float> normal_force, force;
+  for (const ContactLine& l : lines) {
+    connectivity.insert(connectivity.end(), {int32_t(l.i), int32_t(l.j)});
+    offsets.push_back(int32_t(connectivity.size()));
+    normal_force.push_back(l.normal_force);
+    force.insert(force.end(), {l.force.x, l.force.y, l.force.z});
+  }
+  Appended data;
+  std::string cells = "      <CellData Scalars=\"normal_force\">\n" +
+                      array_element("Float32", "normal_force", 1, data.add(normal_force)) +
+                      array_element("Float32", "force", 3, data.add(force)) + "      </CellData>\n";
+  std::string points = "      <Points>\n" + array_element("Float32", "", 3, data.add(xyz(s.pos))) + "      </Points>\n";
+  std::string line_cells = "      <Lines>\n" + array_element("Int32", "connectivity", 1, data.add(connectivity)) +
+                           array_element("Int32", "offsets", 1, data.add(offsets)) + "      </Lines>\n";
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << kHeader << time_field(time) << "    <Piece NumberOfPoints=\"" << s.pos.size()
+        << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << lines.size() << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n"
+        << cells << points << line_cells << "    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _"
         << data.bytes() << "\n  </AppendedData>\n</VTKFile>\n";
   }, true);
 }

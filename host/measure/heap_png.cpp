@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "plot/chart.h"
 
@@ -17,9 +18,29 @@ std::string slope_words(const char* side, const SlopeFit& fit) {
   return text;
 }
 
+// "this view: left 15.20 deg, right 15.91 deg" over the slopes that count.
+std::string view_words(const HeapAngle& m, const HeapPictureCaption& caption) {
+  std::string words;
+  if (caption.left) words += slope_words("left", m.left);
+  if (caption.right) words += (words.empty() ? "" : ", ") + slope_words("right", m.right);
+  return "this view: " + words;
+}
+
 }  // namespace
 
-void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std::string& horizontal) {
+HeapPictureCaption front_view_caption(const HeapAngle& m) {
+  return {m.mean_deg, "the mean of both slopes", true, true};
+}
+
+HeapPictureCaption slope_caption(const HeapAngle& m, const std::string& side) {
+  if (side == "both") return front_view_caption(m);
+  const SlopeFit& fit = side == "left" ? m.left : m.right;
+  return {fit.valid ? fit.angle_deg : std::numeric_limits<double>::quiet_NaN(), "the " + side + " slope",
+          side == "left", side == "right"};
+}
+
+void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std::string& horizontal,
+                          const HeapPictureCaption& caption) {
   const BinaryImage& image = m.image;
   const double u0 = image.origin_u, u1 = u0 + image.width * image.pixel;
   const double z0 = image.origin_z, z1 = z0 + image.height * image.pixel;
@@ -40,37 +61,45 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
       outline_u.push_back(image.column_centre(c));
       outline_z.push_back(image.row_top(m.profile[size_t(c)]));
     }
+  std::vector<LegendEntry> legend{{"outline", colours::black}};
   chart.polyline(outline_u, outline_z, colours::black, 1);
   chart.horizontal(m.floor_z, colours::green, 2);
-  // Each fitted line from the floor to the crest height, like the studies' figures (clipped to
-  // the picture).
-  auto draw_fit = [&](const SlopeFit& fit, Colour colour) {
-    if (!fit.valid || fit.line.slope == 0) return;
+  // Each fitted line that counts, from the floor to the crest height, like the studies' figures
+  // (clipped to the picture).
+  auto draw_fit = [&](const SlopeFit& fit, bool counts, Colour colour, const char* label) {
+    if (!counts || !fit.valid || fit.line.slope == 0) return false;
     const double top_z = m.floor_z + m.heap_height;
     const double u_floor = (m.floor_z - fit.line.intercept) / fit.line.slope;
     const double u_top = (top_z - fit.line.intercept) / fit.line.slope;
     chart.polyline({u_floor, u_top}, {m.floor_z, top_z}, colour, 3);
+    legend.push_back({label, colour});
+    return true;
   };
-  draw_fit(m.left, colours::red);
-  draw_fit(m.right, colours::blue);
-  for (int c = 0; c < image.width; ++c)
-    if (m.fitted_columns[size_t(c)] && m.profile[size_t(c)] >= 0)
-      chart.square(image.column_centre(c), image.row_top(m.profile[size_t(c)]), colours::orange, 1);
+  const bool left = draw_fit(m.left, caption.left, colours::red, "left fit");
+  const bool right = draw_fit(m.right, caption.right, colours::blue, "right fit");
+  bool points = false;
+  for (int c = 0; c < image.width; ++c) {
+    const uint8_t side = m.fitted_columns[size_t(c)];
+    if (m.profile[size_t(c)] < 0 || !((side == 1 && left) || (side == 2 && right))) continue;
+    chart.square(image.column_centre(c), image.row_top(m.profile[size_t(c)]), colours::orange, 1);
+    points = true;
+  }
+  if (points) legend.push_back({"fitted points", colours::orange, Mark::Square});
+  legend.push_back({"floor", colours::green});
 
-  char title[160];
-  if (std::isfinite(m.mean_deg))
-    std::snprintf(title, sizeof title, "Angle of repose %.2f deg (%s, %s)", m.mean_deg,
-                  slope_words("left", m.left).c_str(), slope_words("right", m.right).c_str());
+  const bool measured = std::isfinite(caption.angle_deg);
+  char title[200];
+  if (measured)
+    std::snprintf(title, sizeof title, "Angle of repose %.2f deg (%s)", caption.angle_deg, caption.measured_as.c_str());
   else
     std::snprintf(title, sizeof title, "Angle of repose: no slope measured");
   chart.title(title);
-  char subtitle[160];
-  std::snprintf(subtitle, sizeof subtitle, "heap %.3g m high; orange: the outline points fitted (the band of the height)%s",
-                m.heap_height, std::isfinite(m.mean_deg) ? "" : "; neither side gave a slope");
+  char subtitle[240];
+  std::snprintf(subtitle, sizeof subtitle, "%s; heap %.3g m high%s", view_words(m, caption).c_str(), m.heap_height,
+                points ? "; orange: the outline points fitted (the band of the height)" : "");
   chart.subtitle(subtitle);
   chart.labels(horizontal + " (m)", "z (m)");
-  chart.legend({{"outline", colours::black}, {"left fit", colours::red}, {"right fit", colours::blue},
-                {"fitted points", colours::orange}, {"floor", colours::green}});
+  chart.legend(legend);
   chart.save(path);
 }
 

@@ -10,6 +10,17 @@
 
 namespace repose {
 
+std::vector<Sphere> turned_heap(const std::vector<Sphere>& spheres, glm::dvec2 centre, double azimuth_deg) {
+  const double a = azimuth_deg * kPi / 180.0, c = std::cos(a), s = std::sin(a);
+  std::vector<Sphere> turned(spheres.size());
+  // Turning the heap by -a about the axis is the camera turning by +a around it.
+  for (size_t i = 0; i < spheres.size(); ++i) {
+    const double dx = spheres[i].centre.x - centre.x, dy = spheres[i].centre.y - centre.y;
+    turned[i] = {{c * dx + s * dy, -s * dx + c * dy, spheres[i].centre.z}, spheres[i].radius};
+  }
+  return turned;
+}
+
 HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int views, const HeapAngleOptions& options,
                                         std::optional<glm::dvec2> centre) {
   if (views < 1) throw std::invalid_argument("heap angle: views must be at least 1");
@@ -18,17 +29,10 @@ HeapViewsAngle measure_heap_angle_views(const std::vector<Sphere>& spheres, int 
   out.centre = centre ? *centre : heap_centre(spheres);
   HeapAngleOptions front = options;  // the turn keeps every z: each view finds the same floor
   front.view = ViewAxis::Y;
-  std::vector<Sphere> turned(spheres.size());
   std::vector<double> slopes;
   for (int k = 0; k < views; ++k) {
-    const double azimuth = 180.0 * k / views, a = azimuth * kPi / 180.0;
-    const double c = std::cos(a), s = std::sin(a);
-    // Turning the heap by -a about the axis is the camera turning by +a around it.
-    for (size_t i = 0; i < spheres.size(); ++i) {
-      const double dx = spheres[i].centre.x - out.centre.x, dy = spheres[i].centre.y - out.centre.y;
-      turned[i] = {{c * dx + s * dy, -s * dx + c * dy, spheres[i].centre.z}, spheres[i].radius};
-    }
-    const HeapAngle view = measure_heap_angle(turned, front);
+    const double azimuth = 180.0 * k / views;
+    const HeapAngle view = measure_heap_angle(turned_heap(spheres, out.centre, azimuth), front);
     out.azimuth_deg.push_back(azimuth);
     const double nan = std::numeric_limits<double>::quiet_NaN();
     out.left_deg.push_back(view.left.valid ? view.left.angle_deg : nan);

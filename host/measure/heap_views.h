@@ -21,6 +21,10 @@ struct HeapViewsAngle {
   double sd_deg = 0.0;    // sample standard deviation of those slopes (0 for one)
 };
 
+// The heap as a camera turned by `azimuth_deg` about the vertical axis through `centre` sees it:
+// every sphere turned by -azimuth about that axis (z kept).
+std::vector<Sphere> turned_heap(const std::vector<Sphere>& spheres, glm::dvec2 centre, double azimuth_deg);
+
 // `views` cameras at azimuths 180 k / views degrees, k = 0 .. views - 1, each looking
 // horizontally at the axis through `centre` (default heap_centre); the other half turn would
 // see the same silhouettes mirrored. View 0 is the plain front view along +y. Each view is

@@ -19,6 +19,29 @@ inline constexpr Colour white{255, 255, 255}, black{0, 0, 0}, grey{150, 150, 150
 const std::vector<Colour>& series();  // distinct colours for several lines
 }  // namespace colours
 
+// How a legend entry shows its series: as the line, the dot, the square or the cross drawn for it,
+// as a shaded band, or as a filled polygon (a bar).
+enum class Mark { Line, Dot, Square, Cross, Band, Bar };
+struct LegendEntry {
+  std::string label;
+  Colour colour;
+  Mark mark = Mark::Line;
+};
+
+// What a saved chart shows, as text and counts: tests read it back to catch a repeated tick label,
+// a legend entry without its series, or a series drawn outside the plot.
+struct ChartRecord {
+  std::string title, subtitle, x_label, y_label;
+  std::vector<std::string> x_ticks, y_ticks, bar_ticks;  // as printed
+  std::string z_label;                  // a 3D picture's vertical axis (its ticks in z_ticks)
+  std::vector<std::string> z_ticks;
+  std::vector<LegendEntry> legend;
+  // Data points drawn inside the plot area, by colour and mark (a polyline's vertices count as Line).
+  std::vector<std::pair<LegendEntry, int>> points;
+  int points_of(Colour c, Mark m) const;  // 0 when none
+  bool legend_covers_data = false;        // the legend box hides a data point
+};
+
 class Chart {
  public:
   // A chart of `width` x `height` pixels showing [x0, x1] x [y0, y1] (ranges may be equal: they
@@ -48,8 +71,18 @@ class Chart {
   void square(double x, double y, Colour c, int half = 3);
   void error_bar(double x, double y_low, double y_high, Colour c);
   void cross(double x, double y, Colour c, int size = 8);
-  void legend(const std::vector<std::pair<std::string, Colour>>& entries);  // top right, inside the plot
-  void legend_above(const std::vector<std::pair<std::string, Colour>>& entries);  // in a row under the title
+  // A filled polygon in data coordinates (a bar, a facet of a 3D surface), its edge drawn in
+  // `edge`; counted as one data point of `mark` at its centre.
+  void polygon(const std::vector<double>& x, const std::vector<double>& y, Colour fill, Colour edge,
+               Mark mark = Mark::Bar);
+  // A picture whose axes the caller draws itself (a 3D surface): no frame, ticks or axis labels
+  // at save (labels() still names them in the record); the record takes the ticks the caller
+  // printed.
+  void hide_axes(std::vector<std::string> x_ticks, std::vector<std::string> y_ticks, std::string z_label,
+                 std::vector<std::string> z_ticks);
+  // Inside the plot, in the corner that hides the fewest data points (drawn last, on top).
+  void legend(const std::vector<LegendEntry>& entries);
+  void legend_above(const std::vector<LegendEntry>& entries);  // in a row under the title
   void text_at(double x, double y, const std::string& text, Colour c);  // data coordinates
   // Draws the frame, ticks and texts last so they sit on top; throws naming the path on failure.
   void save(const std::string& path);
@@ -57,6 +90,12 @@ class Chart {
   // For tests: the plot area in pixels (left, top, right, bottom) and a pixel's colour.
   std::array<int, 4> plot_area() const;
   Colour pixel(int column, int row) const;
+  // What the chart shows (complete after save).
+  const ChartRecord& record() const { return record_; }
+  // Keeps the record of every chart saved from now on in this process, by path (for tests of code
+  // that draws and saves its own figures); recorded(path) then gives it, or throws.
+  static void keep_records();
+  static ChartRecord recorded(const std::string& path);
 
  private:
   double px(double x) const;
@@ -68,15 +107,27 @@ class Chart {
   void text(double c, double r, const std::string& s, Colour colour, double scale, bool upwards = false);
   double text_width(const std::string& s, double scale) const;
   void draw_colour_bar();
+  void count_point(double c, double r, Colour colour, Mark mark);
+  void draw_legend_box();
+  void draw_legend_mark(double c, double r, const LegendEntry& e);
 
   int w_, h_;
   double x0_, x1_, y0_, y1_;
   int left_ = 130, right_ = 30, top_ = 76, bottom_ = 74;
   bool colour_bar_ = false;
+  bool axes_ = true;
   double bar_lo_ = 0, bar_hi_ = 0;
   std::string bar_label_;
   std::string title_, subtitle_, x_label_, y_label_;
   std::vector<uint8_t> pixels_;
+  std::vector<LegendEntry> box_legend_;           // drawn at save, where it hides the least
+  std::vector<std::array<int, 2>> data_pixels_;  // where data points were drawn (legend placement)
+  ChartRecord record_;
 };
+
+// Ticks at 1, 2 or 5 times a power of ten within [lo, hi], about `target` of them.
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+// Tick labels for `ticks`, with as many digits as it takes to tell neighbours apart.
+std::vector<std::string> tick_labels(const std::vector<double>& ticks);
 
 }  // namespace repose

@@ -9,9 +9,9 @@
 
 namespace repose::stats {
 
-class StatsError : public std::runtime_error {
+class StatsError : public BadInput {  // what the user must fix: exit code 2
  public:
-  using std::runtime_error::runtime_error;
+  using BadInput::BadInput;
 };
 
 // A problem located in an input file (a whole-file problem has neither line nor column, a

@@ -78,4 +78,60 @@ double f_critical(double p, double d1, double d2) {
   return 0.5 * (lo + hi);
 }
 
+namespace {
+
+// Series for P(a, x), good for x < a + 1 (Numerical Recipes 6.2).
+double gamma_series(double a, double x) {
+  double sum = 1.0 / a, term = sum;
+  for (int n = 1; n <= 10000; ++n) {
+    term *= x / (a + n);
+    sum += term;
+    if (std::fabs(term) < std::fabs(sum) * 1e-16) return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
+  }
+  throw StatsError("incomplete gamma: series did not converge (a=" + std::to_string(a) + ", x=" + std::to_string(x) + ")");
+}
+
+// Continued fraction for Q(a, x) = 1 - P(a, x), good for x >= a + 1 (modified Lentz).
+double gamma_continued_fraction(double a, double x) {
+  const double tiny = 1e-300;
+  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+  for (int i = 1; i <= 10000; ++i) {
+    double an = -i * (i - a);
+    b += 2.0;
+    d = an * d + b;
+    if (std::fabs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (std::fabs(c) < tiny) c = tiny;
+    d = 1.0 / d;
+    double del = d * c;
+    h *= del;
+    if (std::fabs(del - 1.0) < 1e-15) return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
+  }
+  throw StatsError("incomplete gamma: continued fraction did not converge (a=" + std::to_string(a) + ", x=" +
+                   std::to_string(x) + ")");
+}
+
+}  // namespace
+
+double regularized_lower_gamma(double a, double x) {
+  if (!(a > 0)) throw StatsError("incomplete gamma: a must be positive");
+  if (!(x > 0)) return 0;
+  if (std::isinf(x)) return 1;
+  return x < a + 1.0 ? gamma_series(a, x) : 1.0 - gamma_continued_fraction(a, x);
+}
+
+double chi_square_cdf(double x, double df) { return regularized_lower_gamma(0.5 * df, 0.5 * x); }
+
+double chi_square_quantile(double p, double df) {
+  if (!(p > 0 && p < 1)) throw StatsError("chi_square_quantile: p must lie in (0, 1)");
+  if (!(df > 0)) throw StatsError("chi_square_quantile: df must be positive");
+  double lo = 0, hi = df + 10;
+  while (chi_square_cdf(hi, df) < p) hi *= 2;
+  for (int i = 0; i < 200 && hi - lo > 1e-13 * hi; ++i) {
+    double mid = 0.5 * (lo + hi);
+    (chi_square_cdf(mid, df) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 }  // namespace repose::stats

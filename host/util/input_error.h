@@ -8,12 +8,20 @@
 
 namespace repose {
 
-class InputError : public std::runtime_error {
+// What every error in what the user gave derives from (a case, a data file, a flag, an output
+// folder, a state file to restart from): `repose` then exits with code 2, and with 1 for a
+// failure while working (README, "Exit codes").
+class BadInput : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class InputError : public BadInput {
  public:
   // line and column are 1-based; 0 means "not applicable" and is left out of the message; a file
   // without a name (text parsed from memory) shows as "<input>".
   InputError(std::string file, int line, int column, const std::string& message)
-      : std::runtime_error(format(file, line, column, message)),
+      : BadInput(format(file, line, column, message)),
         file_(std::move(file)),
         line_(line),
         column_(column) {}

@@ -1,5 +1,6 @@
 #include "util/progress.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <unistd.h>
@@ -18,29 +19,89 @@ std::string format_duration(double s) {
 }
 
 Progress::Progress(std::string label, uint64_t total_steps, double dt, bool enabled, uint64_t first_step)
-    : label_(std::move(label)), total_(total_steps), dt_(dt), enabled_(enabled),
+    : label_(std::move(label)), limit_(total_steps), dt_(dt), enabled_(enabled),
       tty_(::isatty(2)), start_(std::chrono::steady_clock::now()), last_(start_), first_(first_step) {}
+
+void Progress::expect_end_time(double seconds, const std::string& why) {
+  if (!(seconds >= 0) || !std::isfinite(seconds)) return expect_unknown_end(why);
+  expected_end_ = std::min(seconds / dt_, double(limit_));
+  why_ = why;
+}
+
+void Progress::expect_unknown_end(const std::string& why) {
+  expected_end_ = -2;
+  why_ = why;
+}
+
+std::string Progress::line(uint64_t done, double elapsed, const std::string& extra) const {
+  double rate = elapsed > 0 && done > first_ ? double(done - first_) / elapsed : 0;
+  double end = expected_end_ == -1 ? double(limit_) : expected_end_;
+  bool known = end >= 0;
+  // A run may go past its expectation (it is revised at the next sample): the end is then now.
+  if (known) end = std::max(end, double(done));
+  char head[512];
+  if (known)
+    std::snprintf(head, sizeof head, "%s: t = %.4g s of %.4g s%s%s, step %llu/%.0f, %.0f steps/s, ETA %s",
+                  label_.c_str(), double(done) * dt_, end * dt_, why_.empty() ? "" : " ", why_.c_str(),
+                  (unsigned long long)done, end, rate, format_duration(rate > 0 ? (end - double(done)) / rate : -1).c_str());
+  else
+    std::snprintf(head, sizeof head, "%s: t = %.4g s (at most %.4g s), step %llu, %.0f steps/s, ETA unknown%s%s",
+                  label_.c_str(), double(done) * dt_, double(limit_) * dt_, (unsigned long long)done, rate,
+                  why_.empty() ? "" : " ", why_.c_str());
+  return std::string(head) + (extra.empty() ? "" : ", " + extra);
+}
 
 void Progress::update(uint64_t done, const std::string& extra) {
   if (!enabled_) return;
   auto now = std::chrono::steady_clock::now();
   double since = std::chrono::duration<double>(now - last_).count();
-  if (since < (tty_ ? 1.0 : 10.0) && done < total_) return;
+  double wait = tty_ ? 1.0 : printed_ ? 10.0 : 2.0;
+  if (since < wait) return;
   double elapsed = std::chrono::duration<double>(now - start_).count();
-  double rate = elapsed > 0 && done > first_ ? double(done - first_) / elapsed : 0;
-  double eta = rate > 0 ? double(total_ - done) / rate : -1;
-  std::fprintf(stderr, "%s%s: t = %.4g s of %.4g s, step %llu/%llu, %.0f steps/s, ETA %s%s%s",
-               tty_ ? "\r" : "", label_.c_str(), done * dt_, total_ * dt_,
-               (unsigned long long)done, (unsigned long long)total_, rate,
-               format_duration(eta).c_str(), extra.empty() ? "" : ", ", extra.c_str());
-  std::fprintf(stderr, tty_ ? "   " : "\n");
+  std::fprintf(stderr, "%s%s%s", tty_ ? "\r" : "", line(done, elapsed, extra).c_str(), tty_ ? "   " : "\n");
   std::fflush(stderr);
   last_ = now;
-  last_steps_ = done;
+  printed_ = true;
 }
 
 void Progress::finish() {
-  if (enabled_ && tty_) std::fprintf(stderr, "\n");
+  if (enabled_ && tty_ && printed_) std::fprintf(stderr, "\n");
+}
+
+TaskProgress::TaskProgress(std::string label, int total, bool enabled)
+    : label_(std::move(label)), total_(total), enabled_(enabled), start_(std::chrono::steady_clock::now()) {}
+
+void TaskProgress::next(const std::string& what) {
+  ++done_;
+  if (!enabled_) return;
+  double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  double eta = done_ > 1 ? elapsed / (done_ - 1) * (total_ - done_ + 1) : -1;
+  std::fprintf(stderr, "%s %d/%d %s, %s elapsed, ETA %s\n", label_.c_str(), done_, total_, what.c_str(),
+               format_duration(elapsed).c_str(), format_duration(eta).c_str());
+  std::fflush(stderr);
+}
+
+void FallingTrend::add(double t, double value) {
+  if (log_ && !(value > 0)) return;
+  t_.push_back(t);
+  v_.push_back(log_ ? std::log(value) : value);
+  size_t old = 0;
+  while (old < t_.size() && t_[old] < t - window_) ++old;
+  t_.erase(t_.begin(), t_.begin() + long(old));
+  v_.erase(v_.begin(), v_.begin() + long(old));
+}
+
+double FallingTrend::reaches(double target) const {
+  if (t_.size() < 3 || (log_ && !(target > 0))) return -1;
+  double n = double(t_.size()), mt = 0, mv = 0;
+  for (size_t k = 0; k < t_.size(); ++k) mt += t_[k] / n, mv += v_[k] / n;
+  double stt = 0, stv = 0;
+  for (size_t k = 0; k < t_.size(); ++k) stt += (t_[k] - mt) * (t_[k] - mt), stv += (t_[k] - mt) * (v_[k] - mv);
+  double slope = stt > 0 ? stv / stt : 0;
+  if (!(slope < 0)) return -1;
+  double goal = log_ ? std::log(target) : target;
+  double last = v_.back();  // from the latest value, along the fitted slope
+  return goal >= last ? t_.back() : t_.back() + (goal - last) / slope;
 }
 
 }  // namespace repose

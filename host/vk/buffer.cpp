@@ -8,7 +8,7 @@
 
 namespace repose::vk {
 
-Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, bool host_visible)
+Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, Memory memory)
     : ctx_(&ctx), bytes_(bytes) {
   VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bi.size = bytes == 0 ? 16 : bytes;  // Vulkan forbids empty buffers
@@ -20,12 +20,11 @@ Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, bool 
   vkGetBufferMemoryRequirements(ctx.device(), buffer_, &req);
   VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   ai.allocationSize = req.size;
+  const VkMemoryPropertyFlags host = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
   ai.memoryTypeIndex =
-      host_visible ? ctx.memory_type(req.memoryTypeBits,
-                                     VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                         VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
-                                     0)
-                   : ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+      memory == Memory::Device   ? ctx.memory_type(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0)
+      : memory == Memory::Upload ? ctx.memory_type(req.memoryTypeBits, host, 0)
+                                 : ctx.memory_type(req.memoryTypeBits, host, VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
   VkResult r = vkAllocateMemory(ctx.device(), &ai, nullptr, &memory_);
   if (r != VK_SUCCESS) {
     vkDestroyBuffer(ctx.device(), buffer_, nullptr);
@@ -33,9 +32,10 @@ Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, bool 
     throw_vk_error("vkAllocateMemory", r, __FILE__, __LINE__);
   }
   VK_CHECK(vkBindBufferMemory(ctx.device(), buffer_, memory_, 0));
-  // lavapipe's only memory type is device-local and host-visible: map it and skip staging.
-  if (ctx.memory_flags(ai.memoryTypeIndex) & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) host_visible = true;
-  if (host_visible) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  // lavapipe's only memory type is device-local, host-visible and cached: map it and skip staging.
+  VkMemoryPropertyFlags flags = ctx.memory_flags(ai.memoryTypeIndex);
+  if ((flags & host) == host) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  cached_ = mapped_ && (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
 }
 
 Buffer::~Buffer() { release(); }
@@ -49,6 +49,7 @@ Buffer& Buffer::operator=(Buffer&& o) noexcept {
     std::swap(buffer_, o.buffer_);
     std::swap(memory_, o.memory_);
     std::swap(mapped_, o.mapped_);
+    std::swap(cached_, o.cached_);
     std::swap(bytes_, o.bytes_);
   }
   return *this;
@@ -72,7 +73,8 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
     std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
     return;
   }
-  Buffer staging(*ctx_, bytes, 0, true);
+  std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());  // the staging buffer is shared
+  Buffer& staging = ctx_->staging(Memory::Upload, bytes);
   std::memcpy(staging.mapped(), data, bytes);
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     VkBufferCopy region{0, offset, bytes};
@@ -82,11 +84,12 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
 
 void Buffer::download(void* data, size_t bytes, size_t offset) const {
   if (bytes == 0) return;
-  if (mapped_) {
+  if (cached_) {
     std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
     return;
   }
-  Buffer staging(*ctx_, bytes, 0, true);
+  std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());
+  Buffer& staging = ctx_->staging(Memory::Download, bytes);
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     VkBufferCopy region{offset, 0, bytes};
     vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);

@@ -4,8 +4,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 
+#include "repose_shared.h"
+#include "vk/buffer.h"
 #include "vk/vk_check.h"
 
 namespace repose::vk {
@@ -61,7 +66,9 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
 }
 
 DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
+  VkPhysicalDeviceFloatControlsProperties float_controls{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FLOAT_CONTROLS_PROPERTIES};
   VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  subgroup.pNext = &float_controls;
   VkPhysicalDeviceMaintenance3Properties maintenance3{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
   maintenance3.pNext = &subgroup;
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
@@ -83,6 +90,11 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
       info.device_local_bytes = std::max<uint64_t>(info.device_local_bytes, mem.memoryHeaps[h].size);
   info.max_storage_buffers = props.properties.limits.maxPerStageDescriptorStorageBuffers;
   info.max_storage_range = props.properties.limits.maxStorageBufferRange;
+  VkPhysicalDeviceFeatures features;
+  vkGetPhysicalDeviceFeatures(pd, &features);
+  info.float64 = features.shaderFloat64 == VK_TRUE;
+  info.rounds_like_ieee = driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE;
+  info.denorm_preserve32 = float_controls.shaderDenormPreserveFloat32 == VK_TRUE;
   for (int k = 0; k < 3; ++k) info.max_groups[k] = props.properties.limits.maxComputeWorkGroupCount[k];
   info.max_allocation = maintenance3.maxMemoryAllocationSize;
   info.subgroup_size = subgroup.subgroupSize;
@@ -96,30 +108,85 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   return info;
 }
 
+// The process's Vulkan instance, with or without the validation layer: created on first use
+// and kept until the process ends (never destroyed, see Context::open).
+struct ProcessInstance {
+  VkInstance handle = VK_NULL_HANDLE;
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  std::atomic<uint64_t> messages{0};
+};
+
+VkBool32 VKAPI_PTR count_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
+                                 const VkDebugUtilsMessengerCallbackDataEXT* data, void* instance) {
+  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
+    static_cast<ProcessInstance*>(instance)->messages++;
+    std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
+  }
+  return VK_FALSE;
+}
+
+std::mutex registry_mutex;
+
+ProcessInstance& process_instance(bool validation) {
+  static ProcessInstance* kept[2] = {nullptr, nullptr};
+  std::lock_guard<std::mutex> hold(registry_mutex);
+  ProcessInstance*& p = kept[validation ? 1 : 0];
+  if (p) return *p;
+  auto made = std::make_unique<ProcessInstance>();
+  made->handle = create_instance(validation);
+  if (validation) {
+    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(made->handle, "vkCreateDebugUtilsMessengerEXT"));
+    if (!create) throw VulkanError("validation requested but VK_EXT_debug_utils is unavailable");
+    VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    mi.pfnUserCallback = &count_message;
+    mi.pUserData = made.get();
+    VK_CHECK(create(made->handle, &mi, nullptr, &made->messenger));
+  }
+  p = made.release();
+  return *p;
+}
+
+uint32_t choose_rounding(const DeviceInfo& d) {
+  const char* v = std::getenv("REPOSE_ROUNDING");
+  std::string asked = v ? v : "";
+  uint32_t mode = d.rounds_like_ieee ? gpu::kRoundingDevice : gpu::kRoundingCorrected;
+  if (asked == "device") mode = gpu::kRoundingDevice;
+  else if (asked == "corrected") mode = gpu::kRoundingCorrected;
+  else if (asked == "test") mode = gpu::kRoundingTest;
+  else if (!asked.empty())
+    throw VulkanError("REPOSE_ROUNDING = '" + asked + "': give device, corrected or test");
+  if (mode != gpu::kRoundingDevice && !d.float64)
+    throw VulkanError("'" + d.name + "' has no 64-bit floats, which the kernels need to round / and sqrt as the "
+                      "cpu backend does; REPOSE_ROUNDING=device runs without (results then differ from the cpu "
+                      "backend's in the last bits), or use --backend cpu");
+  return mode;
+}
+
 }  // namespace
 
 std::string DeviceInfo::limits_text() const {
-  char line[256];
+  char line[384];
   std::snprintf(line, sizeof line,
                 "workgroups %u x %u x %u, storage buffer range %.3g GiB, allocation %.3g GiB, %u storage buffers "
-                "per stage, subgroup %u, device-local memory %s",
+                "per stage, subgroup %u, device-local memory %s, / and sqrt %s, denormals %s",
                 max_groups[0], max_groups[1], max_groups[2], max_storage_range / 1073741824.0,
                 max_allocation / 1073741824.0, max_storage_buffers, subgroup_size,
-                device_local_mappable ? "mapped directly" : "reached through staging copies");
+                device_local_mappable ? "mapped directly" : "reached through staging copies",
+                rounds_like_ieee ? "rounded as IEEE" : float64 ? "corrected to IEEE in double precision"
+                                                          : "not correctable (no 64-bit floats)",
+                rounds_like_ieee || denorm_preserve32 ? "kept" : "maybe flushed to zero");
   return line;
 }
 
 std::vector<DeviceInfo> Context::list_devices() {
-  VkInstance instance = create_instance(false);
+  VkInstance instance = process_instance(validation_requested()).handle;
+  auto devices = physical_devices(instance);
   std::vector<DeviceInfo> out;
-  try {
-    auto devices = physical_devices(instance);
-    for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
-  } catch (...) {
-    vkDestroyInstance(instance, nullptr);
-    throw;
-  }
-  vkDestroyInstance(instance, nullptr);
+  for (uint32_t i = 0; i < devices.size(); ++i) out.push_back(describe(devices[i], i));
   return out;
 }
 
@@ -130,45 +197,30 @@ int Context::default_device_index(const std::vector<DeviceInfo>& devices) {
   return devices.empty() ? -1 : 0;
 }
 
-VkBool32 Context::on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                             VkDebugUtilsMessageTypeFlagsEXT, 
-                             const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
-  if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
-    static_cast<Context*>(self)->validation_messages_++;
-    std::fprintf(stderr, "vulkan validation: %s\n", data->pMessage);
-  }
-  return VK_FALSE;
+std::shared_ptr<Context> Context::open(int device_index) {
+  bool validation = validation_requested();
+  VkInstance instance = process_instance(validation).handle;
+  auto devices = physical_devices(instance);
+  if (devices.empty()) throw VulkanError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
+  std::vector<DeviceInfo> infos;
+  for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+  if (device_index < 0) device_index = default_device_index(infos);
+  if (device_index >= static_cast<int>(devices.size()))
+    throw VulkanError("--device " + std::to_string(device_index) + ": only " + std::to_string(devices.size()) +
+                      " Vulkan device(s); see `repose devices`");
+  static auto* opened = new std::map<std::pair<bool, int>, std::shared_ptr<Context>>();
+  std::lock_guard<std::mutex> hold(registry_mutex);
+  auto& slot = (*opened)[{validation, device_index}];
+  if (!slot) slot = std::make_shared<Context>(instance, devices[device_index], infos[device_index], validation);
+  return slot;
 }
 
-Context::Context(int device_index) {
-  bool validation = validation_requested();
-  instance_ = create_instance(validation);
+uint64_t Context::validation_messages() const { return validation_ ? process_instance(true).messages.load() : 0; }
+bool Context::validation_enabled() const { return validation_ && process_instance(true).messenger != VK_NULL_HANDLE; }
+
+Context::Context(VkInstance instance, VkPhysicalDevice physical, const DeviceInfo& info, bool validation)
+    : instance_(instance), physical_(physical), info_(info), validation_(validation) {
   try {
-    if (validation) {
-      auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-          vkGetInstanceProcAddr(instance_, "vkCreateDebugUtilsMessengerEXT"));
-      VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-      mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-      mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-      mi.pfnUserCallback = &Context::on_message;
-      mi.pUserData = this;
-      if (!create) throw VulkanError("validation requested but VK_EXT_debug_utils is unavailable");
-      VK_CHECK(create(instance_, &mi, nullptr, &messenger_));
-    }
-    auto devices = physical_devices(instance_);
-    if (devices.empty())
-      throw VulkanError("no Vulkan device found (install mesa-vulkan-drivers for lavapipe)");
-    std::vector<DeviceInfo> infos;
-    for (uint32_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
-    if (device_index < 0) device_index = default_device_index(infos);
-    if (device_index >= static_cast<int>(devices.size()))
-      throw VulkanError("--device " + std::to_string(device_index) + ": only " +
-                        std::to_string(devices.size()) + " Vulkan device(s); see `repose devices`");
-    physical_ = devices[device_index];
-    info_ = infos[device_index];
     vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 
     uint32_t nq = 0;
@@ -185,7 +237,11 @@ Context::Context(int device_index) {
     qi.queueFamilyIndex = queue_family_;
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
+    rounding_ = choose_rounding(info_);
+    VkPhysicalDeviceFeatures enabled{};
+    enabled.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
     VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    di.pEnabledFeatures = &enabled;
     di.queueCreateInfoCount = 1;
     di.pQueueCreateInfos = &qi;
     VK_CHECK(vkCreateDevice(physical_, &di, nullptr, &device_));
@@ -208,20 +264,12 @@ Context::~Context() { release(); }
 void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    upload_staging_.reset();
+    download_staging_.reset();
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
     device_ = VK_NULL_HANDLE;
-  }
-  if (messenger_) {
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
-    if (destroy) destroy(instance_, messenger_, nullptr);
-    messenger_ = VK_NULL_HANDLE;
-  }
-  if (instance_) {
-    vkDestroyInstance(instance_, nullptr);
-    instance_ = VK_NULL_HANDLE;
   }
 }
 
@@ -233,6 +281,17 @@ uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required
       if ((type_bits & (1u << t)) && (memory_.memoryTypes[t].propertyFlags & want) == want) return t;
   }
   throw VulkanError("no Vulkan memory type with the required properties");
+}
+
+Buffer& Context::staging(Memory direction, size_t bytes) {
+  std::unique_ptr<Buffer>& kept = direction == Memory::Upload ? upload_staging_ : download_staging_;
+  if (!kept || kept->size() < bytes) {
+    size_t size = size_t(1) << 20;
+    while (size < bytes) size *= 2;
+    kept.reset();  // free the smaller one first
+    kept = std::make_unique<Buffer>(*this, size, 0, direction);
+  }
+  return *kept;
 }
 
 VkCommandBuffer Context::begin_commands() {

@@ -1,13 +1,18 @@
-// A Vulkan instance, one chosen physical device, its compute queue and a command pool.
-// Owns the handles (RAII, non-copyable). With REPOSE_VALIDATION=1 in the environment the Khronos
-// validation layer is enabled and every message it sends is counted and printed.
+// One chosen Vulkan device, its compute queue, a command pool and staging buffers, on the
+// process's Vulkan instance. With REPOSE_VALIDATION=1 in the environment the Khronos validation
+// layer is enabled and every message it sends is counted and printed.
 #pragma once
 #include <atomic>
+#include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan.h>
 
 namespace repose::vk {
+
+class Buffer;
+enum class Memory;
 
 struct DeviceInfo {
   uint32_t index = 0;
@@ -22,13 +27,22 @@ struct DeviceInfo {
   uint64_t max_allocation = 0;           // maxMemoryAllocationSize
   uint32_t subgroup_size = 0;            // for the record: no kernel depends on it
   bool device_local_mappable = false;    // a device-local type the host can map (no staging)
+  bool float64 = false;                  // shaderFloat64 (the rounding correction needs it)
+  bool rounds_like_ieee = false;         // / and sqrt correctly rounded (lavapipe: LLVM's own)
+  bool denorm_preserve32 = false;        // shaderDenormPreserveFloat32 (vk/spirv_patch.h)
   std::string limits_text() const;       // one line for `repose devices` and error messages
 };
 
 class Context {
  public:
-  // device_index < 0: the first discrete GPU, else the first device (lavapipe on CPU machines).
-  explicit Context(int device_index = -1);
+  // The device `device_index` (< 0: the first discrete GPU, else the first device, which is
+  // lavapipe on CPU machines), opened once per process and shared by every simulation that asks:
+  // a calibration runs hundreds of simulations in one process, and a GPU driver (NVIDIA's, seen on
+  // an H100 and an H200) refuses new instances after a few dozen have been created and destroyed.
+  // The instance and devices live until the process ends. Thread-safe.
+  static std::shared_ptr<Context> open(int device_index = -1);
+  // Use open(); public for make_shared.
+  Context(VkInstance instance, VkPhysicalDevice physical, const DeviceInfo& info, bool validation);
   ~Context();
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
@@ -42,32 +56,37 @@ class Context {
   VkQueue queue() const { return queue_; }
   VkCommandPool command_pool() const { return pool_; }
   const DeviceInfo& info() const { return info_; }
+  // How the kernels round / and sqrt on this device (gpu::kRounding*): as the device does where it
+  // rounds like IEEE, corrected elsewhere; REPOSE_ROUNDING=device|corrected|test overrides.
+  uint32_t rounding() const { return rounding_; }
   // Memory type with all `required` flags, preferring `preferred`; throws if none.
   uint32_t memory_type(uint32_t type_bits, VkMemoryPropertyFlags required,
                        VkMemoryPropertyFlags preferred) const;
   VkMemoryPropertyFlags memory_flags(uint32_t type) const { return memory_.memoryTypes[type].propertyFlags; }
-  // Messages from the validation layer so far (0 when it is off).
-  uint64_t validation_messages() const { return validation_messages_.load(); }
-  bool validation_enabled() const { return messenger_ != VK_NULL_HANDLE; }
+  // Messages from the validation layer so far in this process (0 when it is off).
+  uint64_t validation_messages() const;
+  bool validation_enabled() const;
 
+  // Held while the queue, the command pool or the staging buffers are in use: simulations on
+  // several threads share one context.
+  std::recursive_mutex& mutex() { return mutex_; }
   // Records with `record`, submits, and waits.
   template <class F>
   void submit_and_wait(F&& record) {
+    std::lock_guard<std::recursive_mutex> hold(mutex_);
     VkCommandBuffer cb = begin_commands();
     record(cb);
     end_and_submit(cb);
   }
   VkCommandBuffer begin_commands();
   void end_and_submit(VkCommandBuffer cb);
+  // A host buffer of at least `bytes` for transfers one way (Memory::Upload or Memory::Download),
+  // kept and grown as needed: a transfer allocates nothing.
+  Buffer& staging(Memory direction, size_t bytes);
 
  private:
   void release();
-  static VkBool32 VKAPI_PTR on_message(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                       VkDebugUtilsMessageTypeFlagsEXT types,
-                                       const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                       void* self);
-  VkInstance instance_ = VK_NULL_HANDLE;
-  VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+  VkInstance instance_ = VK_NULL_HANDLE;  // the process's, not owned
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
@@ -75,8 +94,11 @@ class Context {
   VkFence fence_ = VK_NULL_HANDLE;
   uint32_t queue_family_ = 0;
   DeviceInfo info_;
+  bool validation_ = false;
+  uint32_t rounding_ = 0;
+  std::unique_ptr<Buffer> upload_staging_, download_staging_;
   VkPhysicalDeviceMemoryProperties memory_{};
-  std::atomic<uint64_t> validation_messages_{0};
+  std::recursive_mutex mutex_;
 };
 
 }  // namespace repose::vk

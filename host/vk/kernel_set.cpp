@@ -7,6 +7,7 @@
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/embedded_shaders.h"
+#include "vk/spirv_patch.h"
 #include "vk/vk_check.h"
 
 namespace repose::vk {
@@ -54,9 +55,11 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
 
   for (uint32_t k = 0; k < static_cast<uint32_t>(KernelId::Count); ++k) {
     const EmbeddedShader& spv = embedded_shader(kernel_shader_name(static_cast<KernelId>(k)));
+    std::vector<uint32_t> patched;
+    if (ctx.info().denorm_preserve32) patched = with_denormals_preserved(spv.words, spv.bytes / 4);
     VkShaderModuleCreateInfo mi{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    mi.codeSize = spv.bytes;
-    mi.pCode = spv.words;
+    mi.codeSize = patched.empty() ? spv.bytes : patched.size() * 4;
+    mi.pCode = patched.empty() ? spv.words : patched.data();
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(dev, &mi, nullptr, &module));
     modules_.push_back(module);
@@ -71,13 +74,14 @@ VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall
   uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
                 : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
                                              : workgroup_;
-  // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds
-  // (kernels/glsl_prelude.glsl).
-  const uint32_t values[3] = {wg, flags, absent_wall_kinds};
-  const VkSpecializationMapEntry entries[3] = {{0, 0, sizeof(uint32_t)},
+  // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds; 3: how / and
+  // sqrt are rounded (kernels/glsl_prelude.glsl).
+  const uint32_t values[4] = {wg, flags, absent_wall_kinds, ctx_.rounding()};
+  const VkSpecializationMapEntry entries[4] = {{0, 0, sizeof(uint32_t)},
                                                {1, sizeof(uint32_t), sizeof(uint32_t)},
-                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)}};
-  VkSpecializationInfo spec{3, entries, sizeof(values), values};
+                                               {2, 2 * sizeof(uint32_t), sizeof(uint32_t)},
+                                               {3, 3 * sizeof(uint32_t), sizeof(uint32_t)}};
+  VkSpecializationInfo spec{4, entries, sizeof(values), values};
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;

@@ -28,8 +28,8 @@ vec4 quat_mul(vec4 a, vec4 b) {
 }
 
 vec4 quat_normalize(vec4 q) {
-  precise float len = sqrt(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-  return vec4(q.x / len, q.y / len, q.z / len, q.w / len);
+  precise float len = sqrt_rn(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  return vec4(div_rn(q.x, len), div_rn(q.y, len), div_rn(q.z, len), div_rn(q.w, len));
 }
 
 // Rotates q by the angular velocity w over time h: (w h/2, 1) q, normalised, is a rotation by

@@ -21,4 +21,19 @@ uint cell_hash(int cx, int cy, int cz, uint table_size) {
   return h & (table_size - 1u);
 }
 
+// The force f on wall w this step (wall_reduce). With PC.wall_sums also, after the walls' forces,
+// its running sum (times dt: the impulse) and the largest force since the sums began (xyz, w its
+// squared length); 2 begins them anew with this step.
+void store_wall_force(uint w, vec3 f) {
+  B_wall_force[w] = vec4(f.x, f.y, f.z, 0.0f);
+  if (PC.wall_sums == 0u) return;
+  uint n = PC.n_walls;
+  bool fresh = PC.wall_sums == 2u;
+  vec3 before = fresh ? vec3(0.0f) : xyz(B_wall_force[n + w]);
+  precise vec3 sum = before + f;
+  B_wall_force[n + w] = vec4(sum.x, sum.y, sum.z, 0.0f);
+  precise float m = dot3(f, f);
+  if (fresh || m > B_wall_force[2u * n + w].w) B_wall_force[2u * n + w] = vec4(f.x, f.y, f.z, m);
+}
+
 #endif

@@ -55,7 +55,7 @@ struct SphereState {
 // (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
 real3 body_torque(real3 n_x_ft, real r, real roll_arm, real lever, real3 w, real lw) {
   precise real3 t = scale3(n_x_ft, -r);
-  precise real k = -(roll_arm * lever) / lw;
+  precise real k = div_rn(-(roll_arm * lever), lw);
   precise real3 rolled = t + scale3(w, k);
   return pick(roll_arm >= 0.0f && lw > 0.0f, rolled, t);
 }
@@ -91,7 +91,7 @@ real centre_of_mass_lever(real3 cp, real3 centre, real r, cond lone) {
 cond relative_rolling(real3 w_i, real3 w_j, real roll_arm, real lever, real3 n, OUT(real3) tr) {
   precise real3 w = w_i - w_j;
   precise real lw = length3(w);
-  precise real k = -(roll_arm * lever) / lw;
+  precise real k = div_rn(-(roll_arm * lever), lw);
   precise real3 t = scale3(w, k);
   precise real3 rolled = t - scale3(n, dot3(t, n));
   cond rolls = lw > 0.0f;
@@ -127,7 +127,7 @@ real cohesion_intersection_area(real r1, real r2, real dist, real overlap, bool 
     return a_wall;
   }
   precise real q = ((overlap * ((dist + r1) - r2)) * ((dist - r1) + r2)) * ((dist + r1) + r2);
-  precise real a = q / ((4.0f * dist) * dist);
+  precise real a = div_rn(q, (4.0f * dist) * dist);
   return a;
 }
 
@@ -145,9 +145,9 @@ cond touching_spheres(SphereState i, SphereState j, uint flags, OUT(ContactGeome
   precise real3 d = i.x - j.x;
   precise real dist = length3(d);
   precise real overlap = i.radius + j.radius - dist;
-  precise real3 n = real3(d.x / dist, d.y / dist, d.z / dist);
-  precise real radius_star = (i.radius * j.radius) / (i.radius + j.radius);
-  precise real mass_star = 1.0f / (i.inv_mass + j.inv_mass);
+  precise real3 n = real3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
+  precise real radius_star = div_rn(i.radius * j.radius, i.radius + j.radius);
+  precise real mass_star = div_rn(1.0f, i.inv_mass + j.inv_mass);
   precise real ri = i.radius - 0.5f * overlap;
   precise real rj = j.radius - 0.5f * overlap;
   precise real3 spin = scale3(i.w, ri) + scale3(j.w, rj);
@@ -170,7 +170,7 @@ real3 turn_into_tangent_plane(real3 s, real3 n) {
   precise real old_sq = dot3(s, s);
   precise real3 p = s - scale3(n, dot3(s, n));
   precise real new_sq = dot3(p, p);
-  precise real keep = sqrt(old_sq / new_sq);
+  precise real keep = sqrt_rn(div_rn(old_sq, new_sq));
   precise real3 kept = scale3(p, keep);
   return pick(new_sq > 0.0f, kept, p);
 }
@@ -194,9 +194,9 @@ real3 epsd_rolling_torque(real3 n, real3 w_i, real3 w_j, real radius_star, real 
   m = m + scale3(w_roll, k_r_dt);
   precise real m_max = arm * abs(normal_force);
   precise real len = length3(m);
-  precise real ratio = m_max / len;
+  precise real ratio = div_rn(m_max, len);
   precise real3 capped = scale3(m, ratio);
-  precise real c_r = -((2.0f * eta_r) * sqrt(inertia_r * k_r));
+  precise real c_r = -((2.0f * eta_r) * sqrt_rn(inertia_r * k_r));
   precise real3 damped = m + scale3(w_roll, c_r);
   cond slips = len > m_max;
   spring = pick(slips, capped, m);
@@ -216,7 +216,7 @@ real3 spinning_friction_torque(real3 n, real3 w_i, real3 w_j, real mu_spin, real
   precise real3 w = w_i - w_j;
   precise real s = dot3(w, n);
   precise real t_cap = (mu_spin * radius_star) * abs(normal_force);
-  precise real t_stop = abs(s) / ((2.0f * dt) * stop_share);
+  precise real t_stop = div_rn(abs(s), (2.0f * dt) * stop_share);
   precise real t = min(t_cap, t_stop);
   precise real k = pick(s > 0.0f, -t, t);
   return pick(s > 0.0f || s < 0.0f, scale3(n, k), real3(0.0f));
@@ -258,7 +258,7 @@ real3 tangential_force(real3 v_t, real3 n, real st, real gamma_t, real ft_max, f
   if ((flags & kFlagCoulombSpringOnly) != 0u) {
     precise real fs = length3(f_spring);
     cond slips = fs > ft_max;
-    precise real ratio = ft_max / fs;
+    precise real ratio = div_rn(ft_max, fs);
     precise real3 capped = scale3(spring, ratio);
     precise real3 capped_force = scale3(capped, -st);
     shear = pick(slips, capped, spring);
@@ -266,9 +266,9 @@ real3 tangential_force(real3 v_t, real3 n, real st, real gamma_t, real ft_max, f
   }
   precise real f = length3(ft);
   cond slips = f > ft_max;
-  precise real ratio = ft_max / f;
+  precise real ratio = div_rn(ft_max, f);
   precise real3 capped = scale3(ft, ratio);
-  precise real inv_st = -1.0f / st;
+  precise real inv_st = div_rn(-1.0f, st);
   precise real3 capped_spring = scale3(capped, inv_st);
   shear = pick(slips, capped_spring, spring);
   return pick(slips, capped, ft);
@@ -278,15 +278,15 @@ ContactOut hertz_mindlin(ContactGeometry g, real3 v_rel, real3 w_i, real3 w_j, b
                          float dt, uint flags, INOUT(real3) shear) {
   ContactOut o;
   real3 n = g.n;
-  precise real sqrt_rd = sqrt(g.radius_star * g.overlap);
+  precise real sqrt_rd = sqrt_rn(g.radius_star * g.overlap);
   precise real sn = 2.0f * pp.e_star * sqrt_rd;
   precise real st = 8.0f * pp.g_star * sqrt_rd;
   // Fn = 4/3 E* sqrt(R*) dn^(3/2), written as dn * sqrt(R* dn)
-  precise real fn_elastic = (4.0f * pp.e_star * sqrt_rd * g.overlap) / 3.0f;
+  precise real fn_elastic = div_rn(4.0f * pp.e_star * sqrt_rd * g.overlap, 3.0f);
   // pp.damping = -2 sqrt(5/6) beta >= 0
-  precise real gamma_n = pp.damping * sqrt(sn * g.mass_star);
+  precise real gamma_n = pp.damping * sqrt_rn(sn * g.mass_star);
   // The tangential dashpot, unless the pair has it off (LIGGGHTS's `tangential_damping off`).
-  precise real dashpot_t = pp.damping * sqrt(st * g.mass_star);
+  precise real dashpot_t = pp.damping * sqrt_rn(st * g.mass_star);
   precise real gamma_t = pick(pp.tangential_damping > 0.0f, dashpot_t, 0.0f);
 
   precise real vn = dot3(v_rel, n);
@@ -312,7 +312,7 @@ ContactOut hertz_mindlin(ContactGeometry g, real3 v_rel, real3 w_i, real3 w_j, b
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   precise real roll_force = relative ? fn_elastic : abs(fn_grip);
   o.roll_arm = pick(rolling, pp.rolling_friction * roll_force, -1.0f);
-  o.normal_stiffness = (4.0f * pp.e_star * sqrt_rd) / 3.0f;
+  o.normal_stiffness = div_rn(4.0f * pp.e_star * sqrt_rd, 3.0f);
   o.torque_i = real3(0.0f);
   o.torque_j = real3(0.0f);
   if ((flags & kFlagLeanContacts) == 0u) contact_torques(g, w_i, w_j, j_is_wall, flags, o);

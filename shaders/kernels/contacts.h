@@ -70,7 +70,7 @@ bool touch_particle(uint i, uint p, OUT(ContactState) s) {
   s.w_other = sj.w;
   s.mj = B_material[p];
   if (!touching_spheres(si, sj, PC.flags, s.g, s.v_rel)) return false;
-  precise float inv_inertia_r = si.inv_mass / (1.4f * (s.g.ri * s.g.ri)) + sj.inv_mass / (1.4f * (s.g.rj * s.g.rj));
+  precise float inv_inertia_r = div_rn(si.inv_mass, 1.4f * (s.g.ri * s.g.ri)) + div_rn(sj.inv_mass, 1.4f * (s.g.rj * s.g.rj));
   s.inv_inertia_r = inv_inertia_r;
   set_rolling_levers(i, p, si.x, false, s.g);
   return true;
@@ -95,10 +95,10 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   if (!touching) return false;
   vec3 wi = xyz(B_omega[i]);
   precise float ri = rad_i - 0.5f * overlap;
-  precise float mass_star = 1.0f / vi.w;
+  precise float mass_star = div_rn(1.0f, vi.w);
   precise vec3 v_wall = wall_point_velocity(ws, contact_point(xi, n, ri));
   precise vec3 v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
-  precise float inv_inertia_r = vi.w / (1.4f * (ri * ri));
+  precise float inv_inertia_r = div_rn(vi.w, 1.4f * (ri * ri));
   s.g.n = n;
   s.g.overlap = overlap;
   s.g.radius_star = rad_i;
@@ -144,7 +144,7 @@ void process_contact(uint i, uint c) {
     // Full entries only (the host refuses lean ones): the torque is stored per contact.
     vec3 spring = xyz(B_rolling_spring[c]);
     vec3 tr = epsd_rolling_torque(n, wi, st.w_other, st.g.radius_star, o.grip_force, o.normal_stiffness, pp.rolling_friction,
-                                  1.0f / st.inv_inertia_r, PC.rolling_damping, PC.dt, spring);
+                                  div_rn(1.0f, st.inv_inertia_r), PC.rolling_damping, PC.dt, spring);
     o.torque_i = o.torque_i + tr;
     if (!is_wall) o.torque_j = o.torque_j - tr;
     if ((PC.flags & kFlagKeepHistory) == 0u) B_rolling_spring[c] = vec4(spring, 0.0f);

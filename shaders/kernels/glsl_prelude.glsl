@@ -13,6 +13,62 @@ uint invocation_index() {
   return (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
 }
 
+// Correctly rounded division and square root on every device (docs/engineering.md, determinism).
+// The device's result is checked exactly in double precision (a float times a float fits a
+// double, and the difference of two nearly equal doubles is exact) against its neighbours, and
+// the one nearest the true value is kept. With kRoundingDevice the device's result stands.
+layout(constant_id = 3) const uint kRounding = kRoundingDevice;
+
+float step_ulps(float v, int k) { return uintBitsToFloat(uint(int(floatBitsToUint(v)) + k)); }
+
+// kRoundingTest: `v` moved by -2 ... +2 ULP, by a hash of the operands.
+float nudged(float v, uint seed) {
+  float c = step_ulps(v, int((seed * 2654435761u) >> 29u) % 5 - 2);
+  return (isnan(c) || isinf(c) || sign(c) != sign(v)) ? v : c;
+}
+
+// The float next to v, above it in value (up) or below.
+float next_float(float v, bool up) { return step_ulps(v, up == (v > 0.0f) ? 1 : -1); }
+
+float div_rn(float a, float b) {
+  precise float q = a / b;
+  if (kRounding == kRoundingDevice || isnan(q) || isinf(q) || q == 0.0f) return q;
+  if (kRounding == kRoundingTest) q = nudged(q, floatBitsToUint(a) ^ (floatBitsToUint(b) << 7u));
+  // a/b = q + r/b with r = a - q b exact: step towards a/b while the next float has a smaller
+  // |r| (the nearest float to a/b has the smallest; ties cannot happen). Usually one check.
+  precise double da = double(a), db = double(b);
+  precise double r = da - double(q) * db;
+  bool up = (r > 0.0lf) == (b > 0.0f);
+  for (int k = 0; k < 4; ++k) {
+    float c = next_float(q, up);
+    precise double rc = da - double(c) * db;
+    if (isnan(c) || isinf(c) || !(abs(rc) < abs(r))) break;
+    q = c;
+    r = rc;
+  }
+  return q;
+}
+
+float sqrt_rn(float x) {
+  precise float s = sqrt(x);
+  if (kRounding == kRoundingDevice || !(s > 0.0f) || isinf(s)) return s;
+  if (kRounding == kRoundingTest) s = nudged(s, floatBitsToUint(x));
+  // s is the nearest float to sqrt(x) when x lies between the squares of the midpoints to its
+  // neighbours (a midpoint has 25 bits, its square 50: exact in double).
+  precise double dx = double(x);
+  for (int k = 0; k < 4; ++k) {
+    precise double up = 0.5lf * (double(s) + double(step_ulps(s, 1)));
+    if (dx <= up * up) break;
+    s = step_ulps(s, 1);
+  }
+  for (int k = 0; k < 4; ++k) {
+    precise double down = 0.5lf * (double(s) + double(step_ulps(s, -1)));
+    if (dx >= down * down) break;
+    s = step_ulps(s, -1);
+  }
+  return s;
+}
+
 #define INOUT(T) inout T
 #define OUT(T) out T
 

@@ -83,7 +83,7 @@ vec3 stored_contact_normal(uint c) {
   if (p < PC.n_particles) {
     precise vec3 d = xyz(pi) - xyz(B_pos[p]);
     precise float dist = length3(d);
-    n = vec3(d.x / dist, d.y / dist, d.z / dist);
+    n = vec3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
   } else {
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
     float overlap;
@@ -124,7 +124,7 @@ vec3 lean_torque(uint c, uint self, bool owner_side, float rad, vec3 w, float lw
     if (p < PC.n_particles) {
       float rad_j = B_pos[p].w;
       wj = xyz(B_omega[p]);
-      lever = (pi.w * rad_j) / (pi.w + rad_j);  // R*
+      lever = div_rn(pi.w * rad_j, pi.w + rad_j);  // R*
     }
     vec3 tr;
     if (relative_rolling(wi, wj, a.w, lever, stored_contact_normal(c), tr)) t = owner_side ? t + tr : t - tr;

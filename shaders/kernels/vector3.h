@@ -16,7 +16,7 @@ real3 cross3(real3 a, real3 b) {
 }
 
 real length3(real3 a) {
-  precise real r = sqrt(dot3(a, a));
+  precise real r = sqrt_rn(dot3(a, a));
   return r;
 }
 

@@ -20,7 +20,7 @@ vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
   precise float vc = d1 * d4 - d3 * d2;
   if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f && d1 - d3 > 0.0f) {
     feature = kFeatureEdge;
-    precise float v = d1 / (d1 - d3);
+    precise float v = div_rn(d1, d1 - d3);
     precise vec3 q = a + scale3(ab, v);
     return q;
   }
@@ -31,7 +31,7 @@ vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
   feature = kFeatureEdge;
   precise float vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f && d2 - d6 > 0.0f) {
-    precise float w = d2 / (d2 - d6);
+    precise float w = div_rn(d2, d2 - d6);
     precise vec3 q = a + scale3(ac, w);
     return q;
   }
@@ -40,14 +40,14 @@ vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
   precise float e56 = d5 - d6;
   precise float e_sum = e43 + e56;
   if (va <= 0.0f && e43 >= 0.0f && e56 >= 0.0f && e_sum > 0.0f) {
-    precise float w = e43 / e_sum;
+    precise float w = div_rn(e43, e_sum);
     precise vec3 q = b + scale3(c - b, w);
     return q;
   }
   feature = kFeatureFace;
   precise float denominator = va + vb + vc;
-  precise float v = vb / denominator;
-  precise float w = vc / denominator;
+  precise float v = div_rn(vb, denominator);
+  precise float w = div_rn(vc, denominator);
   precise vec3 q = a + scale3(ab, v) + scale3(ac, w);
   return q;
 }
@@ -57,7 +57,7 @@ bool point_contact(vec3 x, vec3 q, float r, float margin, OUT(vec3) n, OUT(float
   precise vec3 d = x - q;
   precise float dist = length3(d);
   if (!(dist > 0.0f)) return false;
-  n = vec3(d.x / dist, d.y / dist, d.z / dist);
+  n = vec3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
   overlap = r - dist;
   return overlap > -margin;
 }
@@ -121,7 +121,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
   precise vec3 q = rel - scale3(dir, s);
   precise float d = length3(q);
   if (!(d > 0.0f) || !(d < ws.p1.w + margin)) return false;  // a candidate may move inside
-  precise float inv_d = -1.0f / d;
+  precise float inv_d = div_rn(-1.0f, d);
   n = scale3(q, inv_d);
   overlap = r + d - ws.p1.w;
   if (margin == 0.0f && (s < 0.0f || s > ws.vel.w)) return false;

@@ -41,7 +41,7 @@ inline std::string drop_case_path() { return std::string(REPOSE_SOURCE_DIR) + "/
 // ~0.2 s per simulation): 13 simulations.
 inline std::string small_ccd_plan(const std::string& extra_high = "0.55") {
   return "[campaign]\nexperiment = \"drop\"\ncase = \"" + drop_case_path() + "\"\n\n"
-         "[response]\nname = \"restitution\"\nmeasured = 0.44\nmeasured_sd = 0.02\ntolerance = 0.01\n\n"
+         "[response]\nname = \"restitution\"\nmeasured = 0.44\nmeasured_sd = 0.02\nmeasured_n = 25\ntolerance = 0.01\n\n"
          "[set]\n\"experiment.drop_height\" = 0.1\n\"simulation.rayleigh_fraction\" = 0.03\n\n"
          "[[factor]]\nname = \"e\"\nkey = \"interaction.stalk/steel.restitution\"\nlow = 0.35\nhigh = " + extra_high + "\n\n"
          "[[factor]]\nname = \"G\"\nkey = \"material.stalk.shear_modulus\"\nlow = 0.5e6\nhigh = 2.0e6\n\n"

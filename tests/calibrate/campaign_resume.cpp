@@ -100,6 +100,10 @@ TEST_CASE("the campaign report holds the calibration, the verification and the f
     CHECK(md.find(part) != std::string::npos);
   for (const char* png : {"contour.png", "main_effects.png", "calibration_e.png", "predicted_vs_simulated.png", "verification.png"})
     CHECK(std::filesystem::file_size(dir + "/out/" + std::string(png)) > 1000);
+  // Design-Expert's views: the surface in 3D beside the contour, the runs as its table.
+  CHECK(md.find("surface_3d.png") != std::string::npos);
+  std::string table = test::read_text_file(dir + "/out/design_expert.csv");
+  CHECK(table.rfind("Std,Run,Factor 1 A:e,Factor 2 B:G (Pa),Response 1 restitution", 0) == 0);
   auto summary = nlohmann::json::parse(test::read_text_file(dir + "/out/summary.json"));
   // The drop test returns the contact restitution within ~2 % (README: LIGGGHTS comparison),
   // so the calibrated e lies near the measured 0.44 and the verification meets 1 %.
@@ -108,6 +112,13 @@ TEST_CASE("the campaign report holds the calibration, the verification and the f
   CHECK(std::abs(double(summary["verification"]["relative_error"])) <= 0.01);
   CHECK(summary["target_reached"] == true);
   // Centre replicates differ only by their packing seed; one sphere's drop does not depend on it.
-  CHECK(double(summary["replicate_sd"]) == 0.0);
-  CHECK(int(summary["replicate_df"]) == 3);  // 2 from the centre points + 1 from the verification
+  CHECK(double(summary["noise"]["restitution"]["sd"]) == 0.0);
+  CHECK(int(summary["noise"]["restitution"]["df"]) == 2);  // the 3 centre points
+  CHECK(int(summary["verification"]["noise"]["df"]) == 3);  // 2 from the centre points + 1 from the verification
+  CHECK(summary["verification"]["agreement"] == "confirmed");
+  // The posterior: e pinned down, G left free by the drop (its 90 % interval spans most of its range).
+  CHECK(summary["parameters"]["e"]["identified"] == true);
+  CHECK(summary["parameters"]["G"]["identified"] == false);
+  CHECK(std::filesystem::exists(dir + "/out/posterior.png"));
+  CHECK(std::filesystem::exists(dir + "/out/runs.csv"));
 }

@@ -3,6 +3,7 @@
 // busy database is refused, and a run that cannot be stored ends the campaign cleanly with the
 // other finished runs kept.
 #include <catch2/catch.hpp>
+#include <filesystem>
 
 #include <chrono>
 #include <thread>
@@ -57,27 +58,37 @@ TEST_CASE("a plan's identity: the case as parsed and its files by content, not i
   CHECK(change.find("`interaction.0.static_friction = 0.31` -> `interaction.0.static_friction = 0.32`") != std::string::npos);
 }
 
-TEST_CASE("a second campaign on a busy database is refused; the first finishes") {
+TEST_CASE("a second campaign on a busy database is refused, the first finishes") {
   std::string dir = test::scratch_dir("busy");
   test::write_text(dir + "/plan.toml", test::small_ccd_plan());
   pid_t first = test::spawn_repose({"calibrate", dir + "/plan.toml", "--out", dir + "/out", "--jobs", "1", "--quiet"},
                                    dir + "/first.log");
   for (int i = 0; i < 2000 && test::count_runs(dir + "/out/campaign.sqlite") < 1; ++i)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  auto second = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 1 --quiet");
+  // Its database from another folder; its folder with another database (each would spoil the
+  // first's runs or its report).
+  auto second = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out2 --db " + dir +
+                                 "/out/campaign.sqlite --jobs 1 --quiet");
+  auto third = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --db " + dir +
+                                "/other.sqlite --jobs 1 --quiet");
   int status = 0;
   ::waitpid(first, &status, 0);
   INFO(second.output);
-  CHECK(second.status == 1);
+  CHECK(second.status == 2);
   CHECK(second.output.find("is in use by another campaign (process " + std::to_string(first)) != std::string::npos);
   CHECK(second.output.find("another --db") != std::string::npos);
+  INFO(third.output);
+  CHECK(third.status == 2);
+  CHECK(third.output.find("/out is in use by process " + std::to_string(first) + " (") != std::string::npos);
+  CHECK(third.output.find("calibrate") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir + "/other.sqlite"));
   INFO(test::read_text_file(dir + "/first.log"));
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 0);
   CHECK(test::count_runs(dir + "/out/campaign.sqlite") == 13);
 }
 
-TEST_CASE("a run that cannot be stored ends the campaign cleanly; every other finished run is kept") {
+TEST_CASE("a run that cannot be stored ends the campaign cleanly, every other finished run is kept") {
   std::string dir = test::scratch_dir("insert_fails");
   test::write_text(dir + "/plan.toml", test::small_ccd_plan());
   const std::string db = dir + "/out/campaign.sqlite";
@@ -117,13 +128,15 @@ TEST_CASE("an unreachable target and a campaign without verification are said as
   auto run = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 2 --quiet");
   INFO(run.output);
   CHECK(run.status == 3);  // target not reached
-  CHECK(run.output.find("target met for") == std::string::npos);
-  CHECK(run.output.find("the target is out of reach in the factor ranges") != std::string::npos);
-  CHECK(run.output.find("verification: none (verification.runs = 0)") != std::string::npos);
-  CHECK(run.output.find("over 0 runs") == std::string::npos);
+  CHECK(run.output.find("TARGET REACHED") == std::string::npos);
+  CHECK(run.output.find("the model does not reach the measured value within the tolerance anywhere in the factor box") !=
+        std::string::npos);
+  CHECK(run.output.find("target NOT reached: nothing verified (verification.runs = 0)") != std::string::npos);
   auto summary = nlohmann::json::parse(test::read_text_file(dir + "/out/summary.json"));
-  CHECK(summary["verification"]["relative_error"].is_null());
-  CHECK(summary["parameters"]["e"]["set_low"].is_null());
+  CHECK(summary["verification"].is_null());
+  CHECK(summary["target_reached"] == false);
+  CHECK(summary["model_on_target"] == false);
   CHECK(summary["provenance"]["case_hash"].get<std::string>().size() == 16);
-  CHECK(test::read_text_file(dir + "/out/report.md").find("none: out of reach") != std::string::npos);
+  CHECK(test::read_text_file(dir + "/out/report.md").find("**The model does not put every calibrating response within its "
+                                                         "tolerance**") != std::string::npos);
 }

@@ -50,7 +50,7 @@ TEST_CASE("a good plan loads and its hash ignores layout and comments") {
 
 TEST_CASE("an unknown factor key is refused at its plan line") {
   std::string msg = plan_error(replace(test::small_ccd_plan(), "stalk/steel.restitution", "stalk/steel.restitutio"), "key");
-  CHECK(msg.find("plan.toml:17: factor.e.key") != std::string::npos);
+  CHECK(msg.find("plan.toml:18: factor.e.key") != std::string::npos);
   CHECK(msg.find("restitutio") != std::string::npos);
   CHECK(msg.find("unknown key") != std::string::npos);
   // A material the case does not have.
@@ -61,7 +61,7 @@ TEST_CASE("an unknown factor key is refused at its plan line") {
 
 TEST_CASE("a reversed range is refused") {
   std::string msg = plan_error(replace(test::small_ccd_plan(), "low = 0.35\nhigh = 0.55", "low = 0.55\nhigh = 0.35"), "range");
-  CHECK(msg.find("plan.toml:19: factor.e.high: range reversed") != std::string::npos);
+  CHECK(msg.find("plan.toml:20: factor.e.high: range reversed") != std::string::npos);
 }
 
 TEST_CASE("a design with fewer runs than model terms is refused") {
@@ -160,4 +160,49 @@ TEST_CASE("every registered experiment is reachable by name") {
   std::string listed;
   for (const std::string& name : types) listed += (listed.empty() ? "" : ", ") + name;
   CHECK_THROWS_WITH(find_experiment("shear_box"), Catch::Contains("registered: " + listed));
+}
+
+TEST_CASE("the new plan keys are checked at their lines") {
+  const std::string base = test::small_ccd_plan();
+  // A held value outside its factor's range, and a held factor on a sweep.
+  std::string msg = plan_error(replace(base, "model = \"quadratic\"", "model = \"quadratic\"\nfix = { G = 3.0e6 }"), "fix_range");
+  CHECK(msg.find("design.fix.G: 3e+06 lies outside the factor's range") != std::string::npos);
+  msg = plan_error(replace(base, "model = \"quadratic\"", "model = \"quadratic\"\nfix = { H = 1.0 }"), "fix_name");
+  CHECK(msg.find("no factor named 'H'") != std::string::npos);
+  // A path's end outside the range, and a model asked of a path.
+  msg = plan_error(replace(base, "type = \"ccd\"\ncentre = 3\nmodel = \"quadratic\"", "type = \"path\"\nlevels = 4\nfrom = { e = 0.2 }"),
+                   "path_from");
+  CHECK(msg.find("design.from.e: 0.2 lies outside") != std::string::npos);
+  msg = plan_error(replace(base, "type = \"ccd\"\ncentre = 3", "type = \"path\"\nlevels = 4"), "path_model");
+  CHECK(msg.find("design.model: a path (steepest ascent) fits no model") != std::string::npos);
+  // A response on an unknown rig; every response verify-only.
+  msg = plan_error(replace(base, "name = \"restitution\"", "name = \"restitution\"\nrig = \"cylinder\""), "rig");
+  CHECK(msg.find("response.rig: no [[rig]] named 'cylinder'") != std::string::npos);
+  msg = plan_error(replace(base, "name = \"restitution\"", "name = \"restitution\"\nrole = \"verify\""), "verify_only");
+  CHECK(msg.find("one must calibrate") != std::string::npos);
+  // Per-run seeds need a pilot that measures the noise.
+  const std::string adaptive = "[campaign]\nexperiment = \"drop\"\ncase = \"" + test::drop_case_path() +
+                               "\"\nmode = \"adaptive\"\n[response]\nname = \"restitution\"\nmeasured = 0.44\n"
+                               "[[factor]]\nname = \"e\"\nkey = \"interaction.stalk/steel.restitution\"\nlow = 0.2\nhigh = 0.8\n"
+                               "[adaptive]\nbudget = 10\nseeds = \"per_run\"\n";
+  CHECK(plan_error(adaptive, "pilot_default").empty());  // 4 fills by default
+  msg = plan_error(adaptive + "pilot = 0\n", "pilot_none");
+  CHECK(msg.find("adaptive.pilot: seeds = \"per_run\" makes every run noisy") != std::string::npos);
+  msg = plan_error(adaptive + "pilot = 1\n", "pilot_one");
+  CHECK(msg.find("adaptive.pilot") != std::string::npos);
+}
+
+TEST_CASE("the shipped plans for the cabbage study's chain load") {
+  const std::string cases = std::string(REPOSE_SOURCE_DIR) + "/cases/calibrate/";
+  CampaignPlan path = load_plan(cases + "cabbage_box_path.toml");
+  CHECK(path.design.type == "path");
+  CHECK(path.design.path_from == std::vector<double>{0.38, 0.1, 0.01});
+  CampaignPlan ccd = load_plan(cases + "cabbage_box_ccd.toml");
+  REQUIRE(ccd.design.fixed.size() == 1);
+  CHECK(ccd.design.fixed[0].second == 0.42);
+  CHECK(ccd.verified_responses() == std::vector<int>{1});  // the cylinder verifies
+  CHECK(ccd.rigs_of(ccd.verified_responses()) == std::vector<int>{1});
+  CampaignPlan adaptive = load_plan(cases + "cabbage_repose_adaptive.toml");
+  CHECK(adaptive.adaptive.pilot == 4);
+  CHECK(adaptive.rigs.size() == 2);
 }

@@ -1,6 +1,7 @@
 // Fills and lattices: deterministic to the byte, overlap-free, inside their regions, exact counts.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -189,13 +190,43 @@ TEST_CASE("200,000 spheres fill in seconds, overlap-free") {
   REQUIRE(spheres.size() == 200000);
   CHECK(seconds < 10);
   // Overlap check of all of them through an independent grid pass.
-  SphereGrid grid(0.01);
+  SphereGrid grid(0.01, fill.box_min, fill.box_max, spheres.size());
   int overlaps = 0;
   for (const SphereSpec& s : spheres) {
     overlaps += grid.find_overlap(s.position, s.radius) >= 0;
     grid.insert(s.position, s.radius);
   }
   CHECK(overlaps == 0);
+}
+
+TEST_CASE("a fill of 100,000 spheres or more is stored in the order of its cells", "[case][fill]") {
+  // Consecutive spheres' distance, median: placed at random they lie about a third of the box
+  // apart (0.4 m here); in cell order a few diameters (touching cells are within 2 x 20 mm).
+  auto median_step = [](const std::vector<SphereSpec>& s) {
+    std::vector<double> d;
+    for (size_t i = 1; i < s.size(); ++i) {
+      double dx = s[i].position[0] - s[i - 1].position[0], dy = s[i].position[1] - s[i - 1].position[1],
+             dz = s[i].position[2] - s[i - 1].position[2];
+      d.push_back(std::sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    std::nth_element(d.begin(), d.begin() + std::ptrdiff_t(d.size() / 2), d.end());
+    return d[d.size() / 2];
+  };
+  for (int count : {kFillInCellOrder - 1, kFillInCellOrder}) {
+    FillSpec fill = box_fill(count, 0.005, 0.005, 3);
+    fill.box_max = {1.0, 1.0, 0.35};  // about 15 % solid
+    std::vector<SphereSpec> spheres;
+    append_fill(fill, spheres);
+    REQUIRE(spheres.size() == size_t(count));
+    std::vector<SphereSpec> first;
+    fill.count = 1;
+    append_fill(fill, first);  // the first sphere placed
+    bool in_cells = count >= kFillInCellOrder;
+    INFO(count << " spheres: median step " << median_step(spheres) << " m");
+    CHECK((median_step(spheres) < 0.05) == in_cells);
+    // Below the threshold the placement order stands: the first sphere is the first placed.
+    CHECK((spheres[0].position == first[0].position) == !in_cells);
+  }
 }
 
 TEST_CASE("a template lattice packs aligned stalks with per-axis spacing", "[case][lattice][clump]") {

@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -21,8 +23,10 @@ inline double draw(uint64_t seed, double lo, double hi, bool log_scale = false) 
 
 // Writes the truth's data in a temporary folder and diagnoses them; `data_out` gets the CSV path.
 // `options` (progress and threads are set here): e.g. the calibrated values given (--params).
+// `keep` (optional) picks the CSV's data rows that are kept (a lab that measured less).
 inline Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth, std::string* data_out = nullptr,
-                                 DiagnoseOptions options = {}) {
+                                 DiagnoseOptions options = {},
+                                 const std::function<bool(const std::string& row)>& keep = {}) {
   namespace fs = std::filesystem;
   fs::path dir = fs::temp_directory_path() / ("repose_hidden_" + name);
   fs::create_directories(dir);
@@ -31,6 +35,15 @@ inline Diagnosis diagnose_hidden(const std::string& name, SyntheticTruth truth, 
   truth.case_path = case_file.string();
   std::string csv = (dir / "data.csv").string();
   write_synthetic_data(truth, csv);
+  if (keep) {
+    std::ifstream in(csv);
+    std::string header, row, kept;
+    std::getline(in, header);
+    while (std::getline(in, row))
+      if (keep(row)) kept += row + "\n";
+    in.close();
+    std::ofstream(csv) << header << "\n" << kept;
+  }
   if (data_out) *data_out = csv;
   options.progress = false;
   options.threads = 2;

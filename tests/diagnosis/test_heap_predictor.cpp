@@ -145,7 +145,7 @@ TEST_CASE("a size spread too tight for the fill box is placed largest first, nev
   }
 }
 
-TEST_CASE("a fill that fits keeps the case's own bytes; one that never fits is refused with why",
+TEST_CASE("a fill that fits keeps the case's own bytes, one that never fits is refused with why",
           "[diagnosis][heap]") {
   CaseSpec spec = load_case(slot_heap());
   spec.spheres.clear();

@@ -1,6 +1,7 @@
 // The verdict's rules on given fit results (diagnose_stages.h), without simulating: an untested
 // candidate that might explain the data keeps a verdict from naming one cause; which pairs the data
-// tell apart; the Akaike-weight confidence of what the verdict names.
+// tell apart; the Akaike-weight confidence of what the verdict names; a candidate's standing from
+// every test, and a verdict that never overrules evidence that disagrees.
 #include <catch2/catch.hpp>
 
 #include "diagnosis/diagnose_stages.h"
@@ -18,6 +19,7 @@ ModelResult fitted(const std::string& id, double aic, bool significant) {
   r.chi2 = aic - 4;
   r.k = 2;
   r.significant = significant;
+  r.standing = significant ? Standing::Beats : Standing::NoBetter;
   return r;
 }
 
@@ -75,4 +77,60 @@ TEST_CASE("pairs of candidates: told apart only when neither mimics the other", 
   CHECK(pairs[1].b_as_a == 4.0);
   CHECK(pairs[1].a_as_b == -1);  // c beats no baseline of its own: a not refitted to it
   CHECK_FALSE(pairs[1].told_apart);
+}
+
+TEST_CASE("a candidate's standing weighs the F test, the held-out gain, the AIC and the baseline's strain",
+          "[diagnosis]") {
+  // p, held-out gain %, held out available, lower AIC, baseline strained.
+  CHECK(candidate_standing(0.001, 60, true, true, false) == Standing::Beats);
+  // Worse held out: never "beats", whatever its F test (issue 27: 5.09 deg against 1.06).
+  CHECK(candidate_standing(0.001, -380, true, true, false) == Standing::HeldOutAgainst);
+  CHECK(candidate_standing(0.001, 0, true, true, false) == Standing::HeldOutAgainst);
+  // Run B of issue 27: p = 0.018, 89 % less held-out error.
+  CHECK(candidate_standing(0.018, 89, true, true, true) == Standing::ModestSupport);
+  CHECK(candidate_standing(0.03, 5, true, true, false) == Standing::ModestSupport);
+  CHECK(candidate_standing(0.03, -5, true, true, false) == Standing::NoBetter);
+  // An F test above 5 %: a large gain with the lower AIC still counts, or where the baseline strains.
+  CHECK(candidate_standing(0.07, 40, true, true, false) == Standing::ModestSupport);
+  CHECK(candidate_standing(0.3, 40, true, false, true) == Standing::StrainedBaseline);
+  CHECK(candidate_standing(0.3, 40, true, false, false) == Standing::NoBetter);
+  CHECK(candidate_standing(0.3, 10, true, false, true) == Standing::NoBetter);
+  // Without held-out conditions the F test alone decides.
+  CHECK(candidate_standing(0.001, 0, false, true, false) == Standing::Beats);
+  CHECK(candidate_standing(0.02, 0, false, true, true) == Standing::NoBetter);
+}
+
+TEST_CASE("evidence that disagrees makes the verdict ambiguous, never a confident adequate", "[diagnosis]") {
+  // Issue 27, run B: the baseline chi^2 12.03 (AIC 14.03); rolling_epsd 5.03 (AIC 9.03, F test
+  // p = 0.018, held-out 1.93 -> 0.216 deg); a size spread near it. Akaike weights 0.58 and 0.048:
+  // once `adequate` with "confidence 0.048".
+  Observations obs = group_observations(read_measured_data(cabbage_data()));
+  Predictor predictor(obs, {}, true, 1);
+  DiagnosisContext c = describe_data(obs, predictor);
+  ModelResult base = fitted("baseline", 14.03, false);
+  base.k = 1;
+  ModelResult epsd = fitted("rolling_epsd", 9.03, false), spread = fitted("size_spread", 9.92, false);
+  epsd.f = 7.0;
+  epsd.p = 0.018;
+  epsd.heldout_gain = 89;
+  epsd.standing = candidate_standing(epsd.p, epsd.heldout_gain, true, true, true);
+  spread.p = 0.3;
+  spread.heldout_gain = -10;
+  spread.standing = candidate_standing(spread.p, spread.heldout_gain, true, true, false);
+  std::vector<ModelResult> fits = {epsd, spread};
+  std::vector<LackOfFit> lack(1);
+  lack[0].p = 0.004;
+  Verdict v = decide_verdict(c, base, fits, {}, {}, lack);
+  CHECK(v.verdict == "ambiguous");
+  REQUIRE(v.cause.size() == 1);
+  CHECK(v.cause[0] == "rolling_epsd");
+  CHECK(v.separation.kind == Separation::Kind::MoreReplicates);
+  CHECK(v.separation.replicate_factor > 1);
+  Confidence conf = verdict_confidence(base, fits, v, {});
+  CHECK(conf.named == Approx(0.58).margin(0.01));
+  // Take its support away and the baseline is adequate again, on its own weight.
+  fits[0].standing = Standing::NoBetter;
+  CHECK(decide_verdict(c, base, fits, {}, {}, lack).verdict == "unexplained");
+  lack[0].p = 0.5;
+  CHECK(decide_verdict(c, base, fits, {}, {}, lack).verdict == "adequate");
 }

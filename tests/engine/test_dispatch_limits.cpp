@@ -1,7 +1,9 @@
-// A hardware GPU may allow only 65,535 workgroups along x: larger dispatches run in rows along y
-// (gpu::dispatch_rows). REPOSE_MAX_GROUPS_X lowers that limit so that small cases run the split
-// paths here: a settling box and a clump settle give the same state bytes split and unsplit, on
-// the cpu backend and on lavapipe.
+// What a hardware GPU does differently, exercised on lavapipe. Some GPUs allow only 65,535
+// workgroups along x: larger dispatches run in rows along y (gpu::dispatch_rows), and
+// REPOSE_MAX_GROUPS_X lowers that limit so that small cases run the split paths. GPUs round / and
+// sqrt their own way: the kernels correct that (div_rn, sqrt_rn), and REPOSE_ROUNDING=test first
+// puts lavapipe's results up to 2 ULP off so that the correction runs here. Either way a settling
+// box and a clump settle give the cpu backend's state bytes.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -18,12 +20,14 @@ std::string slurp(const fs::path& p) {
   return std::string((std::istreambuf_iterator<char>(in)), {});
 }
 
-// The state after `steps` steps of `case_file` on `backend`, with at most `max_x` groups per row (0: default).
+// The state after `steps` steps of `case_file` on `backend`, with at most `max_x` groups per row
+// (0: default) and `env` ("NAME=value ") in the environment.
 std::string state_after(const std::string& case_file, const std::string& backend, int steps, int max_x,
-                        const fs::path& dir) {
-  std::string tag = case_file.substr(0, case_file.find('.')) + "_" + backend + "_" + std::to_string(max_x);
+                        const fs::path& dir, const std::string& extra_env = "") {
+  std::string tag = case_file.substr(0, case_file.find('.')) + "_" + backend + "_" + std::to_string(max_x) +
+                    (extra_env.empty() ? "" : "_env");
   fs::path out = dir / tag, state = dir / (tag + ".state");
-  std::string env = max_x ? "REPOSE_MAX_GROUPS_X=" + std::to_string(max_x) + " " : "";
+  std::string env = (max_x ? "REPOSE_MAX_GROUPS_X=" + std::to_string(max_x) + " " : "") + extra_env;
   auto r = repose::test::run_repose_env(env, "run " + std::string(REPOSE_SOURCE_DIR) + "/cases/" + case_file +
                                                  " --backend " + backend + " --steps " + std::to_string(steps) +
                                                  " --quiet --out " + out.string() + " --state-out " + state.string());
@@ -56,4 +60,20 @@ TEST_CASE("REPOSE_MAX_GROUPS_X outside 1 ... 65535 is refused by name", "[engine
                                                                           " --overwrite");
   CHECK(r.status != 0);
   CHECK(r.output.find("REPOSE_MAX_GROUPS_X") != std::string::npos);
+}
+
+TEST_CASE("divisions and square roots put 2 ULP off and corrected give the cpu backend's bytes", "[engine][bitexact]") {
+  fs::path dir = fs::temp_directory_path() / "repose_test_rounding";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string whole = state_after("settle_box.toml", "cpu", 200, 0, dir);
+  CHECK(state_after("settle_box.toml", "vulkan", 200, 0, dir, "REPOSE_ROUNDING=test ") == whole);
+  // Clumps normalise their quaternions (a square root and four divisions per body and step).
+  std::string clumps = state_after("cabbage_settle.toml", "cpu", 60, 0, dir);
+  CHECK(state_after("cabbage_settle.toml", "vulkan", 60, 0, dir, "REPOSE_ROUNDING=test ") == clumps);
+  auto bad = repose::test::run_repose_env("REPOSE_ROUNDING=fast ", "run " + std::string(REPOSE_SOURCE_DIR) +
+                                          "/cases/settle_box.toml --backend vulkan --steps 1 --quiet --overwrite --out " +
+                                          (dir / "bad").string());
+  CHECK(bad.status != 0);
+  CHECK(bad.output.find("REPOSE_ROUNDING") != std::string::npos);
 }

@@ -134,7 +134,7 @@ TEST_CASE("fixed clumps and spheres: bit-exact on lavapipe and the CPU twin, and
   }
 }
 
-TEST_CASE("fixed = true on spheres, clumps, fills and lattices; a fixed particle given a velocity is refused",
+TEST_CASE("fixed = true on spheres, clumps, fills and lattices, a fixed particle given a velocity is refused",
           "[case][fixed]") {
   std::string base = R"([simulation]
 end_time = 0.1

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "engine_test_support.h"
 #include "io/state_file.h"
@@ -14,8 +15,9 @@ using namespace repose::test;
 
 namespace {
 
+// Per process: ctest runs the test cases of this file at the same time.
 std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("repose_test_" + name)).string();
+  return (std::filesystem::temp_directory_path() / ("repose_test_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
 // The state after n + m steps in one go and after n steps, a state file, and m more (on

@@ -12,23 +12,14 @@
 #include <thread>
 
 #include "tests/cli_support.h"
+#include "tests/vtk_checks.h"
 
 namespace fs = std::filesystem;
+using repose::test::fresh_dir;
 using repose::test::run_repose;
+using repose::test::slurp;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  fs::path d = fs::temp_directory_path() / ("repose_test_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string((std::istreambuf_iterator<char>(in)), {});
-}
 
 const std::string kBox = std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml";
 // The settling box with a frame every ~21 steps, on the cpu backend.
@@ -41,33 +32,6 @@ std::map<std::string, std::string> files_of(const fs::path& dir) {
     if (e.is_regular_file() && e.path().filename() != "summary.json" && e.path().extension() != ".state")
       files[fs::relative(e.path(), dir).string()] = slurp(e.path());
   return files;
-}
-
-// An appended-raw XML VTK file is consistent: each DataArray's offset points at a UInt64 byte
-// count equal to what the piece's counts and the array's type and components need.
-void check_vtp(const fs::path& file, const std::vector<std::string>& names) {
-  std::string text = slurp(file);
-  size_t data = text.find("<AppendedData encoding=\"raw\">");
-  REQUIRE(data != std::string::npos);
-  data = text.find('_', data) + 1;
-  std::smatch m;
-  std::string head = text.substr(0, data);
-  REQUIRE(std::regex_search(head, m, std::regex("NumberOfPoints=\"(\\d+)\"")));
-  size_t points = std::stoul(m[1]);
-  for (const auto& name : names) CHECK(head.find("Name=\"" + name + "\"") != std::string::npos);
-  std::regex array("<DataArray type=\"(\\w+)\"( Name=\"(\\w+)\")?( NumberOfComponents=\"(\\d)\")? format=\"appended\" offset=\"(\\d+)\"/>");
-  int arrays = 0;
-  for (auto it = std::sregex_iterator(head.begin(), head.end(), array); it != std::sregex_iterator(); ++it, ++arrays) {
-    size_t offset = std::stoul((*it)[6]);
-    uint64_t bytes = 0;
-    std::memcpy(&bytes, text.data() + data + offset, 8);
-    REQUIRE(data + offset + 8 + bytes <= text.size());
-    std::string name = (*it)[3];
-    int components = (*it)[5].matched ? std::stoi((*it)[5]) : 1;
-    if (name != "connectivity" && name != "offsets" && name != "wall_index")  // per point
-      CHECK(bytes == points * components * 4);
-  }
-  CHECK(arrays >= 2);
 }
 
 }  // namespace
@@ -148,14 +112,19 @@ TEST_CASE("run --restart continues to the same bytes, frames and wall forces as 
   auto summary = nlohmann::json::parse(slurp(split / "summary.json"));
   CHECK(summary["restarted_from"]["step"] == 130);
   CHECK(summary["steps"] == 300);
-  // Another case's folder is not continued into.
+  // Another case's state is not continued from, and another case's folder not continued into.
   auto other = run_repose(kRun + " --set simulation.seed=2 --steps 10 --restart " + (dir / "at130.state").string() +
                           " --out " + split.string());
   CHECK(other.status == 2);
-  CHECK(other.output.find("another case (or other --set values)") != std::string::npos);
+  CHECK(other.output.find("at130.state: written by a run of case ") != std::string::npos);
+  CHECK(other.output.find(", not of this case (") != std::string::npos);
+  REQUIRE(run_repose(kRun + " --set simulation.seed=2 --steps 10 --out " + (dir / "seed2").string()).status == 0);
+  auto into = run_repose(kRun + " --steps 10 --restart " + (dir / "at130.state").string() + " --out " + (dir / "seed2").string());
+  CHECK(into.status == 2);
+  CHECK(into.output.find("another case (or other --set values)") != std::string::npos);
 }
 
-TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; provenance in summary.json",
+TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read, provenance in summary.json",
           "[engine][cli][output]") {
   fs::path dir = fresh_dir("vtk_series");
   auto r = run_repose(std::string("run ") + REPOSE_SOURCE_DIR + "/cases/drop_cabbage.toml --backend cpu --quiet --steps 40 "
@@ -175,9 +144,12 @@ TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; prove
   };
   CHECK(count(pvd) == frames);
   CHECK(count(walls_pvd) == frames);
-  check_vtp(dir / "o" / "frames" / (name + "_00001.vtp"),
-            {"radius", "speed", "id", "body_id", "velocity", "angular_velocity", "force"});
-  check_vtp(dir / "o" / "frames" / (name + "_walls_00001.vtp"), {"wall_index"});
+  CHECK(count(slurp(dir / "o" / (name + "_contacts.pvd"))) == frames);
+  repose::test::check_vtp(dir / "o" / "frames" / (name + "_00001.vtp"),
+                          {"radius", "speed", "id", "body_id", "material", "orientation", "velocity",
+                           "angular_velocity", "force"});
+  repose::test::check_vtp(dir / "o" / "frames" / (name + "_walls_00001.vtp"), {"wall_index"});
+  repose::test::check_vtp(dir / "o" / "frames" / (name + "_contacts_00001.vtp"), {"normal_force", "force"});
   // 203 sub-spheres of one cabbage: one body id.
   const auto& p = summary["provenance"];
   CHECK(!p["version"].get<std::string>().empty());
@@ -188,7 +160,7 @@ TEST_CASE("run: VTK frames, wall frames and .pvd series ParaView can read; prove
   CHECK(p["device"].get<std::string>().find("thread") != std::string::npos);
 }
 
-TEST_CASE("run: SIGTERM and SIGINT stop cleanly; the checkpoint continues to the bytes of a whole run",
+TEST_CASE("run: SIGTERM and SIGINT stop cleanly, the checkpoint continues to the bytes of a whole run",
           "[engine][cli][restart]") {
   for (int signal : {SIGTERM, SIGINT}) {
     fs::path dir = fresh_dir("signal");

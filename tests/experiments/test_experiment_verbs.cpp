@@ -24,7 +24,7 @@ TEST_CASE("repose experiment slide prints mu_s and writes slide.json, trajectory
   std::ifstream forces(out / "wall_forces.csv");
   std::string header;
   std::getline(forces, header);
-  CHECK(header == "time,plate.fx,plate.fy,plate.fz");
+  CHECK(header == "t_s,plate.fx_N,plate.fy_N,plate.fz_N");
 }
 
 TEST_CASE("repose experiment with the wrong type or a bad [experiment] key fails with exit code 2", "[experiments][cli]") {
@@ -39,7 +39,7 @@ TEST_CASE("repose experiment with the wrong type or a bad [experiment] key fails
   CHECK(bad.output.find("plate") != std::string::npos);
 }
 
-TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance; a replicate that does not rebound "
+TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance, a replicate that does not rebound "
           "is reported and the others go on", "[experiments][cli]") {
   fs::path out = fs::temp_directory_path() / "repose_test_experiment_drop";
   fs::remove_all(out);
@@ -60,7 +60,7 @@ TEST_CASE("repose experiment drop writes wall_forces.csv and its provenance; a r
   std::ifstream forces(out / "wall_forces.csv");
   std::string header, line;
   std::getline(forces, header);
-  CHECK(header == "time,plate.fx,plate.fy,plate.fz");
+  CHECK(header == "t_s,plate.fx_N,plate.fy_N,plate.fz_N");
   int rows = 0;
   double largest = 0;
   while (std::getline(forces, line)) {

@@ -1,9 +1,11 @@
 // Angle-of-repose rigs end to end: fill, settle, lift, settle, measure.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
 
 #include "case/case_loader.h"
 #include "experiments/repose.h"
+#include "plot/chart.h"
 
 using namespace repose;
 
@@ -54,4 +56,34 @@ TEST_CASE("repose: the lift ends early once the lifted wall is clear and the hea
   CHECK(early.settle_time < 20.0);
   // Below settle_energy the heap only creeps: a tenth of a degree in the 15 s it is not simulated.
   CHECK(std::abs(early.angle_deg - full.angle_deg) < 0.5);
+}
+
+// What the console prints first, repose.json's angle and heap.png's title are one headline: the
+// angle the experiment reports, and how it was measured (the slope on heap_side, or the mean of
+// the views' slopes). The slot heap is the cheapest rig (a second of CPU).
+TEST_CASE("repose: the console, repose.json and heap.png state the same headline angle", "[experiments][repose]") {
+  Chart::keep_records();
+  const std::string path = std::string(REPOSE_SOURCE_DIR) + "/cases/diagnosis/slot_heap.toml";
+  struct Rig {
+    std::vector<CaseOverride> sets;
+    std::string measured_as;
+  };
+  for (const Rig& rig : {Rig{{}, "the right slope"},
+                         Rig{{{"experiment.heap_side", "both"}, {"experiment.views", "4"}}, "the mean of 4 views' slopes"}}) {
+    const CaseSpec spec = load_case(path, rig.sets);
+    ExperimentOutcome o = repose_experiment().run(spec, {});
+    const double angle = o.values.at("angle");
+    const std::string headline = printf_text("%.2f deg (%s", angle, rig.measured_as.c_str());
+    const auto dir = std::filesystem::temp_directory_path() / ("repose_test_headline_" + std::to_string(rig.sets.size()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    write_outcome(o, "repose.json", dir.string());
+    const ChartRecord picture = Chart::recorded((dir / "heap.png").string());
+    INFO("console: " << o.lines.front() << "\npicture: " << picture.title);
+    CHECK(o.lines.front().find("angle of repose " + headline) != std::string::npos);
+    CHECK(picture.title == "Angle of repose " + headline + ")");
+    CHECK(o.json["angle_deg"].get<double>() == angle);
+    CHECK(o.json["angle_measured_as"] == rig.measured_as);
+    std::filesystem::remove_all(dir);
+  }
 }

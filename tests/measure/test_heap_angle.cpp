@@ -8,6 +8,8 @@
 
 #include "measure/heap_angle.h"
 #include "measure/heap_png.h"
+#include "plot/chart.h"
+#include "experiments/experiment.h"  // printf_text
 #include "synthetic_heaps.h"
 
 using namespace repose;
@@ -16,6 +18,17 @@ using namespace repose::test;
 namespace {
 
 constexpr double kTolerance = 0.5;  // degrees
+
+// Half a 30 degree wedge against a wall: its crest stands at the wall and, beside it, a stack of
+// spheres along the wall face drops straight to the floor (a few columns, as in the bucket rig).
+std::vector<Sphere> heap_against_wall() {
+  std::vector<Sphere> heap;
+  for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
+    if (s.centre.x >= 0) heap.push_back(s);
+  for (double z = 0.004; z < 0.09; z += 0.008)
+    for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
+  return heap;
+}
 
 }  // namespace
 
@@ -52,14 +65,8 @@ TEST_CASE("front view of an asymmetric wedge: each side its own slope", "[heap]"
 }
 
 TEST_CASE("a heap leaning on a wall: the wall face is no slope and does not enter the mean", "[heap]") {
-  // Half a wedge against a wall: its crest stands at the wall and, beside it, a stack of
-  // spheres along the wall face drops straight to the floor (a few columns, as in the bucket
-  // rig, where this face measured 76 degrees); only the 30 degree slope counts.
-  std::vector<Sphere> heap;
-  for (const Sphere& s : wedge_shell(0.15, 30.0, 30.0, 0.004, 0.1))
-    if (s.centre.x >= 0) heap.push_back(s);
-  for (double z = 0.004; z < 0.09; z += 0.008)
-    for (double y = -0.1; y <= 0.1; y += 0.02) heap.push_back({{-0.004, y, z}, 0.004});
+  // The wall face (in the bucket rig it measured 76 degrees) is no slope; only the 30 degree one counts.
+  const std::vector<Sphere> heap = heap_against_wall();
   const HeapAngle m = measure_heap_angle(heap, {});
   INFO("left " << m.left.angle_deg << " (" << m.left.problem << "), right " << m.right.angle_deg);
   CHECK_FALSE(m.left.valid);
@@ -162,8 +169,63 @@ TEST_CASE("the measurement picture is written as a PNG with the fitted lines", "
   char signature[8];
   in.read(signature, 8);
   CHECK(std::string(signature + 1, 3) == "PNG");
-  CHECK_THROWS_WITH(write_heap_angle_png("/nonexistent/dir/heap.png", m), Catch::Contains("cannot write PNG"));
+  CHECK_THROWS_WITH(write_heap_angle_png("/nonexistent/dir/heap.png", m),
+                    Catch::Contains("cannot write /nonexistent/dir/heap.png: No such file or directory"));
   std::filesystem::remove(path);
+}
+
+namespace {
+
+// What heap.png shows, read back from the chart's record: every legend entry has its series drawn.
+ChartRecord heap_picture(const HeapAngle& m, const HeapPictureCaption& caption, const std::string& name) {
+  Chart::keep_records();
+  const auto path = (std::filesystem::temp_directory_path() / name).string();
+  write_heap_angle_png(path, m, "x", caption);
+  std::filesystem::remove(path);
+  const ChartRecord record = Chart::recorded(path);
+  for (const LegendEntry& e : record.legend) {
+    INFO("legend entry '" << e.label << "'");
+    CHECK(record.points_of(e.colour, e.mark) > 0);
+  }
+  return record;
+}
+
+std::vector<std::string> labels(const ChartRecord& record) {
+  std::vector<std::string> out;
+  for (const LegendEntry& e : record.legend) out.push_back(e.label);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("heap.png: the title states the headline angle, the legend only what is drawn", "[heap]") {
+  const HeapAngle cone = measure_heap_angle(cone_shell(0.2, 30.0, 0.005), {});
+  SECTION("a front view: both fits and their points") {
+    const ChartRecord r = heap_picture(cone, front_view_caption(cone), "repose_test_heap_front.png");
+    CHECK(labels(r) == std::vector<std::string>{"outline", "left fit", "right fit", "fitted points", "floor"});
+    CHECK(r.title.find(printf_text("%.2f deg", cone.mean_deg)) != std::string::npos);
+  }
+  SECTION("an experiment's headline from many views: that number in the title, this view's slopes under it") {
+    HeapPictureCaption caption = front_view_caption(cone);
+    caption.angle_deg = 27.5;
+    caption.measured_as = "the mean of 16 views' slopes";
+    const ChartRecord r = heap_picture(cone, caption, "repose_test_heap_views.png");
+    CHECK(r.title == "Angle of repose 27.50 deg (the mean of 16 views' slopes)");
+    CHECK(r.subtitle.find(printf_text("this view: left %.2f deg, right %.2f deg", cone.left.angle_deg,
+                                      cone.right.angle_deg)) == 0);
+  }
+  SECTION("a heap against a wall, measured on its right slope: no left fit drawn or listed") {
+    const HeapAngle m = measure_heap_angle(heap_against_wall(), {});
+    const ChartRecord r = heap_picture(m, slope_caption(m, "right"), "repose_test_heap_wall.png");
+    CHECK(labels(r) == std::vector<std::string>{"outline", "right fit", "fitted points", "floor"});
+    CHECK(r.points_of(colours::red, Mark::Line) == 0);
+    CHECK(r.title == printf_text("Angle of repose %.2f deg (the right slope)", m.right.angle_deg));
+  }
+  SECTION("a valid slope that does not count is not drawn either") {
+    const ChartRecord r = heap_picture(cone, slope_caption(cone, "left"), "repose_test_heap_left.png");
+    CHECK(labels(r) == std::vector<std::string>{"outline", "left fit", "fitted points", "floor"});
+    CHECK(r.points_of(colours::blue, Mark::Line) == 0);
+  }
 }
 
 TEST_CASE("line fit recovers a known line and refuses degenerate input", "[heap]") {

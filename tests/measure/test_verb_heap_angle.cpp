@@ -97,3 +97,29 @@ TEST_CASE("repose heap-angle measures a photograph's silhouette (PNG) at the giv
   CHECK(r.status != 0);
   CHECK_THAT(r.output, Catch::Contains("needs --pixel"));
 }
+
+TEST_CASE("repose heap-angle re-measures several saved heaps: their spread and its causes", "[verbs]") {
+  // Three smooth cones of 26, 30 and 34 deg: the spread is all heap to heap (sd 4 deg).
+  std::string files;
+  for (double slope : {26.0, 30.0, 34.0}) {
+    const std::string csv = temp("cone_" + std::to_string(int(slope)) + ".csv");
+    repose::write_sphere_csv(csv, repose::test::cone_shell(0.1, slope, 0.004));
+    files += " " + csv;
+  }
+  Run r = run("heap-angle" + files + " --views 4");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("over 3 heaps (side both"));
+  CHECK(std::abs(number_after(r.output, "front view (one photograph)        mean") - 30.0) < 0.5);
+  CHECK(std::abs(number_after(r.output, "any one view                       sd") - 4.0) < 0.3);
+  CHECK(std::abs(number_after(r.output, "packing (heap to heap)") - 4.0) < 0.3);
+  CHECK(number_after(r.output, "line fit on a few bodies") < 0.3);
+  r = run("heap-angle" + files + " --png " + temp("several.png"));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("take one heap"));
+  // A picture has no spheres to turn: refused, naming it.
+  const std::string png = temp("not_a_heap.png");
+  r = run("heap-angle" + files + " " + png);
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Catch::Contains(png + ": several heaps are re-measured from their spheres"));
+}

@@ -58,3 +58,40 @@ TEST_CASE("a picture at equal scale keeps its aspect and fits the size asked", "
     CHECK(bottom - top <= 1000);
   }
 }
+
+TEST_CASE("tick labels tell neighbours apart however narrow the range", "[plot]") {
+  Chart chart(600, 400, 0, 1, 0.44001, 0.44019);
+  chart.save((std::filesystem::temp_directory_path() / "repose_test_ticks.png").string());
+  const auto& y = chart.record().y_ticks;
+  REQUIRE(y.size() >= 3);
+  for (size_t i = 1; i < y.size(); ++i) CHECK(y[i] != y[i - 1]);
+  CHECK(y.front().rfind("0.4400", 0) == 0);
+  CHECK(tick_labels({0, 0.2, 0.4}) == std::vector<std::string>{"0", "0.2", "0.4"});
+}
+
+TEST_CASE("the legend takes the corner free of data, and records what each entry shows", "[plot]") {
+  Chart::keep_records();
+  Chart chart(600, 400, 0, 1, 0, 1);
+  // Points crowd the top right and top left; the bottom right stays empty.
+  for (int i = 0; i < 10; ++i) {
+    chart.marker(0.75 + 0.02 * i, 0.95 - 0.01 * i, colours::red);
+    chart.square(0.05 + 0.02 * i, 0.95 - 0.01 * i, colours::blue);
+  }
+  chart.polyline({0, 0.3}, {0, 0.3}, colours::green);
+  chart.legend({{"runs", colours::red, Mark::Dot}, {"chosen", colours::blue, Mark::Square}, {"fit", colours::green}});
+  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend.png").string();
+  chart.save(path);
+  ChartRecord r = Chart::recorded(path);
+  CHECK_FALSE(r.legend_covers_data);
+  REQUIRE(r.legend.size() == 3);
+  CHECK(r.points_of(colours::red, Mark::Dot) == 10);
+  CHECK(r.points_of(colours::blue, Mark::Square) == 10);
+  CHECK(r.points_of(colours::green, Mark::Line) == 2);
+  CHECK(r.points_of(colours::red, Mark::Line) == 0);
+  // The legend box is white-ish in the bottom right: the dot sample of "runs" is red there.
+  auto [left, top, right, bottom] = chart.plot_area();
+  int red = 0;
+  for (int row = bottom - 80; row < bottom; ++row)
+    for (int col = right - 200; col < right; ++col) red += chart.pixel(col, row) == colours::red;
+  CHECK(red > 20);
+}

@@ -186,3 +186,43 @@ TEST_CASE("cli: calibration curve inversion and its refusals", "[stats][cli]") {
   CHECK(r.code != 0);
   CHECK(r.err.find("sweep.csv:1: no column named 'missing'") != std::string::npos);
 }
+
+TEST_CASE("cli: optimize searches the factorial cube by default, the axial range on request", "[stats][cli]") {
+  Scratch s;
+  Result d = run_repose(s, "design --type ccd --factors A:-1:1,B:-1:1 --seed 1 --out d.csv");
+  REQUIRE(d.code == 0);
+  // A bowl whose bottom lies at B = 1.5 coded: outside the cube, inside the axial range (1.414).
+  Table t = read_csv(s.path("d.csv"));
+  t.columns.push_back("Y");
+  std::vector<double> a = t.numeric_column("A_coded"), b = t.numeric_column("B_coded");
+  for (int i = 0; i < t.rows(); ++i) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6f", 3 + a[i] * a[i] + (b[i] - 1.3) * (b[i] - 1.3) + 0.001 * (i % 3));
+    t.cells[i].push_back(buf);
+  }
+  s.write("runs.csv", format_csv(t));
+  REQUIRE(run_repose(s, "fit runs.csv --response Y --factors A_coded,B_coded --model quadratic --json fit.json").code == 0);
+  Result cube = run_repose(s, "optimize fit.json --minimize --json cube.json");
+  REQUIRE(cube.code == 0);
+  CHECK(cube.out.find("B_coded [-1, 1]") != std::string::npos);
+  double b_cube = Json::parse(s.read("cube.json"), "cube.json").at("optimum").items()[1].number();
+  CHECK(b_cube == Approx(1.0).margin(1e-3));  // pressed against the cube's face
+  Result axial = run_repose(s, "optimize fit.json --minimize --within axial --json axial.json");
+  REQUIRE(axial.code == 0);
+  double b_axial = Json::parse(s.read("axial.json"), "axial.json").at("optimum").items()[1].number();
+  CHECK(b_axial == Approx(1.3).margin(0.01));  // the bowl's bottom, inside +-1.414
+}
+
+TEST_CASE("cli: fit --figures and ascent-plot write Design-Expert's views", "[stats][cli]") {
+  Scratch s;
+  Result fit = run_repose(s, "fit " + std::string(REPOSE_SOURCE_DIR) +
+                                 "/tests/stats/data/cotton_table3_pb.csv --response Y --factors A,B,C,D,E,F "
+                                 "--model linear --figures views");
+  REQUIRE(fit.code == 0);
+  for (const char* f : {"views/pareto.png", "views/half_normal.png", "views/surface_3d.png"}) CHECK(s.exists(f));
+  s.write("path.csv", "step,angle\n1,13.4\n2,15.3\n2,15.9\n3,17.1\n");
+  Result plot = run_repose(s, "ascent-plot path.csv --response angle --target 17.56 --png ascent.png");
+  REQUIRE(plot.code == 0);
+  CHECK(plot.out.find("step 2: angle = 15.6 (2 runs)") != std::string::npos);
+  CHECK(s.exists("ascent.png"));
+}

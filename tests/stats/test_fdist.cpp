@@ -47,3 +47,18 @@ TEST_CASE("F upper tail: closed form for d1 = 2 and printed critical values", "[
   // Large degrees of freedom stay accurate: F(200, 200) is nearly symmetric about 1.
   CHECK(f_upper_tail(1.0, 200, 200) == Approx(0.5).margin(1e-10));
 }
+
+TEST_CASE("chi-square: closed forms and printed quantiles", "[stats][fdist]") {
+  // df = 2: P(X <= x) = 1 - exp(-x / 2); df = 1: erf(sqrt(x / 2)).
+  for (double x : {0.01, 0.5, 2.0, 7.0, 40.0}) {
+    CHECK(chi_square_cdf(x, 2) == Approx(1 - std::exp(-x / 2)).epsilon(1e-12));
+    CHECK(chi_square_cdf(x, 1) == Approx(std::erf(std::sqrt(x / 2))).epsilon(1e-12));
+  }
+  // Tabulated quantiles (4 decimals): 0.025 and 0.975 at 3, 9 and 30 df.
+  CHECK(chi_square_quantile(0.025, 3) == Approx(0.2158).margin(1e-4));
+  CHECK(chi_square_quantile(0.975, 3) == Approx(9.3484).margin(1e-4));
+  CHECK(chi_square_quantile(0.025, 9) == Approx(2.7004).margin(1e-4));
+  CHECK(chi_square_quantile(0.975, 9) == Approx(19.0228).margin(1e-4));
+  CHECK(chi_square_quantile(0.975, 30) == Approx(46.9792).margin(1e-4));
+  CHECK(chi_square_cdf(0, 4) == 0);
+}

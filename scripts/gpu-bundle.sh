@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Packs what scripts/gpu-check.sh needs on a machine that has a GPU but neither this project's
+# packages nor a network: build/repose, the engine tests, vulkaninfo, and every shared library they
+# load apart from the C library itself, into one folder (default .gpu-bundle, ignored by git).
+# Usage: bash scripts/gpu-bundle.sh [DIR]      (after scripts/build.sh)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+dir=${1:-.gpu-bundle}
+rm -rf "$dir"
+mkdir -p "$dir/bin" "$dir/lib"
+cp build/repose build/test_engine "$dir/bin/"
+command -v vulkaninfo >/dev/null && cp "$(command -v vulkaninfo)" "$dir/bin/"
+for exe in "$dir"/bin/*; do
+  ldd "$exe" | awk '$3 ~ /^\// {print $3}'
+done | sort -u | while read -r lib; do
+  case "$(basename "$lib")" in
+    libc.so*|libm.so*|libpthread.so*|libdl.so*|librt.so*|ld-linux*) ;;  # the machine's own glibc
+    *) cp -L "$lib" "$dir/lib/" ;;
+  esac
+done
+# The tests find their cases under the source folder compiled into them, and run the binary
+# whose path is compiled into them.
+flags=build/CMakeFiles/test_engine.dir/flags.make
+grep -o 'REPOSE_SOURCE_DIR=[^ ]*' $flags | head -1 | cut -d= -f2- | tr -d '"\\' > "$dir/source_dir"
+grep -o 'REPOSE_BINARY=[^ ]*' $flags | head -1 | cut -d= -f2- | tr -d '"\\' > "$dir/binary_path"
+du -sh "$dir"

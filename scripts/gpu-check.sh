@@ -1,0 +1,95 @@
+#!/usr/bin/env bash
+# Everything we want to know the first time Repose meets a hardware GPU, in one report:
+# the devices and their limits, the bit-exact twin tests run on the GPU (every kernel against the
+# CPU twin, whole runs byte-compared with the cpu backend), and `repose bench` at 1e5, 1e6 and
+# 1e7 spheres on the GPU beside the cpu backend on every core.
+# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"]
+#   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
+#             default: build/ of this checkout.
+#   --out:    where report.md and the raw logs go (default out/gpu-check).
+# Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
+set -u
+cd "$(dirname "$0")/.."
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --bundle) bundle=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    --sizes) sizes=$2; shift 2 ;;
+    *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
+  esac
+done
+mkdir -p "$out"
+out=$(cd "$out" && pwd)
+report="$out/report.md"
+if [ -n "$bundle" ]; then
+  bundle=$(cd "$bundle" && pwd)
+  bin="$bundle/bin"
+  export LD_LIBRARY_PATH="$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  src=$(cat "$bundle/source_dir")
+  # The tests read cases from the source folder compiled into them: point it here.
+  if [ "$src" != "$PWD" ] && [ ! -e "$src" ]; then mkdir -p "$(dirname "$src")" && ln -s "$PWD" "$src"; fi
+  exe=$(cat "$bundle/binary_path")
+  if [ ! -e "$exe" ]; then mkdir -p "$(dirname "$exe")" && ln -s "$bin/repose" "$exe"; fi
+else
+  bin="build"
+fi
+# The GPU's Vulkan driver, unless the caller chose one (never lavapipe here).
+if [ -z "${VK_DRIVER_FILES:-}" ]; then
+  for f in /usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/nvidia_icd.json \
+           /etc/vulkan/icd.d/nvidia_icd.json /usr/share/vulkan/icd.d/radeon_icd.x86_64.json \
+           /usr/share/vulkan/icd.d/intel_icd.x86_64.json; do
+    if [ -f "$f" ]; then export VK_DRIVER_FILES=$f; break; fi
+  done
+fi
+
+say() { printf '%s\n' "$*" | tee -a "$report"; }
+# step TITLE SECONDS COMMAND...: runs it with a limit, keeps its log, puts its tail in the report.
+step() {
+  local title=$1 limit=$2; shift 2
+  local log="$out/$(echo "$title" | tr -c 'A-Za-z0-9_\n' '_' | tr -s _).log"
+  local t0=$(date +%s)
+  timeout --signal=TERM --kill-after=10 "$limit" "$@" >"$log" 2>&1
+  local rc=$? t1=$(date +%s)
+  say ""
+  say "## $title"
+  say "\`$*\` -> exit $rc in $((t1 - t0)) s$([ $rc = 124 ] && echo " (stopped at the $limit s limit)")"
+  say '```'
+  tail -n "${TAIL:-40}" "$log" | tee -a "$report" >/dev/null
+  say '```'
+  return $rc
+}
+
+: >"$report"
+say "# Repose on a hardware GPU: $(date -u '+%Y-%m-%d %H:%M UTC')"
+say ""
+say "- version: $(git describe --always --dirty 2>/dev/null || echo unknown); binaries: $bin"
+say "- host: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(free -g | awk '/Mem:/{print $2}') GiB"
+say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}"
+step "nvidia-smi" 30 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
+[ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" 60 "$bin/vulkaninfo" --summary
+step "repose devices" 60 "$bin/repose" devices
+# Each kernel alone from the twin's buffers first: the table of kernels whose own arithmetic differs.
+TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
+# Every twin test: the GPU against the CPU twin after each dispatch, whole runs, split dispatches.
+TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
+TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" "~repose devices lists lavapipe" -d yes
+cmp_runs() {  # a case on the GPU and on the cpu backend: the same state bytes?
+  local name=$1 steps=$2
+  "$bin/repose" run "cases/$name.toml" --backend vulkan --steps "$steps" --quiet --overwrite \
+      --out "$out/$name-gpu" --state-out "$out/$name-gpu.state" &&
+    "$bin/repose" run "cases/$name.toml" --backend cpu --steps "$steps" --quiet --overwrite \
+      --out "$out/$name-cpu" --state-out "$out/$name-cpu.state" &&
+    cmp "$out/$name-gpu.state" "$out/$name-cpu.state" && echo "$name: identical state after $steps steps"
+}
+export -f cmp_runs
+export bin out
+step "settle_box: GPU and cpu backend byte for byte" 200 bash -c 'cmp_runs settle_box 2000'
+step "cabbage_settle: GPU and cpu backend byte for byte" 300 bash -c 'cmp_runs cabbage_settle 2000'
+for n in $sizes; do
+  steps=$([ "$n" -ge 10000000 ] && echo 100 || echo 300)
+  TAIL=30 step "bench, $n spheres" 600 "$bin/repose" bench --n "$n" --backend vulkan cpu --steps "$steps" \
+      --cache "$out/bench-cache"
+done
+say ""
+say "Logs: $out"
