@@ -77,6 +77,18 @@ void place_body(CaseSpec& spec, const DropSurface& surface, double height, const
   for (int k = 0; k < 3; ++k) (*position)[k] += (surface.level + height - lowest) * up[k];
 }
 
+// The highest frame after the first touch at touch_time, refined between its neighbours as camera
+// software does.
+double camera_rebound_height(const std::vector<std::pair<double, double>>& trajectory, double touch_time) {
+  size_t first_after = 0;
+  while (trajectory[first_after].first <= touch_time) ++first_after;
+  size_t best = first_after;
+  for (size_t k = first_after; k < trajectory.size(); ++k)
+    if (trajectory[k].second > trajectory[best].second) best = k;
+  if (best == first_after || best + 1 >= trajectory.size()) return trajectory[best].second;
+  return parabola_peak(trajectory[best - 1].second, trajectory[best].second, trajectory[best + 1].second);
+}
+
 // The camera's frames of the body's lowest point (particles that move: fixed ones are the rig's),
 // until past the rebound's apex; contact and lift-off from the body's speed along `up`.
 DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_down, const DropOptions& options) {
@@ -147,15 +159,7 @@ DropResult film_drop(const CaseSpec& spec, const DropSurface& surface, double g_
     r.rebounded = false;
     return r;
   }
-  // The highest frame after lift-off, refined between its neighbours as camera software does.
-  size_t first_after = 0;
-  while (r.trajectory[first_after].first <= touch_time) ++first_after;
-  size_t best = first_after;
-  for (size_t k = first_after; k < r.trajectory.size(); ++k)
-    if (r.trajectory[k].second > r.trajectory[best].second) best = k;
-  if (best == first_after || best + 1 >= r.trajectory.size()) r.rebound_height = r.trajectory[best].second;
-  else r.rebound_height = parabola_peak(r.trajectory[best - 1].second, r.trajectory[best].second,
-                                        r.trajectory[best + 1].second);
+  r.rebound_height = camera_rebound_height(r.trajectory, touch_time);
   r.restitution = std::sqrt(std::max(0.0, r.rebound_height) / ex.drop_height);
   r.centre_rise = centre_rise(r.centre_trajectory);
   return r;
