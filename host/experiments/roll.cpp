@@ -152,6 +152,7 @@ void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options
 RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
   CaseSpec spec = input;
   const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
+  if (ex.random_orientation) random_body_orientation(spec, spec.seed);  // as a replicate does
   int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
   Incline in(ex);
   double extent = place_on_incline(spec, in);
@@ -167,7 +168,7 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
 
 std::vector<std::string> roll_keys() {
   std::vector<std::string> keys = tilt_keys();
-  keys.insert(keys.end(), {"method", "incline_angle", "slope_distance", "stop_speed"});
+  keys.insert(keys.end(), {"method", "incline_angle", "slope_distance", "stop_speed", "random_orientation"});
   return keys;
 }
 
@@ -182,6 +183,7 @@ std::shared_ptr<const ExperimentSettings> read_roll_keys(const Section& s) {
   }
   if (auto d = s.number("slope_distance")) ex.slope_distance = positive(s, "slope_distance", *d);
   if (auto v = s.number("stop_speed")) ex.stop_speed = positive(s, "stop_speed", *v);
+  ex.random_orientation = s.boolean("random_orientation").value_or(false);
   return settings;
 }
 

@@ -47,6 +47,7 @@ struct RollSettings : TiltSettings {
   double incline_deg = 10;         // beta
   double slope_distance = 0.26;    // S, m along the incline from the release point to the foot
   double stop_speed = 0.005;       // m/s: the body has stopped
+  bool random_orientation = false; // the body at an orientation drawn from simulation.seed (a seed is a replicate)
 };
 
 // The smallest rolling friction a diagnosis tries (a ball bearing): also what bounds a believable

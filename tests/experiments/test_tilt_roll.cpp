@@ -117,3 +117,20 @@ TEST_CASE("inclined rolling: the distance on the floor matches the constant-roll
   // The cabbage study's formula ignores the loss at the foot: it reads mu_r a few % high.
   CHECK(r.mu_r == Approx(mu_r).epsilon(0.08));
 }
+
+TEST_CASE("random_orientation: a roll's seed is a replicate, as --replicates draws it", "[experiments][roll][clump]") {
+  // A calibration varies only the seed between its replicates, so the orientation must follow it.
+  const std::string path = std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/roll_cabbage.toml";
+  auto seeded = [&](int seed) {
+    return load_case(path, {{"experiment.random_orientation", "true"}, {"simulation.seed", std::to_string(seed)}});
+  };
+  double l2 = run_roll(seeded(2)).rolling_distance, l3 = run_roll(seeded(3)).rolling_distance;
+  INFO("seed 2: L = " << l2 << " m, seed 3: L = " << l3 << " m");
+  CHECK(l2 != l3);                                            // another orientation, another roll
+  CHECK(run_roll(seeded(2)).rolling_distance == l2);         // same seed, same bytes
+  ExperimentRun two;
+  two.replicates = 2;                                         // seeds 2 and 3 from base seed 2
+  two.strict = false;
+  ExperimentOutcome o = roll_experiment().run(seeded(2), two);
+  CHECK(o.values.at("rolling_distance") == Approx((l2 + l3) / 2).epsilon(1e-12));
+}
