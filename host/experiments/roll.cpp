@@ -149,10 +149,16 @@ void run_until_stopped(const CaseSpec& spec, const ExperimentRunOptions& options
 
 }  // namespace
 
-RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, bool require_stop) {
+namespace {
+
+// Orientations a random_orientation roll draws for one seed before it reports that the body did
+// not roll: a lab re-places a cabbage that rests on its ridges.
+constexpr int kMostPlacements = 8;
+
+RollResult roll_once(const CaseSpec& input, const ExperimentRunOptions& options, uint64_t orientation_seed) {
   CaseSpec spec = input;
   const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
-  if (ex.random_orientation) random_body_orientation(spec, spec.seed);  // as a replicate does
+  if (ex.random_orientation) random_body_orientation(spec, orientation_seed);  // as a replicate does
   int plate_material = spec.walls.at(find_wall(spec, ex.plate, "plate (its material)")).material;
   Incline in(ex);
   double extent = place_on_incline(spec, in);
@@ -161,7 +167,21 @@ RollResult run_roll(const CaseSpec& input, const ExperimentRunOptions& options, 
   r.incline_deg = ex.incline_deg;
   r.slope_distance = in.S;
   run_until_stopped(spec, options, r);
+  return r;
+}
+
+}  // namespace
+
+RollResult run_roll(const CaseSpec& spec, const ExperimentRunOptions& options, bool require_stop) {
+  const RollSettings& ex = settings_of<RollSettings>(spec.experiment);
+  RollResult r = roll_once(spec, options, spec.seed);
+  // Placed anew from a stream of its own (seed + k * 2^32 never meets another replicate's seed).
+  for (int k = 1; ex.random_orientation && r.ending == RollEnding::DidNotRoll && k < kMostPlacements; ++k) {
+    r = roll_once(spec, options, spec.seed + (uint64_t(k) << 32));
+    r.placements = k + 1;
+  }
   if (r.ending != RollEnding::Stopped && require_stop) throw std::runtime_error(r.problem);
+  Incline in(ex);
   r.mu_r = in.S * std::sin(in.beta) / (in.S * std::cos(in.beta) + r.rolling_distance);
   return r;
 }
@@ -215,6 +235,7 @@ ExperimentOutcome roll_outcome(const CaseSpec& spec, const std::shared_ptr<const
   j["mu_r"] = stopped ? OrderedJson(r->mu_r) : OrderedJson(nullptr);  // the formula needs a stop
   j["speed_at_foot"] = r->speed_at_foot;
   j["stop_time"] = r->stop_time;
+  j["placements"] = r->placements;
   o.files.push_back(text_file("trajectory.csv", [r](std::ostream& out) {
     out << "t_s,x_m,speed_m_per_s\n";
     for (const auto& s : r->trajectory) out << s.time << "," << s.x << "," << s.speed << "\n";

@@ -28,6 +28,7 @@ struct RollResult {
   double mu_r = 0;              // the study's formula
   double stop_time = 0;
   double speed_at_foot = 0;     // m/s when the centre passed the foot
+  int placements = 1;           // random_orientation: orientations drawn until one rolled
   RollEnding ending = RollEnding::Stopped;  // anything else only when a stop is not required
   std::string problem;          // not Stopped: what happened, in words
   std::vector<RollSample> trajectory;
@@ -47,7 +48,8 @@ struct RollSettings : TiltSettings {
   double incline_deg = 10;         // beta
   double slope_distance = 0.26;    // S, m along the incline from the release point to the foot
   double stop_speed = 0.005;       // m/s: the body has stopped
-  bool random_orientation = false; // the body at an orientation drawn from simulation.seed (a seed is a replicate)
+  bool random_orientation = false; // the body at an orientation drawn from simulation.seed (a seed is a
+                                   // replicate); one that rests on its ridges is placed anew, as in the lab
 };
 
 // The smallest rolling friction a diagnosis tries (a ball bearing): also what bounds a believable
