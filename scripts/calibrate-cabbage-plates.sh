@@ -5,7 +5,7 @@
 #   e    from the drop from 500 mm (rebound height, Table 4; friction 0, as the study set it)
 #   mu_s from the four-cabbage slide (tilt at which the group slides, Table 5; e calibrated)
 #   mu_r from the roll (beta 10 deg, S 260 mm, distance on the floor, Table 6; e and mu_s calibrated;
-#        each seed rolls the body at another orientation, so 5 seeds per level are replicates)
+#        each seed rolls the body at another orientation, so 10 seeds per level are replicates)
 # Each step writes its plan to OUT/plans, runs `repose calibrate` on it (resumable: a second call
 # runs only what is missing) and takes the calibrated value into the next step. OUT/table.md
 # gathers the results as the study's tables do. About 11 CPU minutes in all (one thread per run).
@@ -64,7 +64,7 @@ for p in "${PLATES[@]}"; do
     interaction.0.static_friction 0.2 0.9 8 1 3 "$p" "\"interaction.0.restitution\" = $e"
   mu_s=$(value "slide_$p" "d['parameters']['static_friction']['value']")
   plan "roll_$p" roll experiments/roll_cabbage.toml rolling_distance "${ROLL[$p]}" 0.02 \
-    interaction.0.rolling_friction 0.02 0.05 7 5 20 "$p" "\"interaction.0.preset\" = [\"cabbage\", \"$p\"]" \
+    interaction.0.rolling_friction 0.02 0.05 7 10 60 "$p" "\"interaction.0.preset\" = [\"cabbage\", \"$p\"]" \
     "\"experiment.random_orientation\" = true" \
     "\"interaction.0.restitution\" = $e" "\"interaction.0.static_friction\" = $mu_s"
 done

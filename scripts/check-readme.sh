@@ -57,15 +57,17 @@ check "gives sqrt(h/H) = 0.4145, 0.4159" 0.4145 1 "sqrt\(h/H\) = " -- experiment
 check "0.4181, 0.4189 at H = 0.3 ... 0.5 m" 0.4189 1 "sqrt\(h/H\) = " -- experiment drop cases/drop_sphere.toml --height 0.5
 check "h = 80.6 mm, sqrt(h/H) = 0.4016" 80.6 1000 "rebound h = " -- experiment drop cases/experiments/drop_on_cabbages.toml
 check "h = 80.6 mm, sqrt(h/H) = 0.4016" 0.4016 1 "sqrt\(h/H\) = " -- experiment drop cases/experiments/drop_on_cabbages.toml
-check "gives h = 4.63 mm, e = 0.0962 (seed 1)" 4.63 1000 "\(seed 1\): h = " -- experiment drop cases/drop_cabbage.toml --replicates 3
-check "gives h = 4.63 mm, e = 0.0962 (seed 1)" 0.0962 1 "\(seed 1\): h = [0-9.e-]+ m, e = " -- experiment drop cases/drop_cabbage.toml --replicates 3
-check "h = 0.11 mm, e = 0.0147 (seed 3)" 0.11 1000 "\(seed 3\): h = " -- experiment drop cases/drop_cabbage.toml --replicates 3
-check "h = 0.11 mm, e = 0.0147 (seed 3)" 0.0147 1 "\(seed 3\): h = [0-9.e-]+ m, e = " -- experiment drop cases/drop_cabbage.toml --replicates 3
-check "L = 0.321 m (mu_r formula 0.0783)" 0.321 1 "rolling distance L = " -- experiment roll cases/experiments/roll_cabbage.toml
-check "L = 0.321 m (mu_r formula 0.0783)" 0.0783 1 "\(S cos\(beta\) \+ L\) = " -- experiment roll cases/experiments/roll_cabbage.toml
-check "mean L (0.314 m, sd 0.035 m)" 0.314 1 "replicates: mean " -- experiment roll cases/experiments/roll_cabbage.toml --replicates 5
-check "mean L (0.314 m, sd 0.035 m)" 0.035 1 "replicates: mean [0-9.e-]+ m, sd " -- experiment roll cases/experiments/roll_cabbage.toml --replicates 5
-check "1.86 kg) gives h" 1.86 1 "mass +" -- clump cases/templates/cabbage.csv --density 850
+check "gives h = 126.06 mm, e = 0.5021 (seed 1)" 126.06 1000 "\(seed 1\): h = " -- experiment drop cases/drop_cabbage.toml --replicates 3
+check "gives h = 126.06 mm, e = 0.5021 (seed 1)" 0.5021 1 "\(seed 1\): h = [0-9.e-]+ m, e = " -- experiment drop cases/drop_cabbage.toml --replicates 3
+check "h = 97.10 mm, e = 0.4407" 97.10 1000 "\(seed 3\): h = " -- experiment drop cases/drop_cabbage.toml --replicates 3
+check "h = 97.10 mm, e = 0.4407" 0.4407 1 "\(seed 3\): h = [0-9.e-]+ m, e = " -- experiment drop cases/drop_cabbage.toml --replicates 3
+check "mean 94.75 mm" 94.75 1000 "h mean " -- experiment drop cases/drop_cabbage.toml --replicates 3
+check "L = 0.794 m (mu_r formula 0.0430)" 0.794 1 "rolling distance L = " -- experiment roll cases/experiments/roll_cabbage.toml
+check "L = 0.794 m (mu_r formula 0.0430)" 0.0430 1 "\(S cos\(beta\) \+ L\) = " -- experiment roll cases/experiments/roll_cabbage.toml
+check "mean L (0.702 m, sd 0.0945 m" 0.702 1 "replicates: mean " -- experiment roll cases/experiments/roll_cabbage.toml --replicates 5
+check "mean L (0.702 m, sd 0.0945 m" 0.0945 1 "replicates: mean [0-9.e-]+ m, sd " -- experiment roll cases/experiments/roll_cabbage.toml --replicates 5
+check "slides, at 35.30 deg" 35.30 1 "slide at alpha = " -- experiment slide cases/experiments/slide_cabbage_group.toml
+check "1.86 kg; the pair restitution" 1.86 1 "mass +" -- clump cases/templates/cabbage.csv --density 850
 
 if ((failures)); then
   echo "$failures README number(s) do not match"
