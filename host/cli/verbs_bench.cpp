@@ -176,6 +176,26 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
   std::fflush(stdout);
 }
 
+// What is benchmarked (the case or the bed, settled), how long its setup took, and the header of
+// the table bench_one's rows fill; an empty case_path is the bed.
+void print_bench_subject(const std::string& case_path, const Model& model, double settle, double energy,
+                         uint32_t steps, const std::string& case_seconds, const std::string& model_seconds) {
+  bool own_case = !case_path.empty();
+  uint32_t n = model.n_particles;
+  if (own_case)
+    std::printf("%s after %.3g s: %u particles, %zu bodies, dt = %.3g s, skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
+                case_path.c_str(), settle, n, model.bodies.size(), model.dt, 1e3 * model.skin, energy, steps);
+  else
+    std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
+                settle, n, model.dt, 1e3 * model.skin, energy, steps);
+  std::printf("setup: case %s (%s), model %s\n", case_seconds.c_str(),
+              own_case ? "read, fills placed" : "the bed's spheres on a jittered lattice", model_seconds.c_str());
+  // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
+  // figure to compare on a shared machine.
+  std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
+              "contacts", "touching", "B/particle", "B/contact", "rebuild/k", "cpu s");
+}
+
 int run_bench(int argc, char** argv) {
   CLI::App app{"Benchmark a settled bed of 10 mm spheres on each backend and kernel variant."};
   uint32_t n = 50000;
@@ -237,18 +257,7 @@ int run_bench(int argc, char** argv) {
   if (settle > 0) fs::create_directories(cache_dir);
   double energy = 0;
   model = settled_bench_model(std::move(model), settle, threads, cache, energy);
-  if (own_case)
-    std::printf("%s after %.3g s: %u particles, %zu bodies, dt = %.3g s, skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
-                case_path.c_str(), settle, n, model.bodies.size(), model.dt, 1e3 * model.skin, energy, steps);
-  else
-    std::printf("bed settled for %.3g s: %u spheres of 10 mm, dt = %.3g s (0.2 Rayleigh), skin %.3g mm, kinetic energy %.3g J, %u timed steps\n",
-                settle, n, model.dt, 1e3 * model.skin, energy, steps);
-  std::printf("setup: case %s (%s), model %s\n", case_seconds.c_str(),
-              own_case ? "read, fills placed" : "the bed's spheres on a jittered lattice", model_seconds.c_str());
-  // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
-  // figure to compare on a shared machine.
-  std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",
-              "contacts", "touching", "B/particle", "B/contact", "rebuild/k", "cpu s");
+  print_bench_subject(case_path, model, settle, energy, steps, case_seconds, model_seconds);
   try {
     for (const auto& b : backends) {
       if (named.empty()) bench_one(model, b, KernelVariant::fastest_for(b, model), device, threads, steps);

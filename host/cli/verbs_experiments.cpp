@@ -54,106 +54,100 @@ nlohmann::ordered_json experiment_provenance(const CaseSpec& spec, const std::ve
   return provenance_json(p);
 }
 
-int run_experiment(int argc, char** argv) {
-  std::string descriptions;
-  for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
-  CLI::App app{"Run a virtual experiment: " + descriptions + "."};
+// The verb's command line as parsed; the two options whose presence matters are kept to ask.
+struct ExperimentArgs {
   std::string type, case_path, backend = kUserBackend, out_dir;
   unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
-  double height = 0;
-  bool quiet = false, overwrite = false;
-  app.add_option("type", type, "experiment: " + listed(experiment_types()))
+  double height = 0, frames = 0;
+  bool quiet = false, overwrite = false, profile = false, wall_impulses = false;
+  int replicates = 1;
+  CLI::Option* height_option = nullptr;
+  CLI::Option* frames_option = nullptr;
+};
+
+void add_experiment_options(CLI::App& app, ExperimentArgs& a) {
+  app.add_option("type", a.type, "experiment: " + listed(experiment_types()))
       ->required()
       ->check(CLI::IsMember(experiment_types()));
-  app.add_option("case", case_path, "case file (TOML) with an [experiment] table")->required();
-  auto* height_opt = app.add_option("--height", height, "drop: height H of the lowest point (m); default from the case")
-                         ->check(finite_positive());
-  app.add_option("--backend", backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), cpu or vulkan")
+  app.add_option("case", a.case_path, "case file (TOML) with an [experiment] table")->required();
+  a.height_option = app.add_option("--height", a.height, "drop: height H of the lowest point (m); default from the case")
+                        ->check(finite_positive());
+  app.add_option("--backend", a.backend, "auto (default: a hardware GPU, else cpu; see `repose devices`), cpu or vulkan")
       ->check(CLI::IsMember({"auto", "vulkan", "cpu"}));
-  app.add_option("--threads", threads, "cpu backend threads (default all cores)")->check(thread_count());
-  app.add_option("--device", device, "Vulkan device index")->check(whole_number(0, 63));
-  app.add_option("--set", sets, "override a case key: KEY=VALUE (repeatable)");
-  app.add_option("--out", out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)")
+  app.add_option("--threads", a.threads, "cpu backend threads (default all cores)")->check(thread_count());
+  app.add_option("--device", a.device, "Vulkan device index")->check(whole_number(0, 63));
+  app.add_option("--set", a.sets, "override a case key: KEY=VALUE (repeatable)");
+  app.add_option("--out", a.out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)")
       ->check(non_empty_path());
-  app.add_flag("--overwrite", overwrite, "delete what --out holds before the experiment");
-  app.add_flag("--quiet", quiet, "no progress output");
-  bool profile = false;
-  app.add_flag("--profile", profile, "repose: time every kernel and print where each phase's time went");
-  bool wall_impulses = false;
-  app.add_flag("--wall-impulses", wall_impulses,
+  app.add_flag("--overwrite", a.overwrite, "delete what --out holds before the experiment");
+  app.add_flag("--quiet", a.quiet, "no progress output");
+  app.add_flag("--profile", a.profile, "repose: time every kernel and print where each phase's time went");
+  app.add_flag("--wall-impulses", a.wall_impulses,
                "wall_forces.csv also gives each wall's largest force and its impulse between samples (the walls' "
                "forces summed every step: one more kernel per step)");
-  double frames = 0;
-  auto* frames_opt = app.add_option("--frames", frames,
-                                    "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
-                                    "case's [output] interval, else 0.01 s (less often for large cases)")
-                         ->expected(0, 1)
-                         ->check(finite_positive());
-  int replicates = 1;
-  app.add_option("--replicates", replicates,
+  a.frames_option = app.add_option("--frames", a.frames,
+                                   "write VTK frames (as `repose run`) every so many simulated seconds; alone: the "
+                                   "case's [output] interval, else 0.01 s (less often for large cases)")
+                        ->expected(0, 1)
+                        ->check(finite_positive());
+  app.add_option("--replicates", a.replicates,
                  "drop, roll (incline): N runs with seeds seed, seed+1, ... (a clump at a random orientation each)")
       ->check(whole_number(1, 1000));
-  REPOSE_PARSE(app, argc, argv);
-  const std::vector<std::string> with_height = types_with_key("drop_height");
-  if (height_opt->count() && std::find(with_height.begin(), with_height.end(), type) == with_height.end())
-    return usage_error("--height applies to the " + listed(with_height) + " experiment");
+}
 
-  std::vector<CaseOverride> extra;
-  if (height_opt->count()) {
-    extra.push_back({"experiment.drop_height", exact_number(height)});
-    sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
-  }
-  auto loaded = load_case_or_report(case_path, sets, extra);
-  if (!loaded) return 2;
-  CaseSpec& spec = *loaded;
-  const Experiment* experiment = experiment_for(spec);
-  if (spec.experiment.type != type || !experiment) {
-    std::fprintf(stderr, "%s: [experiment] type is '%s', not '%s'\n", case_path.c_str(),
-                 spec.experiment.type.c_str(), type.c_str());
+// The case's [experiment] type must be the verb's, and --replicates must suit the experiment:
+// 0 when both hold, else the exit code after the message.
+int check_experiment_fits(const ExperimentArgs& a, const CaseSpec& spec, const Experiment* experiment) {
+  if (spec.experiment.type != a.type || !experiment) {
+    std::fprintf(stderr, "%s: [experiment] type is '%s', not '%s'\n", a.case_path.c_str(),
+                 spec.experiment.type.c_str(), a.type.c_str());
     return 2;
   }
-  if (replicates > 1 && !experiment->takes_replicates()) {
+  if (a.replicates > 1 && !experiment->takes_replicates()) {
     std::vector<std::string> with;
     for (const Experiment* e : experiments())
       if (e->takes_replicates()) with.push_back(e->description());
     return usage_error("--replicates applies to " + listed(with) + ", not to " + experiment->description());
   }
-  // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
-  if (out_dir.empty()) out_dir = "out/experiment/" + spec.name;
-  std::optional<OutputFolder> folder;  // ours alone until the experiment ends
-  try {
-    folder.emplace(out_dir);
-    folder->make_ready(overwrite, {case_path});
-  } catch (const OutputError& e) {
-    std::fprintf(stderr, "repose experiment: %s\n", e.what());
-    return 2;
-  }
-  BackendChoice chosen = resolve_backend(backend, device);
+  return 0;
+}
+
+// How the experiment runs: the chosen backend, the user's switches, and VTK frames when asked for
+// or when the case's [output] writes them.
+ExperimentRun experiment_run_for(const ExperimentArgs& a, const CaseSpec& spec, const BackendChoice& chosen) {
   ExperimentRun run;
   run.backend = chosen.backend;
   run.device = chosen.device;
-  run.profile = profile;
-  run.threads = threads;
-  run.progress = !quiet;
-  run.replicates = replicates;
-  run.wall_impulses = wall_impulses;
-  if (frames_opt->count() || (spec.output.interval > 0 && spec.output.vtk)) {
-    run.frames.dir = out_dir;
+  run.profile = a.profile;
+  run.threads = a.threads;
+  run.progress = !a.quiet;
+  run.replicates = a.replicates;
+  run.wall_impulses = a.wall_impulses;
+  if (a.frames_option->count() || (spec.output.interval > 0 && spec.output.vtk)) {
+    run.frames.dir = a.out_dir;
     run.frames.name = spec.name;
-    run.frames.interval = frames > 0                ? frames
+    run.frames.interval = a.frames > 0               ? a.frames
                           : spec.output.interval > 0 ? spec.output.interval
                                                      : default_frame_interval(build_model(spec), spec.experiment.max_time);
   }
   // Not strict: a reading the rig could not take comes back as a status with what was measured
   // so far, which is written (TYPE.json with status "failed" and the reason) before exit 1.
   run.strict = false;
+  return run;
+}
+
+// Runs the experiment and writes TYPE.json whatever happens: its measurement, the reading it could
+// not take (exit 1), or the error that stopped it.
+int run_and_write_outcome(const Experiment& experiment, const CaseSpec& spec, const ExperimentRun& run,
+                          const ExperimentArgs& a) {
+  const std::string& out_dir = a.out_dir;
   try {
-    ExperimentOutcome outcome = experiment->run(spec, run);
+    ExperimentOutcome outcome = experiment.run(spec, run);
     outcome.json = with_status(outcome);
-    outcome.json["provenance"] = experiment_provenance(spec, sets, run);
-    for (const std::string& line : write_outcome(outcome, type + ".json", out_dir))
+    outcome.json["provenance"] = experiment_provenance(spec, a.sets, run);
+    for (const std::string& line : write_outcome(outcome, a.type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
     if (run.frames.wanted())
       std::printf("VTK frames every %g s in %s/frames, series %s/%s*.pvd for ParaView (*_contacts.pvd: the force "
@@ -168,14 +162,49 @@ int run_experiment(int argc, char** argv) {
     ExperimentOutcome failed;
     failed.status = OutcomeStatus::Failed;
     failed.problem = e.what();
-    failed.json["experiment"] = type;
+    failed.json["experiment"] = a.type;
     failed.json["case"] = spec.path;
     failed.json = with_status(failed);
-    failed.json["provenance"] = experiment_provenance(spec, sets, run);
-    write_outcome(failed, type + ".json", out_dir);
+    failed.json["provenance"] = experiment_provenance(spec, a.sets, run);
+    write_outcome(failed, a.type + ".json", out_dir);
     return failure_exit_code(e);
   }
   return 0;
+}
+
+int run_experiment(int argc, char** argv) {
+  std::string descriptions;
+  for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
+  CLI::App app{"Run a virtual experiment: " + descriptions + "."};
+  ExperimentArgs a;
+  add_experiment_options(app, a);
+  REPOSE_PARSE(app, argc, argv);
+  const std::vector<std::string> with_height = types_with_key("drop_height");
+  if (a.height_option->count() && std::find(with_height.begin(), with_height.end(), a.type) == with_height.end())
+    return usage_error("--height applies to the " + listed(with_height) + " experiment");
+
+  std::vector<CaseOverride> extra;
+  if (a.height_option->count()) {
+    extra.push_back({"experiment.drop_height", exact_number(a.height)});
+    a.sets.push_back("experiment.drop_height=" + extra.back().value);  // recorded with the user's --set
+  }
+  auto loaded = load_case_or_report(a.case_path, a.sets, extra);
+  if (!loaded) return 2;
+  CaseSpec& spec = *loaded;
+  const Experiment* experiment = experiment_for(spec);
+  if (int code = check_experiment_fits(a, spec, experiment)) return code;
+  // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
+  if (a.out_dir.empty()) a.out_dir = "out/experiment/" + spec.name;
+  std::optional<OutputFolder> folder;  // ours alone until the experiment ends
+  try {
+    folder.emplace(a.out_dir);
+    folder->make_ready(a.overwrite, {a.case_path});
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose experiment: %s\n", e.what());
+    return 2;
+  }
+  const ExperimentRun run = experiment_run_for(a, spec, resolve_backend(a.backend, a.device));
+  return run_and_write_outcome(*experiment, spec, run, a);
 }
 
 }  // namespace
