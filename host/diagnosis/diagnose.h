@@ -137,7 +137,7 @@ struct PairSeparation {
   std::string a, b;
   double a_as_b = -1;       // chi^2 by which a, refitted to b's predictions, misses them (-1: not tried)
   double b_as_a = -1;
-  bool told_apart = false;  // each tried direction misses by at least kSeparableChi2
+  bool told_apart = false;  // no tried direction is close (MimicTest::close)
 };
 
 struct Diagnosis {

@@ -14,6 +14,7 @@ namespace repose {
 namespace {
 
 constexpr double kAicClose = 2.0;       // Burnham & Anderson: models within 2 have equal support
+constexpr double kAicRejected = 10.0;   // ... and one more than 10 above the best has essentially none
 
 double two_sided_normal_p(double z) { return std::erfc(std::abs(z) / std::sqrt(2.0)); }
 
@@ -237,6 +238,12 @@ std::vector<size_t> significant_by_aic(const std::vector<ModelResult>& fitted) {
 
 }  // namespace
 
+bool rival_mimics(double chi2, double aic_difference) {
+  // A rival that could mimic the winner's predictions is still no rival when the data themselves
+  // reject it (its Akaike weight below e^-5 of the winner's).
+  return (chi2 < kSeparableChi2 && aic_difference < kAicRejected) || aic_difference < kAicClose;
+}
+
 std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& base, const std::vector<ModelResult>& fitted) {
   std::vector<MimicTest> out;
   std::vector<size_t> significant = significant_by_aic(fitted);
@@ -245,7 +252,7 @@ std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& base,
   auto mimic = [&](const ModelResult& rival, const ModelResult& target) {
     SurfaceMinimum m = c.surrogate(find_extension(rival.id)).fit(everything, &target.prediction, 3);
     MimicTest t{rival.id, target.id, m.score, rival.aic - target.aic, false};
-    t.close = t.chi2 < kSeparableChi2 || t.aic_difference < kAicClose;
+    t.close = rival_mimics(t.chi2, t.aic_difference);
     out.push_back(t);
   };
   const ModelResult& best = fitted[significant[0]];
@@ -269,12 +276,12 @@ std::vector<PairSeparation> pair_separations(const std::vector<MimicTest>& mimic
     });
     if (it == pairs.end()) {
       pairs.push_back({m.winner, m.rival});
+      pairs.back().told_apart = true;
       it = pairs.end() - 1;
     }
     (it->a == m.rival ? it->a_as_b : it->b_as_a) = m.chi2;
+    if (m.close) it->told_apart = false;
   }
-  for (PairSeparation& p : pairs)
-    p.told_apart = (p.a_as_b < 0 || p.a_as_b >= kSeparableChi2) && (p.b_as_a < 0 || p.b_as_a >= kSeparableChi2);
   return pairs;
 }
 

@@ -127,6 +127,10 @@ bool baseline_strained(const ModelResult& baseline, const ModelResult& candidate
 std::vector<MimicTest> mimic_tests(DiagnosisContext& c, const ModelResult& baseline,
                                    const std::vector<ModelResult>& fitted);
 
+// A rival that comes within chi^2 kSeparableChi2 of the winner's predictions mimics it, unless the
+// data themselves reject it (its AIC more than 10 above the winner's); one within 2 always does.
+bool rival_mimics(double chi2, double aic_difference);
+
 // The same as a table of pairs: which these data can tell apart.
 std::vector<PairSeparation> pair_separations(const std::vector<MimicTest>& mimics);
 

@@ -302,7 +302,7 @@ void pairs_markdown(const Diagnosis& d, std::ostringstream& md) {
   auto chi2 = [](double v) { return v < 0 ? std::string("not tried") : std::to_string(v).substr(0, 6); };
   md << "\n## Which candidates these data tell apart\n\nEach refitted to the other's predictions; apart when "
         "every tried direction misses by chi^2 >= "
-     << kSeparableChi2 << " (3 sigma).\n\n| a | b | a refitted to b: chi^2 | b refitted to a: chi^2 | told apart |\n"
+     << kSeparableChi2 << " (3 sigma), or the data reject the refitted one (its AIC more than 10 above the other's).\n\n| a | b | a refitted to b: chi^2 | b refitted to a: chi^2 | told apart |\n"
         "|---|---|---|---|---|\n";
   for (const auto& p : d.pairs)
     md << "| " << p.a << " | " << p.b << " | " << chi2(p.a_as_b) << " | " << chi2(p.b_as_a) << " | "

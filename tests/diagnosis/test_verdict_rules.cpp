@@ -79,6 +79,18 @@ TEST_CASE("pairs of candidates: told apart only when neither mimics the other", 
   CHECK_FALSE(pairs[1].told_apart);
 }
 
+TEST_CASE("a rival that mimics the winner's predictions but that the data reject is told apart", "[diagnosis]") {
+  // The slot heap with EDEM's type C rolling hidden: size_spread refitted to rolling_epsd's
+  // predictions misses by chi^2 7.47, yet its AIC is 19.8 above (Akaike weight ratio 5e-5).
+  CHECK_FALSE(rival_mimics(7.47, 19.8));
+  CHECK(rival_mimics(7.47, 9.0));    // the data leave it some support: still a mimic
+  CHECK(rival_mimics(30.0, 1.0));    // equal support by AIC, whatever the refit
+  CHECK_FALSE(rival_mimics(12.0, 5.0));
+  std::vector<PairSeparation> pairs = pair_separations({{"size_spread", "rolling_epsd", 7.47, 19.8, false}});
+  REQUIRE(pairs.size() == 1);
+  CHECK(pairs[0].told_apart);
+}
+
 TEST_CASE("a candidate's standing weighs the F test, the held-out gain, the AIC and the baseline's strain",
           "[diagnosis]") {
   // p, held-out gain %, held out available, lower AIC, baseline strained.
