@@ -113,7 +113,7 @@ void add_figures(const CampaignPlan& plan, const std::vector<RunSpec>& verify, c
                  CampaignRecord& record) {
   record.figures = write_figures(plan, record.result, out_dir);
   // The first calibrating response's runs (a path fits no model: nothing for Design-Expert then).
-  if (!record.result.models.empty()) {
+  if (!record.result.models.empty() && record.result.path.empty()) {  // a path's "model" joins its means
     const ResponseModel& model = record.result.models.front();
     if (Figure surface; write_surface_figure(plan, record.result, model, out_dir, surface))
       record.figures.insert(record.figures.begin() + 1, surface);  // beside the contour

@@ -21,6 +21,25 @@ struct Binding {
   const void* cpu;
 };
 
+// Every buffer the kernels write, with its size in this layout and the twin's copy.
+std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
+  size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
+  std::vector<Binding> bindings = {
+      {gpu::kBindPos, "pos", N * v4, b.pos}, {gpu::kBindVel, "vel", N * v4, b.vel},
+      {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
+      {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
+      {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
+      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
+      {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
+      {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
+      {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
+      {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
+      {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
+  };
+  if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  return bindings;
+}
+
 // Runs one step of `spec` (after `warmup` steps in batches of `batch`, forcing a rebuild) one
 // dispatch at a time on both backends and requires every buffer to match after every dispatch.
 // The walls must be at rest (the step reads wall slot 0 of the last batch).
@@ -41,21 +60,7 @@ void check_each_dispatch(const CaseSpec& spec, const char* variant_text, uint64_
   cpu_sim->set_state(s);
   gpu_sim->set_state(s);
 
-  const gpu::Buffers& b = cpu.buffers();
-  size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
-  std::vector<Binding> bindings = {
-      {gpu::kBindPos, "pos", N * v4, b.pos}, {gpu::kBindVel, "vel", N * v4, b.vel},
-      {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
-      {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
-      {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
-      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
-      {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
-      {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
-      {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
-      {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
-      {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
-  };
-  if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  std::vector<Binding> bindings = twin_bindings(l, cpu.buffers());
   auto program = step_program(cpu_sim->model(), l, v, 0);
   size_t checked = 0;
   for (const Dispatch& d : program) {
@@ -100,21 +105,7 @@ void check_each_kernel_alone(const CaseSpec& spec, const char* variant_text, uin
   auto& cpu = dynamic_cast<CpuBackend&>(cpu_sim->backend());
   auto& gpu = dynamic_cast<VulkanBackend&>(gpu_sim->backend());
   const Layout& l = cpu_sim->layout();
-  const gpu::Buffers& b = cpu.buffers();
-  size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
-  std::vector<Binding> bindings = {
-      {gpu::kBindPos, "pos", N * v4, b.pos}, {gpu::kBindVel, "vel", N * v4, b.vel},
-      {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
-      {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
-      {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
-      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
-      {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
-      {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
-      {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
-      {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
-      {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
-  };
-  if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  std::vector<Binding> bindings = twin_bindings(l, cpu.buffers());
   std::vector<std::string> differences;
   for (const Dispatch& d : step_program(cpu_sim->model(), l, v, 0)) {
     for (const Binding& bind : bindings) gpu.write_binding(bind.index, bind.cpu, bind.bytes);
