@@ -102,7 +102,7 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
     Statement q(db_, "SELECT hash, canonical, plan_file FROM plan WHERE id = 1");
     if (q.step()) {
       if (q.text(0) != hash_ && !adopt_older_plan_row(q.text(0), canonical, plan) &&
-          !adopt_budget_change(q.text(1), canonical))
+          !adopt_count_change(q.text(1), canonical))
         throw std::runtime_error(path + ": this database belongs to another version of the plan (" + q.text(2) +
                                  "); changed since: " + describe_plan_change(q.text(1), canonical) +
                                  ". Restore the plan, or start over with --new (discards the " +
@@ -140,13 +140,16 @@ bool RunStore::adopt_older_plan_row(const std::string& stored_hash, const std::s
   return true;
 }
 
-// A plan whose adaptive budget was raised (or lowered) is the same campaign: the budget is no longer
-// part of the canonical text, and a database that still holds it in its plan row is adopted.
-bool RunStore::adopt_budget_change(const std::string& stored_canonical, const std::string& canonical) {
+// A plan whose adaptive budget or verification count was raised (or lowered) is the same
+// campaign: neither is part of the canonical text where the runs do not depend on it
+// (canonical_plan_text), and a database that still holds them in its plan row is adopted.
+bool RunStore::adopt_count_change(const std::string& stored_canonical, const std::string& canonical) {
   std::istringstream in(stored_canonical);
   std::string without, line;
-  while (std::getline(in, line))
-    if (line.rfind("adaptive.budget = ", 0) != 0) without += line + "\n";
+  while (std::getline(in, line)) {
+    bool count = line.rfind("adaptive.budget = ", 0) == 0 || line.rfind("verification.runs = ", 0) == 0;
+    if (!count || canonical.find(line.substr(0, line.find(" = ") + 3)) != std::string::npos) without += line + "\n";
+  }
   if (without != canonical) return false;
   Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
   up.bind(1, hash_);

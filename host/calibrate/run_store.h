@@ -39,7 +39,7 @@ class RunStore {
  private:
   void open(const CampaignPlan& plan, bool fresh);
   bool adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical, const CampaignPlan& plan);
-  bool adopt_budget_change(const std::string& stored_canonical, const std::string& canonical);
+  bool adopt_count_change(const std::string& stored_canonical, const std::string& canonical);
   void exec(const std::string& sql);
   void load_runs();
 

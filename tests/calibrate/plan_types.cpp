@@ -117,6 +117,28 @@ TEST_CASE("a raised budget resumes the same campaign") {
   CHECK(second.output.find("(" + std::to_string(after.size() - rows.size()) + " run now)") != std::string::npos);
 }
 
+TEST_CASE("more verification runs resume a design campaign, keeping what it ran") {
+  std::string plan = drop_plan("[design]\ntype = \"sweep\"\nlevels = 3\ndegree = 1\n\n[verification]\nruns = 1\n");
+  std::string dir = test::scratch_dir("more_verify");
+  test::write_text(dir + "/plan.toml", plan);
+  auto first = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 1 --quiet");
+  INFO(first.output);
+  REQUIRE((first.status == 0 || first.status == 3));
+  const auto rows = test::database_rows(dir + "/out/campaign.sqlite");
+  CHECK(rows.size() == 4);  // 3 levels + 1 verification run
+  plan.replace(plan.find("runs = 1"), 8, "runs = 3");
+  test::write_text(dir + "/plan.toml", plan);
+  auto second = test::run_repose("calibrate " + dir + "/plan.toml --out " + dir + "/out --jobs 1 --quiet");
+  INFO(second.output);
+  CHECK(second.output.find("another version of the plan") == std::string::npos);
+  CHECK(second.output.find("(2 run now)") != std::string::npos);
+  const auto after = test::database_rows(dir + "/out/campaign.sqlite");
+  CHECK(after.size() == 6);
+  for (const auto& [id, row] : rows) CHECK(after.at(id) == row);  // kept, not rerun
+  auto s = nlohmann::json::parse(test::read_text_file(dir + "/out/summary.json"));
+  CHECK(s["verifications"][0]["runs"].size() == 3);
+}
+
 TEST_CASE("calibrate --check prints the plan's cost and flags a tolerance the budget cannot reach") {
   std::string plan = drop_plan("[design]\ntype = \"sweep\"\nlevels = 4\ndegree = 1\n\n[verification]\nruns = 2\n");
   plan.replace(plan.find("tolerance = 0.01"), 16, "tolerance = 0.01\nnoise_sd = 0.05");
