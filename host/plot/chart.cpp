@@ -301,12 +301,14 @@ void Chart::horizontal(double y, Colour c, int thickness) {
   size_t kept = data_pixels_.size();
   count_point(0.5 * (px(x0_) + px(x1_)), py(y), c, Mark::Line);
   data_pixels_.resize(kept);
+  reference_rows_.push_back({int(py(y)) - thickness, int(py(y)) + thickness});
 }
 void Chart::vertical(double x, Colour c, int thickness) {
   clipped_segment(px(x), py(y0_), px(x), py(y1_), c, thickness);
   size_t kept = data_pixels_.size();
   count_point(px(x), 0.5 * (py(y0_) + py(y1_)), c, Mark::Line);
   data_pixels_.resize(kept);
+  reference_cols_.push_back({int(px(x)) - thickness, int(px(x)) + thickness});
 }
 
 void Chart::horizontal_band(double y_low, double y_high, Colour c) {
@@ -314,6 +316,7 @@ void Chart::horizontal_band(double y_low, double y_high, Colour c) {
   for (int row = ra; row <= rb; ++row)
     for (int col = int(px(x0_)); col <= int(px(x1_)); ++col) blend(col, row, c, 0.2);
   count_point(0.5 * (px(x0_) + px(x1_)), py(0.5 * (y_low + y_high)), c, Mark::Band);
+  reference_rows_.push_back({ra, rb});
 }
 
 void Chart::marker(double x, double y, Colour c, int radius) {
@@ -411,7 +414,17 @@ void Chart::draw_legend_mark(double c, double r, const LegendEntry& e) {
   }
 }
 
-// The legend box goes into the plot corner that covers the fewest data points.
+// The area of reference lines and bands under a legend box at (c, r).
+double Chart::reference_overlap(double c, double r, double box_w, double box_h) const {
+  auto overlap = [](double a0, double a1, double b0, double b1) { return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)); };
+  double area = 0;
+  for (const auto& [first, last] : reference_rows_) area += overlap(r, r + box_h, first, last + 1) * box_w;
+  for (const auto& [first, last] : reference_cols_) area += overlap(c, c + box_w, first, last + 1) * box_h;
+  return area;
+}
+
+// The legend box goes into the plot corner that covers the fewest data points, and among those
+// the least of the reference lines and bands (a measured value's band is read as much as a point).
 void Chart::draw_legend_box() {
   const auto& entries = box_legend_;
   if (entries.empty()) return;
@@ -425,14 +438,18 @@ void Chart::draw_legend_box() {
                                                          {right - 10 - box_w, bottom - 6 - box_h},
                                                          {left + 10.0, bottom - 6 - box_h}}};
   size_t best = 0, best_hidden = SIZE_MAX;
+  double best_overlap = 0;
   for (size_t k = 0; k < corners.size(); ++k) {
     size_t hidden = 0;
     for (const auto& p : data_pixels_)
       hidden += p[0] >= corners[k][0] - 4 && p[0] <= corners[k][0] + box_w + 4 && p[1] >= corners[k][1] - 4 &&
                 p[1] <= corners[k][1] + box_h + 4;
-    if (hidden < best_hidden) best = k, best_hidden = hidden;
+    double overlap = reference_overlap(corners[k][0] - 4, corners[k][1] - 4, box_w + 8, box_h + 8);
+    if (hidden < best_hidden || (hidden == best_hidden && overlap < best_overlap))
+      best = k, best_hidden = hidden, best_overlap = overlap;
   }
   record_.legend_covers_data = best_hidden > 0;
+  record_.legend_covers_reference = best_overlap > 0;
   double c = corners[best][0] + 6, r = corners[best][1] + 4;
   for (int row = int(r) - 4; row < int(r + box_h); ++row)
     for (int col = int(c) - 6; col < int(c + box_w - 6); ++col) blend(col, row, colours::white, 0.85);

@@ -40,6 +40,7 @@ struct ChartRecord {
   std::vector<std::pair<LegendEntry, int>> points;
   int points_of(Colour c, Mark m) const;  // 0 when none
   bool legend_covers_data = false;        // the legend box hides a data point
+  bool legend_covers_reference = false;   // ... or part of a reference line or band
 };
 
 class Chart {
@@ -122,6 +123,10 @@ class Chart {
   std::vector<uint8_t> pixels_;
   std::vector<LegendEntry> box_legend_;           // drawn at save, where it hides the least
   std::vector<std::array<int, 2>> data_pixels_;  // where data points were drawn (legend placement)
+  // Rows and columns that reference lines and bands cross edge to edge ({first, last} pixel): the
+  // legend avoids them where the data leave it a choice.
+  std::vector<std::array<int, 2>> reference_rows_, reference_cols_;
+  double reference_overlap(double c, double r, double box_w, double box_h) const;
   ChartRecord record_;
 };
 

@@ -69,6 +69,28 @@ TEST_CASE("tick labels tell neighbours apart however narrow the range", "[plot]"
   CHECK(tick_labels({0, 0.2, 0.4}) == std::vector<std::string>{"0", "0.2", "0.4"});
 }
 
+TEST_CASE("among corners free of data the legend takes the one clear of bands and reference lines", "[plot]") {
+  Chart::keep_records();
+  Chart chart(600, 400, 0, 1, 0, 1);
+  // A measured band across the top and a chosen value's line on the right: of the four empty
+  // corners only the bottom left is clear of both.
+  chart.horizontal_band(0.85, 0.95, colours::green);
+  chart.horizontal(0.9, colours::green);
+  chart.vertical(0.8, colours::red);
+  chart.marker(0.5, 0.5, colours::black);
+  chart.legend({{"runs", colours::black, Mark::Dot}, {"measured", colours::green}, {"chosen", colours::red}});
+  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_bands.png").string();
+  chart.save(path);
+  ChartRecord r = Chart::recorded(path);
+  CHECK_FALSE(r.legend_covers_data);
+  CHECK_FALSE(r.legend_covers_reference);
+  auto [left, top, right, bottom] = chart.plot_area();
+  int black = 0;  // the "runs" sample dot, drawn in the legend box at the bottom left
+  for (int row = bottom - 80; row < bottom; ++row)
+    for (int col = left + 5; col < left + 60; ++col) black += chart.pixel(col, row) == colours::black;
+  CHECK(black > 20);
+}
+
 TEST_CASE("the legend takes the corner free of data, and records what each entry shows", "[plot]") {
   Chart::keep_records();
   Chart chart(600, 400, 0, 1, 0, 1);
