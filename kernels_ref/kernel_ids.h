@@ -26,6 +26,8 @@
   X(TransposeCount, transpose_count, Each) \
   X(TransposeFill, transpose_fill, Each) \
   X(TransposeSort, transpose_sort, Each) \
+  X(ClearTouches, clear_touches, Each) \
+  X(TouchCount, touch_count, Each) \
   X(ContactForces, contact_forces, Each) \
   X(ContactRows, contact_rows, Each) \
   X(Scan, scan, Own) \

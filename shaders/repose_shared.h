@@ -33,7 +33,9 @@ namespace repose::gpu {
 //           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
-// contact_force and torque_i (the contact kernel) are rewritten after that in the same step.
+// contact_force and torque_i (the contact kernel) are rewritten after that in the same step;
+// touches lives from clear_touches to the contact kernel of a step, cell_of only from
+// bucket_count to bucket_scatter of a rebuild before it.
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
 // at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
 #define REPOSE_BUFFERS(X) \
@@ -68,7 +70,8 @@ namespace repose::gpu {
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
-  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */
+  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
+  X(10, Touches, touches, uint, Particles, Alias, Scratch)   /* touching contacts per body (spinning friction) */
 
 // Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
 // again). They share torque_i's binding, whose memory is the larger of the two views

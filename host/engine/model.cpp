@@ -363,8 +363,7 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius. With clumps twice the smallest radius: their rebuilds cost far
   // more than the few candidates a wider skin adds (sub-spheres of one body never pair); the
-  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin, except with
-  // spinning friction, whose limiter counts list entries (below).
+  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin.
   double default_skin = (spec.bodies.empty() ? 0.5 : 2.0) * r_min;
   m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : default_skin;
   double r_cell = r_max;
@@ -391,9 +390,6 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
     auto steps = static_cast<uint32_t>(std::max(1.0, std::floor(0.5 * m.skin / (wall_speed * m.dt))));
     m.max_interval = m.max_interval ? std::min(m.max_interval, steps) : steps;
   }
-  // Spinning friction's limiter counts a body's list entries (contacts.h spin_stop_share), so
-  // when the list is rebuilt shows in its results: such a case keeps one schedule throughout.
-  if (needs_spinning_friction(spec)) m.still_interval = m.max_interval;
 }
 
 }  // namespace

@@ -165,6 +165,10 @@ struct ProgramBuilder {
     indirect(KernelId::TransposeSort, gpu::kCtlArgsParticles);
   }
   void forces(const Layout& l, const KernelVariant& v) {
+    if (push.flags & gpu::kFlagSpinningFriction) {  // its limiter counts each body's touching contacts
+      direct(KernelId::ClearTouches, groups(l.n_particles, v.workgroup), push);
+      indirect(KernelId::TouchCount, gpu::kCtlArgsContacts);
+    }
     if (v.contact == ContactKernel::PerContact)
       indirect(KernelId::ContactForces, gpu::kCtlArgsContacts);
     else
