@@ -20,6 +20,7 @@
   X(BucketCount, bucket_count, Each) \
   X(BucketScatter, bucket_scatter, Each) \
   X(BucketSort, bucket_sort, Each) \
+  X(BodyNear, body_near, Each) \
   X(ContactCount, contact_count, Each) \
   X(RowsScanned, rows_scanned, Once) \
   X(ContactFill, contact_fill, Each) \

@@ -155,6 +155,7 @@ struct ProgramBuilder {
     scan(gpu::kScanCells, l.table_size + 1);  // the hashed buckets and the large one
     indirect(KernelId::BucketScatter, gpu::kCtlArgsParticles);
     indirect(KernelId::BucketSort, gpu::kCtlArgsBuckets);
+    if (push.flags & gpu::kFlagBodyBroadPhase) indirect(KernelId::BodyNear, gpu::kCtlArgsParticles);
     indirect(KernelId::ContactCount, gpu::kCtlArgsParticles);
     scan(gpu::kScanRows, l.n_particles);
     indirect(KernelId::RowsScanned, gpu::kCtlArgsOne);
