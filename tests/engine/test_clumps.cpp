@@ -231,14 +231,7 @@ TEST_CASE("clumps: the neighbour skin and the rebuild interval leave the bodies 
   CaseSpec spec = clump_pile();
   spec.contact.rolling = RollingModel::ElasticPlastic;
   double skin = build_model(spec).skin;
-  auto run = [&](double s, int interval) {
-    CaseSpec c = spec;
-    c.neighbour.skin = s;
-    c.neighbour.rebuild_interval = interval;
-    auto sim = simulate(c, "cpu", 2);
-    sim->advance(1000);
-    return sim;
-  };
+  auto run = [&](double s, int interval) { return simulate_with_list(spec, s, interval, 1000); };
   auto reference = run(skin, 0);
   REQUIRE(reference->contacts() > 50);
   for (auto [s, interval] : {std::pair{0.2 * skin, 0}, std::pair{4.0 * skin, 0}, std::pair{skin, 1}}) {

@@ -194,14 +194,7 @@ TEST_CASE("spinning friction: the neighbour skin and the rebuild interval leave 
   CaseSpec spheres = spinning_cloud(), clumps = spinning_clumps();
   for (const CaseSpec* spec : {&spheres, &clumps}) {
     double skin = build_model(*spec).skin;
-    auto run = [&](double s, int interval) {
-      CaseSpec c = *spec;
-      c.neighbour.skin = s;
-      c.neighbour.rebuild_interval = interval;
-      auto sim = simulate(c, "cpu", 2, {}, 25);
-      sim->advance(1200);
-      return sim;
-    };
+    auto run = [&](double s, int interval) { return simulate_with_list(*spec, s, interval, 1200, {}, 25); };
     auto reference = run(skin, 0);
     REQUIRE(reference->contacts() > 10);
     for (auto [s, interval] : {std::pair{0.3 * skin, 0}, std::pair{4.0 * skin, 0}, std::pair{skin, 1}}) {
