@@ -20,12 +20,15 @@
   X(BucketCount, bucket_count, Each) \
   X(BucketScatter, bucket_scatter, Each) \
   X(BucketSort, bucket_sort, Each) \
+  X(BodyNear, body_near, Each) \
   X(ContactCount, contact_count, Each) \
   X(RowsScanned, rows_scanned, Once) \
   X(ContactFill, contact_fill, Each) \
   X(TransposeCount, transpose_count, Each) \
   X(TransposeFill, transpose_fill, Each) \
   X(TransposeSort, transpose_sort, Each) \
+  X(ClearTouches, clear_touches, Each) \
+  X(TouchCount, touch_count, Each) \
   X(ContactForces, contact_forces, Each) \
   X(ContactRows, contact_rows, Each) \
   X(Scan, scan, Own) \

@@ -6,6 +6,7 @@
 // scalar math from <cmath> (sqrt, floor are correctly rounded / exact).
 #pragma once
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <glm/glm.hpp>
@@ -34,6 +35,8 @@ inline vec3 pick(bool c, vec3 yes, vec3 no) { return c ? yes : no; }
 // theirs the same on devices that round otherwise (kernels/glsl_prelude.glsl).
 inline float div_rn(float a, float b) { return a / b; }
 inline float sqrt_rn(float x) { return std::sqrt(x); }
+
+inline float uintBitsToFloat(uint u) { return std::bit_cast<float>(u); }
 
 inline uint atomicAdd(uint& target, uint value) {
   return std::atomic_ref<uint>(target).fetch_add(value, std::memory_order_relaxed);

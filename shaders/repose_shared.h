@@ -33,7 +33,10 @@ namespace repose::gpu {
 //           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
-// contact_force and torque_i (the contact kernel) are rewritten after that in the same step.
+// contact_force and torque_i (the contact kernel) are rewritten after that in the same step;
+// touches lives from clear_touches to the contact kernel of a step, cell_of only from
+// bucket_count to bucket_scatter of a rebuild before it; body_near from body_near to
+// contact_fill of a rebuild, cell_fill only in its bucket_scatter before.
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
 // at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
 #define REPOSE_BUFFERS(X) \
@@ -68,7 +71,9 @@ namespace repose::gpu {
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
-  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */
+  X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
+  X(10, Touches, touches, uint, Particles, Alias, Scratch)   /* touching contacts per body (spinning friction) */ \
+  X(12, BodyNear, body_near, uint, Bodies, Alias, Scratch)   /* 1: a body's bounding sphere meets another's */
 
 // Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
 // again). They share torque_i's binding, whose memory is the larger of the two views
@@ -120,6 +125,7 @@ REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling l
 REPOSE_CONST kFlagRollingLeverSphere = 2048u; // LIGGGHTS multisphere: a clump's rolling lever is the sub-sphere's
                                               // radius, not |contact point - centre of mass| (EDEM)
 REPOSE_CONST kFlagCohesionIntersection = 4096u;  // LIGGGHTS sjkr: cohesion on the spheres' intersection disc
+REPOSE_CONST kFlagBodyBroadPhase = 8192u;     // clumps: bodies culled by bounding spheres first (neighbour.h body_near)
 // The options that keep each contact's torques in its entry (per-contact springs, counts of
 // contacts): they need full contact entries, never lean ones, and the SIMD lanes leave them to the
 // scalar contact kernel. The one rule for both (step_program.cpp, contact_lanes.cpp).
@@ -211,7 +217,7 @@ struct Body {
 // What a particle needs to know of its body; static during a run.
 struct SubSphere {
   vec4 local;  // xyz centre in the body frame, w radius
-  uvec4 info;  // x body index
+  uvec4 info;  // x body index, y the body's bounding radius (float bits; neighbour.h body_bound)
 };
 
 // Push constants of the simulation kernels (<= 128 bytes, lavapipe's limit).

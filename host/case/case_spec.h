@@ -209,6 +209,7 @@ struct TimeSpec {
 struct NeighbourSpec {
   double skin = -1;          // m; < 0: 0.1 x the smallest diameter
   int rebuild_interval = 0;  // steps between list rebuilds; 0: automatic
+  std::optional<bool> body_broad_phase;  // clumps culled by bounding spheres; unset: where it pays
 };
 
 struct OutputSpec {

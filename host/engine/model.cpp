@@ -1,6 +1,7 @@
 #include "engine/model.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -93,10 +94,14 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     b.inv_inertia = fixed ? v4({0, 0, 0}, 0) : v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
     b.spheres = gpu::uvec4(first, uint32_t(local.size()), 0u, 0u);
     b.drag = v4(mul(drag_area, 1 / kPi), 0);
+    // The bounding radius about the centre of mass (neighbour.h body_bound), rounded outwards.
+    double bound = 0;
+    for (size_t k = 0; k < local.size(); ++k) bound = std::max(bound, std::sqrt(dot(local[k], local[k])) + radii[k]);
+    uint32_t bound_bits = std::bit_cast<uint32_t>(float(bound * (1 + 1e-6)));
     for (size_t k = 0; k < local.size(); ++k) {
       gpu::SubSphere s{};
       s.local = v4(local[k], radii[k]);
-      s.info = gpu::uvec4(uint32_t(m.bodies.size()), 0u, 0u, 0u);
+      s.info = gpu::uvec4(uint32_t(m.bodies.size()), bound_bits, 0u, 0u);
       m.subs.push_back(s);
       Vec3d r = rotate(q, local[k]);
       m.pos.push_back(v4(add(centre, r), radii[k]));
@@ -363,13 +368,18 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   // Skin: half the smallest radius by default, so a rebuild is needed only after a particle
   // moved a quarter of its radius. With clumps twice the smallest radius: their rebuilds cost far
   // more than the few candidates a wider skin adds (sub-spheres of one body never pair); the
-  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin, except with
-  // spinning friction, whose limiter counts list entries (below).
+  // cabbage cylinder heap takes 46 instead of 74 CPU-s. No result depends on the skin.
   double default_skin = (spec.bodies.empty() ? 0.5 : 2.0) * r_min;
   m.skin = spec.neighbour.skin >= 0 ? spec.neighbour.skin : default_skin;
   double r_cell = r_max;
   choose_large_radius(m, r_cell);
   m.cell = 2 * r_cell + m.skin;
+  // Body-level broad phase (neighbour.h body_near): each body tests every other one when the
+  // list is rebuilt, which pays while bodies are few against their sub-spheres (80 cabbages of
+  // 203, 454 stalks of 720; not a bed of one-sphere bodies).
+  uint64_t n_bodies = m.bodies.size();
+  bool pays = n_bodies * n_bodies <= 8 * uint64_t(m.n_particles);
+  if (n_bodies > 1 && spec.neighbour.body_broad_phase.value_or(pays)) m.flags |= gpu::kFlagBodyBroadPhase;
   m.table_size = next_pow2(std::max<uint32_t>(1024, 2 * m.n_particles));
   m.max_interval = spec.neighbour.rebuild_interval > 0 ? spec.neighbour.rebuild_interval : 0;
   m.still_interval = m.max_interval;
@@ -391,9 +401,6 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
     auto steps = static_cast<uint32_t>(std::max(1.0, std::floor(0.5 * m.skin / (wall_speed * m.dt))));
     m.max_interval = m.max_interval ? std::min(m.max_interval, steps) : steps;
   }
-  // Spinning friction's limiter counts a body's list entries (contacts.h spin_stop_share), so
-  // when the list is rebuilt shows in its results: such a case keeps one schedule throughout.
-  if (needs_spinning_friction(spec)) m.still_interval = m.max_interval;
 }
 
 }  // namespace

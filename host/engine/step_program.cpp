@@ -155,6 +155,7 @@ struct ProgramBuilder {
     scan(gpu::kScanCells, l.table_size + 1);  // the hashed buckets and the large one
     indirect(KernelId::BucketScatter, gpu::kCtlArgsParticles);
     indirect(KernelId::BucketSort, gpu::kCtlArgsBuckets);
+    if (push.flags & gpu::kFlagBodyBroadPhase) indirect(KernelId::BodyNear, gpu::kCtlArgsParticles);
     indirect(KernelId::ContactCount, gpu::kCtlArgsParticles);
     scan(gpu::kScanRows, l.n_particles);
     indirect(KernelId::RowsScanned, gpu::kCtlArgsOne);
@@ -165,6 +166,10 @@ struct ProgramBuilder {
     indirect(KernelId::TransposeSort, gpu::kCtlArgsParticles);
   }
   void forces(const Layout& l, const KernelVariant& v) {
+    if (push.flags & gpu::kFlagSpinningFriction) {  // its limiter counts each body's touching contacts
+      direct(KernelId::ClearTouches, groups(l.n_particles, v.workgroup), push);
+      indirect(KernelId::TouchCount, gpu::kCtlArgsContacts);
+    }
     if (v.contact == ContactKernel::PerContact)
       indirect(KernelId::ContactForces, gpu::kCtlArgsContacts);
     else

@@ -207,7 +207,7 @@ real3 epsd_rolling_torque(real3 n, real3 w_i, real3 w_j, real radius_star, real 
 // against the relative spin s = (w_i - w_j) . n, of magnitude mu_spin R* |Fn|. It is limited so
 // that it never reverses the spin within a step: over one step the kick changes a spin by
 // dt T / I (integrate.h), so the torque is at most |s| / (2 dt D), with D = sum over the two
-// bodies of (entries in its contact list) x (1 / its moment of inertia about n) (the caller's
+// bodies of (its touching contacts) x (1 / its moment of inertia about n) (the caller's
 // `stop_share`, 0 for a wall). Each of a body's contacts then takes at most half its share of
 // the stopping torque, so even all of them together cannot turn the spin over. Returns the
 // torque on i (j receives minus it); zero without spin.

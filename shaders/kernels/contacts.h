@@ -7,25 +7,27 @@
 #ifndef REPOSE_KERNELS_CONTACTS_H
 #define REPOSE_KERNELS_CONTACTS_H
 
-// A body's part of the spinning friction limiter (contact_law.h): the entries of its contact
-// lists times 1 / its moment of inertia about n. A sphere's 1/I is omega.w; a clump's is
-// n . (R I^-1 R^T n) from its principal moments, and its entries those of all its sub-spheres
-// (contiguous, so two differences of the scanned row starts).
+// Where spinning friction counts i's touching contacts: a clump's first sub-sphere stands for
+// its whole body.
+uint touch_key(uint i) {
+  if ((PC.flags & kFlagBodies) != 0u) return B_bodies[B_subs[i].info.x].spheres.x;
+  return i;
+}
+
+// A body's part of the spinning friction limiter (contact_law.h): its touching contacts
+// (touch_count, this step's) times 1 / its moment of inertia about n. A sphere's 1/I is
+// omega.w; a clump's is n . (R I^-1 R^T n) from its principal moments, and its touching contacts
+// those of all its sub-spheres. Touching ones only: list entries would make the result depend on
+// the skin and the moments of rebuilding.
 float spin_stop_share(uint i, vec3 n) {
-  uint first = i;
-  uint count = 1u;
   precise float inv_i = B_omega[i].w;
   if ((PC.flags & kFlagBodies) != 0u) {
     uint b = B_subs[i].info.x;
-    first = B_bodies[b].spheres.x;
-    count = B_bodies[b].spheres.y;
     vec3 nb = quat_rotate_inverse(B_bodies[b].quat, n);
     vec3 m = xyz(B_bodies[b].inv_inertia);
     inv_i = (nb.x * nb.x) * m.x + (nb.y * nb.y) * m.y + (nb.z * nb.z) * m.z;
   }
-  uint last = first + count;
-  uint entries = (B_row_start[last] - B_row_start[first]) + (B_trans_start[last] - B_trans_start[first]);
-  precise float share = float(max(entries, 1u)) * inv_i;
+  precise float share = float(max(B_touches[touch_key(i)], 1u)) * inv_i;
   return share;
 }
 
@@ -165,6 +167,25 @@ void process_contact(uint i, uint c) {
     B_torque_i[c] = vec4(o.torque_i, 0.0f);
     B_torque_j[c] = vec4(o.torque_j, 0.0f);
   }
+}
+
+void k_clear_touches(uint i) {
+  if (i >= PC.n_particles) return;
+  B_touches[i] = 0u;
+}
+
+// Counts contact c for both its bodies when it touches, by the contact kernel's own test (an
+// integer sum: the same in any order).
+void k_touch_count(uint c) {
+  if (c >= B_control[kCtlContacts]) return;
+  uint i = B_owner[c];
+  uint p = B_partner[c];
+  bool is_wall = p >= PC.n_particles;
+  ContactState st;
+  bool touching = is_wall ? touch_wall(i, c, p, st) : touch_particle(i, p, st);
+  if (!touching) return;
+  atomicAdd(B_touches[touch_key(i)], 1u);
+  if (!is_wall) atomicAdd(B_touches[touch_key(p)], 1u);
 }
 
 // Variant "contact": one invocation per contact of the list.

@@ -98,6 +98,41 @@ void k_bucket_sort(uint b) {
   }
 }
 
+// Body-level broad phase (clumps, kFlagBodyBroadPhase): a body whose bounding sphere, widened by
+// the skin, meets no other body's has no candidate pair, so its sub-spheres skip the grid walk
+// (their walls are still tested). The same list as without it: only pairs that near_pair would
+// reject are skipped. Each body tests every other one, so the host enables it only where bodies
+// are few against their sub-spheres (Model, choose_neighbour_search).
+float body_bound(uint b) { return uintBitsToFloat(B_subs[B_bodies[b].spheres.x].info.y); }
+
+// The largest coordinate of x, for the rounding slack of a float distance test.
+float coordinate_size(vec3 x) { return max(abs(x.x), max(abs(x.y), abs(x.z))); }
+
+void k_body_near(uint b) {
+  if (b >= PC.n_bodies) return;
+  vec3 c = xyz(B_bodies[b].pos);
+  float rb = body_bound(b);
+  float size_b = coordinate_size(c);
+  uint near = 0u;
+  for (uint o = 0u; o < PC.n_bodies && near == 0u; ++o) {
+    if (o == b) continue;
+    vec3 co = xyz(B_bodies[o].pos);
+    precise vec3 d = c - co;
+    // Sub-sphere positions carry a few float roundings of the coordinates (body_place): a
+    // slack of 1e-5 of the largest coordinate keeps the test conservative.
+    precise float slack = 1e-5f * (size_b + coordinate_size(co));
+    precise float reach = ((rb + body_bound(o)) + PC.skin) + slack;
+    if (dot3(d, d) < reach * reach) near = 1u;
+  }
+  B_body_near[b] = near;
+}
+
+// False when i's body meets no other body (kFlagBodyBroadPhase): i then has no particle partner.
+bool body_may_pair(uint i) {
+  if ((PC.flags & kFlagBodyBroadPhase) == 0u) return true;
+  return B_body_near[B_subs[i].info.x] != 0u;
+}
+
 // True when j is a neighbour candidate of i: within the skin of touching.
 bool near_pair(vec4 pi, vec4 pj, float skin) {
   precise vec3 d = xyz(pi) - xyz(pj);
@@ -188,7 +223,8 @@ uint walk_neighbours(uint i, bool fill, uint base) {
   }
   uint lowest = large ? 0u : first_partner_id(i);
   bool i_fixed = is_fixed(i);
-  for (int dz = large ? 2 : -1; dz <= 1; ++dz) {
+  bool pairs = body_may_pair(i);
+  for (int dz = (large || !pairs) ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         ivec3 cc = ivec3(ci.x + dx, ci.y + dy, ci.z + dz);
@@ -207,8 +243,8 @@ uint walk_neighbours(uint i, bool fill, uint base) {
       }
     }
   }
-  uint large_end = B_cell_start[PC.table_size + 1u];
-  for (uint s = B_cell_start[PC.table_size]; s < large_end; ++s) {
+  uint large_end = pairs ? B_cell_start[PC.table_size + 1u] : 0u;
+  for (uint s = pairs ? B_cell_start[PC.table_size] : 0u; s < large_end; ++s) {
     uint j = B_sorted[s];
     if (j == i || (large && j < i)) continue;
     if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;

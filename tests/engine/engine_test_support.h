@@ -182,6 +182,17 @@ inline std::unique_ptr<Simulation> simulate(const CaseSpec& spec, const std::str
                                       batch);
 }
 
+// `spec` after `steps` steps (cpu, 2 threads) with the given neighbour skin and rebuild interval:
+// the skin tests compare such runs, which may differ in no particle byte.
+inline std::unique_ptr<Simulation> simulate_with_list(CaseSpec spec, double skin, int interval, uint64_t steps,
+                                                      KernelVariant variant = {}, uint32_t batch = 200) {
+  spec.neighbour.skin = skin;
+  spec.neighbour.rebuild_interval = interval;
+  auto sim = simulate(spec, "cpu", 2, variant, batch);
+  sim->advance(steps);
+  return sim;
+}
+
 inline double mass_of(const gpu::vec4& vel) { return 1.0 / double(vel.w); }
 
 template <class T>

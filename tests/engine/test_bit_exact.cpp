@@ -112,12 +112,7 @@ TEST_CASE("the neighbour skin and the rebuild interval leave every particle byte
   CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml");
   double skin = build_model(spec).skin;
   auto run = [&](double s, int interval, const char* variant) {
-    CaseSpec c = spec;
-    c.neighbour.skin = s;
-    c.neighbour.rebuild_interval = interval;
-    auto sim = simulate(c, "cpu", 2, KernelVariant::parse(variant));
-    sim->advance(400);
-    return sim;
+    return simulate_with_list(spec, s, interval, 400, KernelVariant::parse(variant));
   };
   auto reference = run(skin, 0, "contact");
   REQUIRE(reference->rebuilds() > 5);

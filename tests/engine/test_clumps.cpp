@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "engine/cpu_backend.h"
 #include "engine_test_support.h"
 
 using namespace repose;
@@ -230,14 +231,7 @@ TEST_CASE("clumps: the neighbour skin and the rebuild interval leave the bodies 
   CaseSpec spec = clump_pile();
   spec.contact.rolling = RollingModel::ElasticPlastic;
   double skin = build_model(spec).skin;
-  auto run = [&](double s, int interval) {
-    CaseSpec c = spec;
-    c.neighbour.skin = s;
-    c.neighbour.rebuild_interval = interval;
-    auto sim = simulate(c, "cpu", 2);
-    sim->advance(1000);
-    return sim;
-  };
+  auto run = [&](double s, int interval) { return simulate_with_list(spec, s, interval, 1000); };
   auto reference = run(skin, 0);
   REQUIRE(reference->contacts() > 50);
   for (auto [s, interval] : {std::pair{0.2 * skin, 0}, std::pair{4.0 * skin, 0}, std::pair{skin, 1}}) {
@@ -246,5 +240,37 @@ TEST_CASE("clumps: the neighbour skin and the rebuild interval leave the bodies 
     CHECK(other->rebuilds() != reference->rebuilds());
     CHECK(same_bytes(reference->state().bodies, other->state().bodies));
     CHECK(same_bytes(reference->state().pos, other->state().pos));
+  }
+}
+
+// The body-level broad phase (neighbour.h body_near) only skips pairs the grid walk would reject:
+// the whole state, contact list included, is the same with it on and off, on both backends.
+TEST_CASE("clumps: the body-level broad phase changes no byte, and culls bodies apart from the rest") {
+  CaseSpec pile = clump_pile();
+  pile.neighbour.body_broad_phase = true;
+  Model on = build_model(pile);
+  pile.neighbour.body_broad_phase = false;
+  Model off = build_model(pile);
+  REQUIRE((on.flags & gpu::kFlagBodyBroadPhase) != 0);
+  REQUIRE((off.flags & gpu::kFlagBodyBroadPhase) == 0);
+  auto run = [](const Model& m, const char* backend) {
+    return std::make_unique<Simulation>(m, make_backend(backend, -1, 2, 64), KernelVariant{}, 25);
+  };
+  // At the start the clumps fall 4 cm apart: some bodies meet none, and skip the walk.
+  auto first = run(on, "cpu");
+  const uint32_t* near = dynamic_cast<CpuBackend&>(first->backend()).buffers().body_near;
+  size_t apart = size_t(std::count(near, near + on.bodies.size(), 0u));
+  CHECK(apart > 0);
+  CHECK(apart < on.bodies.size());
+  for (const char* backend : {"cpu", "vulkan"}) {
+    auto a = run(on, backend);
+    auto b = run(off, backend);
+    a->advance(1500);
+    b->advance(1500);
+    REQUIRE(a->contacts() > 50);
+    std::string which;
+    bool same = same_state(a->state(), b->state(), &which);
+    INFO(backend << ": first difference in " << which);
+    CHECK(same);
   }
 }

@@ -138,10 +138,17 @@ TEST_CASE("spinning friction: the limiter never turns a spin over, even when it 
   CHECK(prev < 1e-6);
 }
 
-TEST_CASE("spinning friction: identical on lavapipe and the CPU twin (spheres and clumps)", "[engine][bitexact]") {
+namespace {
+
+// Spheres falling onto each other, spinning friction 0.3.
+CaseSpec spinning_cloud() {
   CaseSpec spheres = seeded_cloud(150, 91, 2.0, 0.05);
   for (auto& in : spheres.interactions) in.spinning_friction = 0.3;
-  // Clumps of three unequal spheres tumbling onto the floor, spinning.
+  return spheres;
+}
+
+// Clumps of three unequal spheres tumbling onto the floor, spinning, spinning friction 0.2.
+CaseSpec spinning_clumps() {
   CaseBuilder b;
   int grain = b.material(1000, 5e6, 0.3);
   int steel = b.material(7800, 8e10, 0.3);
@@ -156,7 +163,14 @@ TEST_CASE("spinning friction: identical on lavapipe and the CPU twin (spheres an
             {0.9, 0.1 * k, -0.3, 0.2}, {0, 0, 0}, {3.0 * k - 15, 2.0, 20.0 - 3 * k});
   b.plane({0, 0, 0}, {0, 0, 1}, steel);
   b.plane({-0.012, 0, 0}, {1, 0, 0}, steel);
-  for (const CaseSpec* spec : {&spheres, &b.spec}) {
+  return b.spec;
+}
+
+}  // namespace
+
+TEST_CASE("spinning friction: identical on lavapipe and the CPU twin (spheres and clumps)", "[engine][bitexact]") {
+  CaseSpec spheres = spinning_cloud(), clumps = spinning_clumps();
+  for (const CaseSpec* spec : {&spheres, &clumps}) {
     auto reference = simulate(*spec, "cpu", 1, {}, 25);
     reference->advance(1200);
     for (const char* text : {"contact", "rows,wg=32"}) {
@@ -170,6 +184,29 @@ TEST_CASE("spinning friction: identical on lavapipe and the CPU twin (spheres an
       }
     }
     CHECK_THROWS_AS(simulate(*spec, "cpu", 1, KernelVariant::parse("contact,lean")), std::invalid_argument);
+  }
+}
+
+// The limiter counts touching contacts, not list entries, so as for every other option the skin
+// and the moments of rebuilding change no byte (docs/engineering.md, neighbour search).
+TEST_CASE("spinning friction: the neighbour skin and the rebuild interval leave every byte unchanged",
+          "[engine][bitexact]") {
+  CaseSpec spheres = spinning_cloud(), clumps = spinning_clumps();
+  for (const CaseSpec* spec : {&spheres, &clumps}) {
+    double skin = build_model(*spec).skin;
+    auto run = [&](double s, int interval) { return simulate_with_list(*spec, s, interval, 1200, {}, 25); };
+    auto reference = run(skin, 0);
+    REQUIRE(reference->contacts() > 10);
+    for (auto [s, interval] : {std::pair{0.3 * skin, 0}, std::pair{4.0 * skin, 0}, std::pair{skin, 1}}) {
+      auto other = run(s, interval);
+      INFO((spec == &spheres ? "spheres" : "clumps") << ", skin " << s << " m, rebuild interval " << interval);
+      CHECK(other->rebuilds() != reference->rebuilds());
+      CHECK(same_bytes(reference->state().pos, other->state().pos));
+      CHECK(same_bytes(reference->state().vel, other->state().vel));
+      CHECK(same_bytes(reference->state().omega, other->state().omega));
+      CHECK(same_bytes(reference->state().torque, other->state().torque));
+      CHECK(same_bytes(reference->state().bodies, other->state().bodies));
+    }
   }
 }
 
