@@ -334,9 +334,15 @@ void Chart::square(double x, double y, Colour c, int half) {
   count_point(cc, rr, c, Mark::Square);
 }
 
+// Its ends and middle are kept clear of the legend like a data point, but are not points.
 void Chart::error_bar(double x, double y_low, double y_high, Colour c) {
   clipped_segment(px(x), py(y_low), px(x), py(y_high), c, 1);
   for (double y : {y_low, y_high}) clipped_segment(px(x) - 4, py(y), px(x) + 4, py(y), c, 1);
+  auto [left, top, right, bottom] = plot_area();
+  for (double y : {y_low, 0.5 * (y_low + y_high), y_high}) {
+    double r = std::clamp(py(y), double(top), double(bottom));
+    if (px(x) >= left && px(x) <= right) data_pixels_.push_back({int(std::lround(px(x))), int(std::lround(r))});
+  }
 }
 
 void Chart::cross(double x, double y, Colour c, int size) {

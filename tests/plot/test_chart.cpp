@@ -91,6 +91,28 @@ TEST_CASE("among corners free of data the legend takes the one clear of bands an
   CHECK(black > 20);
 }
 
+TEST_CASE("the legend keeps clear of error bars as of points", "[plot]") {
+  Chart::keep_records();
+  Chart chart(600, 400, 0, 1, 0, 1);
+  // Points crowd the left corners; the top right holds only the upper end of an error bar whose
+  // point sits mid-height, so the bottom right is the corner free of data.
+  for (int i = 0; i < 10; ++i) {
+    chart.marker(0.05 + 0.02 * i, 0.95 - 0.01 * i, colours::blue);
+    chart.marker(0.05 + 0.02 * i, 0.05 + 0.01 * i, colours::blue);
+  }
+  chart.marker(0.95, 0.5, colours::red);
+  chart.error_bar(0.95, 0.4, 0.98, colours::red);
+  chart.legend({{"runs", colours::blue, Mark::Dot}, {"mean +- se", colours::red, Mark::Dot}});
+  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_bars.png").string();
+  chart.save(path);
+  CHECK_FALSE(Chart::recorded(path).legend_covers_data);
+  auto [left, top, right, bottom] = chart.plot_area();
+  int blue = 0;  // the "runs" sample dot, in the legend box at the bottom right
+  for (int row = bottom - 80; row < bottom; ++row)
+    for (int col = right - 200; col < right; ++col) blue += chart.pixel(col, row) == colours::blue;
+  CHECK(blue > 20);
+}
+
 TEST_CASE("the legend takes the corner free of data, and records what each entry shows", "[plot]") {
   Chart::keep_records();
   Chart chart(600, 400, 0, 1, 0, 1);
