@@ -59,6 +59,18 @@ TEST_CASE("a picture at equal scale keeps its aspect and fits the size asked", "
   }
 }
 
+namespace {
+
+// How many pixels of the rectangle [col0, col1) x [row0, row1) have the colour (a legend's sample).
+int pixels_of(const Chart& chart, Colour colour, int col0, int col1, int row0, int row1) {
+  int n = 0;
+  for (int row = row0; row < row1; ++row)
+    for (int col = col0; col < col1; ++col) n += chart.pixel(col, row) == colour;
+  return n;
+}
+
+}  // namespace
+
 TEST_CASE("tick labels tell neighbours apart however narrow the range", "[plot]") {
   Chart chart(600, 400, 0, 1, 0.44001, 0.44019);
   chart.save((std::filesystem::temp_directory_path() / "repose_test_ticks.png").string());
@@ -85,10 +97,7 @@ TEST_CASE("among corners free of data the legend takes the one clear of bands an
   CHECK_FALSE(r.legend_covers_data);
   CHECK_FALSE(r.legend_covers_reference);
   auto [left, top, right, bottom] = chart.plot_area();
-  int black = 0;  // the "runs" sample dot, drawn in the legend box at the bottom left
-  for (int row = bottom - 80; row < bottom; ++row)
-    for (int col = left + 5; col < left + 60; ++col) black += chart.pixel(col, row) == colours::black;
-  CHECK(black > 20);
+  CHECK(pixels_of(chart, colours::black, left + 5, left + 60, bottom - 80, bottom) > 20);  // the "runs" sample
 }
 
 TEST_CASE("the legend keeps clear of error bars as of points", "[plot]") {
@@ -107,10 +116,7 @@ TEST_CASE("the legend keeps clear of error bars as of points", "[plot]") {
   chart.save(path);
   CHECK_FALSE(Chart::recorded(path).legend_covers_data);
   auto [left, top, right, bottom] = chart.plot_area();
-  int blue = 0;  // the "runs" sample dot, in the legend box at the bottom right
-  for (int row = bottom - 80; row < bottom; ++row)
-    for (int col = right - 200; col < right; ++col) blue += chart.pixel(col, row) == colours::blue;
-  CHECK(blue > 20);
+  CHECK(pixels_of(chart, colours::blue, right - 200, right, bottom - 80, bottom) > 20);  // the "runs" sample
 }
 
 TEST_CASE("the legend takes the corner free of data, and records what each entry shows", "[plot]") {
@@ -134,8 +140,5 @@ TEST_CASE("the legend takes the corner free of data, and records what each entry
   CHECK(r.points_of(colours::red, Mark::Line) == 0);
   // The legend box is white-ish in the bottom right: the dot sample of "runs" is red there.
   auto [left, top, right, bottom] = chart.plot_area();
-  int red = 0;
-  for (int row = bottom - 80; row < bottom; ++row)
-    for (int col = right - 200; col < right; ++col) red += chart.pixel(col, row) == colours::red;
-  CHECK(red > 20);
+  CHECK(pixels_of(chart, colours::red, right - 200, right, bottom - 80, bottom) > 20);
 }
