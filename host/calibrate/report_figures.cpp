@@ -209,6 +209,7 @@ Figure verification(const CampaignPlan& plan, const CalibrationResult& res, cons
     r.add(c.mean + c.se);
   }
   r.pad(0.1);
+  r.hi += 0.3 * (r.hi - r.lo);  // headroom for the legend: the band spans the width, so no corner is clear of it
   const int n = int(values.size());
   Chart chart(860, 540, 0.5, run_axis_end(size_t(n)), r.lo, r.hi);
   chart.horizontal_band(resp.measured - tol, resp.measured + tol, colours::green);
