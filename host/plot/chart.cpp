@@ -285,7 +285,9 @@ void Chart::polyline(const std::vector<double>& x, const std::vector<double>& y,
 void Chart::band(const std::vector<double>& x, const std::vector<double>& low, const std::vector<double>& high, Colour c) {
   for (size_t i = 1; i < x.size(); ++i) {
     int ca = int(std::lround(px(x[i - 1]))), cb = int(std::lround(px(x[i])));
-    for (int col = ca; col <= cb; ++col) {
+    // A column shared with the next segment is its first: blended twice it would draw a stripe.
+    const int last = i + 1 < x.size() ? cb - 1 : cb;
+    for (int col = ca; col <= last; ++col) {
       double t = cb > ca ? double(col - ca) / (cb - ca) : 0;
       double lo = low[i - 1] + t * (low[i] - low[i - 1]), hi = high[i - 1] + t * (high[i] - high[i - 1]);
       int ra = int(std::lround(std::max(py(hi), double(top_)))), rb = int(std::lround(std::min(py(lo), double(h_ - bottom_))));
