@@ -97,8 +97,8 @@ ResponseModel surrogate_model(int response, const std::shared_ptr<GaussianProces
 }  // namespace
 
 std::uint64_t loop_seed(const CampaignPlan& plan, int index) {
-  return plan.adaptive.seed_per_run ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index)
-                                    : plan.base_seed;
+  return plan.seeds_follow_verification() ? plan.base_seed + std::uint64_t(plan.verification_runs) + std::uint64_t(index)
+                                         : plan.base_seed;
 }
 
 std::vector<RunSpec> adaptive_start_runs(const CampaignPlan& plan) {

@@ -120,6 +120,9 @@ struct CampaignPlan {
   // there are any (calibrate on the box, verify on the cylinder), else the calibrating ones.
   std::vector<int> calibration_responses() const;
   std::vector<int> verified_responses() const;
+  // Whether other runs' seeds follow the verification's (an adaptive loop with a seed per run
+  // starts its seeds after them): then the verification count is part of the campaign's identity.
+  bool seeds_follow_verification() const { return mode == CampaignMode::adaptive && adaptive.seed_per_run; }
   // The rigs these responses run on, each once, in rig order.
   std::vector<int> rigs_of(const std::vector<int>& responses) const;
   const PlanResponse& primary() const { return responses[size_t(calibration_responses().front())]; }

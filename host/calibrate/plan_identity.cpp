@@ -109,11 +109,9 @@ std::string canonical_plan_text(const CampaignPlan& p) {
       kv["adaptive.pilot_points"] = std::to_string(p.adaptive.pilot_points);
     }
   }
-  // The verification count is not here either where no other run's seed depends on it: more
-  // verification runs resume the campaign (their seeds are base + 1, 2, ...); an adaptive loop
-  // with a seed per run starts its seeds after them, so there it stays.
-  if (p.mode == CampaignMode::adaptive && p.adaptive.seed_per_run)
-    kv["verification.runs"] = std::to_string(p.verification_runs);
+  // The verification count is not here either unless other runs' seeds follow it: more
+  // verification runs then resume the campaign (their seeds are base + 1, 2, ...).
+  if (p.seeds_follow_verification()) kv["verification.runs"] = std::to_string(p.verification_runs);
   std::string text;
   for (const auto& [k, v] : kv) text += k + " = " + v + "\n";
   // The base case as parsed, line by line, so a change can be named (describe_plan_change).
