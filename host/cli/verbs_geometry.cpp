@@ -398,6 +398,9 @@ void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
   app.add_option("--floor", q.floor_z, "floor height z, m (default: lowest sphere bottom; a PNG's: its lowest heap pixel, "
                                        "z from the picture's bottom edge)")
       ->check(finite_number());
+  app.add_option("--visible-from", q.options.visible_from,
+                 "hide the picture before this horizontal coordinate, m (an opaque box's front wall hides what it holds)")
+      ->check(finite_number());
   app.add_option("--sectors", q.axi.sectors, "3D fit: number of sectors (default 8)")->check(whole_number(1, 360));
   app.add_option("--bin", q.axi.bin_width, "3D fit: radial bin width, m (default: heap radius / 25)")->check(finite_positive());
   app.add_option("--centre,--center", q.centre, "3D fit: heap axis x,y (default: volume-weighted medians)")->expected(2)->delimiter(',');
@@ -413,6 +416,8 @@ HeapAngleRun measure_request(HeapAngleRequest& q) {
   if (r.photo && !(q.options.pixel > 0)) throw std::runtime_error(file + ": a PNG silhouette needs --pixel (m per pixel)");
   if (r.photo && (q.views > 1 || q.axisymmetric))
     throw std::runtime_error(file + ": --views and --axisymmetric need the heap's spheres (a CSV), not one picture");
+  if (q.options.visible_from && (q.views > 1 || q.axisymmetric))
+    throw std::runtime_error("--visible-from hides part of the front view only: not with --views or --axisymmetric");
   if (!r.photo) r.spheres = read_sphere_csv(file);
   const HeapAngleOptions& options = q.options;
   q.axi.floor_z = q.floor_z;

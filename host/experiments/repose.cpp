@@ -169,6 +169,7 @@ void measure_heap(const CaseSpec& spec, double floor_z, bool require_slope, Repo
   HeapAngleOptions opts;
   opts.view = ex.view == "x" ? ViewAxis::X : ViewAxis::Y;
   opts.floor_z = floor_z;
+  opts.visible_from = ex.visible_from;
   r.heap = measure_heap_angle(r.spheres, opts);
   r.profile = measure_heap_profile(r.heap);
   auto no_slope = [&](const std::string& problem) {
@@ -251,7 +252,8 @@ std::map<std::string, double> heap_measures(const ReposeResult& heap, const std:
 }
 
 std::vector<std::string> repose_keys() {
-  return {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z"};
+  return {"lift_wall", "lift_end", "end_when_clear", "settle_energy", "view", "views", "heap_side", "axisymmetric", "floor_z",
+          "visible_from"};
 }
 
 std::shared_ptr<const ExperimentSettings> read_repose_keys(const Section& s) {
@@ -272,6 +274,11 @@ std::shared_ptr<const ExperimentSettings> read_repose_keys(const Section& s) {
       s.fail("views", "several views measure both slopes of each: heap_side must be \"both\", not \"" + ex.heap_side + "\"");
   }
   if (auto z = s.number("floor_z")) ex.heap_floor_z = *z;
+  if (auto v = s.number("visible_from")) {
+    ex.visible_from = *v;
+    if (ex.views > 1 || ex.axisymmetric)
+      s.fail("visible_from", "hides part of the front view only: it needs views = 1 and axisymmetric = false");
+  }
   return settings;
 }
 
@@ -286,6 +293,11 @@ HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
   HeapPictureCaption caption = slope_caption(r.heap, settings_of<ReposeSettings>(spec.experiment).heap_side);
   caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
   if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
+  if (auto from = settings_of<ReposeSettings>(spec.experiment).visible_from) {
+    char where[64];
+    std::snprintf(where, sizeof where, " beyond %s = %.3g m", settings_of<ReposeSettings>(spec.experiment).view == "x" ? "y" : "x", *from);
+    caption.measured_as += where;
+  }
   return caption;
 }
 

@@ -33,6 +33,8 @@ struct ReposeSettings : ExperimentSettings {
   int views = 1;                   // > 1: the angle is the mean slope of that many front views
                                    // over half a turn about the heap axis (needs heap_side both)
   std::optional<double> heap_floor_z;  // default: the lowest sphere bottom
+  std::optional<double> visible_from;  // m along the picture: what lies before it is hidden
+                                       // (an opaque box's front wall; HeapAngleOptions)
 };
 
 struct ReposeResult {

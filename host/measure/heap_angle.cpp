@@ -84,6 +84,10 @@ HeapAngle measure_heap_image(BinaryImage image, double floor_z, const HeapAngleO
   out.image = std::move(image);
   out.holes_filled = fill_holes(out.image);
   out.profile = top_profile(out.image);
+  out.visible_from = options.visible_from;
+  if (options.visible_from)
+    for (int c = 0; c < out.image.width && out.image.column_centre(c) < *options.visible_from; ++c)
+      out.profile[static_cast<size_t>(c)] = -1;
   out.fitted_columns.assign(out.profile.size(), 0);
 
   // Crest: the highest profile column(s); left and right slopes start beside them.
@@ -97,7 +101,8 @@ HeapAngle measure_heap_image(BinaryImage image, double floor_z, const HeapAngleO
       crest_last = c;
     }
   }
-  if (crest_row < 0) throw std::invalid_argument("heap angle: empty silhouette");
+  if (crest_row < 0)
+    throw std::invalid_argument(options.visible_from ? "heap angle: nothing of the heap is visible" : "heap angle: empty silhouette");
   const double top = out.image.row_top(crest_row);
   out.heap_height = top - out.floor_z;
   if (!(out.heap_height > 0)) throw std::invalid_argument("heap angle: heap top is not above the floor");

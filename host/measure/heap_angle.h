@@ -29,6 +29,9 @@ struct HeapAngleOptions {
   double band_low = 0.10;         // fit only boundary points between these fractions of the
   double band_high = 0.80;        // heap height above the floor (drops the toe and the crest)
   std::optional<double> floor_z;  // default: the lowest sphere bottom
+  // The picture's columns before this horizontal coordinate (m) are hidden, as the front wall of
+  // an opaque box hides the bodies it holds: the crest and slopes are found in what is left.
+  std::optional<double> visible_from;
 };
 
 struct HeapAngle {
@@ -41,6 +44,7 @@ struct HeapAngle {
   BinaryImage image;          // after hole filling
   std::vector<int> profile;   // top row per column (-1: empty)
   std::vector<uint8_t> fitted_columns;  // 1 = left-slope point, 2 = right-slope point
+  std::optional<double> visible_from;   // the options': columns before it were hidden
 };
 
 // The 2D measurement. Each slope uses the columns that are contiguous with the crest (a body

@@ -51,8 +51,11 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
   const double widen = std::max(0.0, 0.5 * (1.4 * (top - z0) - (u1 - u0)) - margin);
   Chart chart = Chart::equal_scale(1400, 1000, u0 - margin - widen, u1 + margin + widen, z0, top);
   // The silhouette, then its top outline, the floor, the fitted lines and the points they used.
+  // Columns the options hid (an opaque box's front wall) are drawn darker: not measured.
+  const Colour hidden{150, 150, 165};
+  auto is_hidden = [&](int c) { return m.visible_from && image.column_centre(c) < *m.visible_from; };
   chart.raster(image.width, image.height, u0, z0, image.pixel, [&](int c, int r) -> std::optional<Colour> {
-    if (image.at(c, r)) return Colour{205, 205, 205};
+    if (image.at(c, r)) return is_hidden(c) ? hidden : Colour{205, 205, 205};
     return std::nullopt;
   });
   std::vector<double> outline_u, outline_z;
@@ -86,6 +89,7 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
   }
   if (points) legend.push_back({"fitted points", colours::orange, Mark::Square});
   legend.push_back({"floor", colours::green});
+  if (m.visible_from) legend.push_back({"hidden (not measured)", hidden, Mark::Square});
 
   const bool measured = std::isfinite(caption.angle_deg);
   char title[200];

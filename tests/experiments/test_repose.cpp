@@ -43,6 +43,15 @@ TEST_CASE("repose: a lifted wall without a stop time needs lift_end", "[experime
   CHECK_THROWS_WITH(run_repose(spec), Catch::Contains("lift_end"));
 }
 
+TEST_CASE("repose: visible_from hides part of one front view only", "[experiments][repose]") {
+  const std::string box = std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/repose_box_spheres.toml";
+  CHECK_NOTHROW(load_case(box, {{"experiment.visible_from", "-0.3"}}));
+  // With several views or the 3D fit, a fixed window in one picture hides nothing sensible.
+  CHECK_THROWS_WITH(load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/repose_cylinder_spheres.toml",
+                              {{"experiment.visible_from", "-0.3"}}),
+                    Catch::Contains("visible_from") && Catch::Contains("views = 1"));
+}
+
 // The bottomless cylinder clears the heap of spheres half way through its lift; with
 // end_when_clear (the default) the heap is measured once it has settled there, without
 // simulating the rest of the lift, and reads the same angle.

@@ -236,3 +236,22 @@ TEST_CASE("line fit recovers a known line and refuses degenerate input", "[heap]
   CHECK_THROWS_AS(fit_line({1, 1}, {2, 3}), std::invalid_argument);
   CHECK_THROWS_AS(fit_line({1}, {2}), std::invalid_argument);
 }
+
+TEST_CASE("visible_from hides what a box's front wall hides: the free slope beyond it is measured", "[heap]") {
+  // A 20 degree wedge (crest 0.1 m high at x = 0) and, behind x = -0.04, a stack rising at 45
+  // degrees to 0.27 m, as cabbages lean on a box's back wall behind its open side: seen through
+  // the walls, the right slope starts on the stack's top and the concave profile reads steeper.
+  std::vector<Sphere> heap = wedge_shell(0.1, 20.0, 20.0, 0.004, 0.1);
+  for (double x = -0.2; x < -0.04; x += 0.002) heap.push_back({{x, 0.0, 0.11 + (-0.04 - x)}, 0.004});
+  const HeapAngle through = measure_heap_angle(heap, {});
+  HeapAngleOptions options;
+  options.visible_from = -0.03;
+  const HeapAngle seen = measure_heap_angle(heap, options);
+  INFO("through the wall " << through.right.angle_deg << ", beyond it " << seen.right.angle_deg);
+  REQUIRE(seen.right.valid);
+  CHECK(std::abs(seen.right.angle_deg - 20.0) < kTolerance);
+  CHECK(through.right.angle_deg > 22.0);                 // the stack steepens the fit
+  CHECK(seen.heap_height < 0.75 * through.heap_height);  // the stack's top is hidden
+  options.visible_from = 1.0;                            // beyond the heap: nothing to see
+  CHECK_THROWS_WITH(measure_heap_angle(heap, options), Catch::Contains("nothing of the heap is visible"));
+}
