@@ -292,6 +292,7 @@ void Chart::band(const std::vector<double>& x, const std::vector<double>& low, c
       double lo = low[i - 1] + t * (low[i] - low[i - 1]), hi = high[i - 1] + t * (high[i] - high[i - 1]);
       int ra = int(std::lround(std::max(py(hi), double(top_)))), rb = int(std::lround(std::min(py(lo), double(h_ - bottom_))));
       for (int row = ra; row <= rb; ++row) blend(col, row, c, 0.25);
+      if (rb >= ra) band_columns_.push_back({col, ra, rb});
     }
   }
   for (size_t i = 0; i < x.size(); ++i) count_point(px(x[i]), py(0.5 * (low[i] + high[i])), c, Mark::Band);
@@ -422,12 +423,14 @@ void Chart::draw_legend_mark(double c, double r, const LegendEntry& e) {
   }
 }
 
-// The area of reference lines and bands under a legend box at (c, r).
+// The area of reference lines and bands (horizontal ones and a model's) under a legend box at (c, r).
 double Chart::reference_overlap(double c, double r, double box_w, double box_h) const {
   auto overlap = [](double a0, double a1, double b0, double b1) { return std::max(0.0, std::min(a1, b1) - std::max(a0, b0)); };
   double area = 0;
   for (const auto& [first, last] : reference_rows_) area += overlap(r, r + box_h, first, last + 1) * box_w;
   for (const auto& [first, last] : reference_cols_) area += overlap(c, c + box_w, first, last + 1) * box_h;
+  for (const auto& [col, first, last] : band_columns_)
+    if (col >= c && col < c + box_w) area += overlap(r, r + box_h, first, last + 1);
   return area;
 }
 

@@ -126,6 +126,7 @@ class Chart {
   // Rows and columns that reference lines and bands cross edge to edge ({first, last} pixel): the
   // legend avoids them where the data leave it a choice.
   std::vector<std::array<int, 2>> reference_rows_, reference_cols_;
+  std::vector<std::array<int, 3>> band_columns_;  // a model band's {column, first row, last row}
   double reference_overlap(double c, double r, double box_w, double box_h) const;
   ChartRecord record_;
 };

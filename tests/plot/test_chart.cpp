@@ -100,6 +100,31 @@ TEST_CASE("among corners free of data the legend takes the one clear of bands an
   CHECK(pixels_of(chart, colours::black, left + 5, left + 60, bottom - 80, bottom) > 20);  // the "runs" sample
 }
 
+TEST_CASE("the legend keeps clear of a model's band where the data leave it a choice", "[plot]") {
+  Chart::keep_records();
+  Chart chart(600, 400, 0, 1, 0, 1);
+  // A calibration curve's +-2 sd band rises from the bottom left to the top right, wide at both
+  // ends; the only points sit mid-plot, so all four corners are free of data and the top left
+  // and bottom right are the ones clear of the band.
+  std::vector<double> x, low, high;
+  for (int i = 0; i <= 20; ++i) {
+    x.push_back(0.05 * i);
+    low.push_back(0.05 * i - 0.25);
+    high.push_back(0.05 * i + 0.25);
+  }
+  chart.band(x, low, high, colours::blue);
+  chart.marker(0.5, 0.5, colours::black);
+  chart.legend({{"runs", colours::black, Mark::Dot}, {"model +- 2 sd", colours::blue, Mark::Band}});
+  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_model_band.png").string();
+  chart.save(path);
+  ChartRecord r = Chart::recorded(path);
+  CHECK_FALSE(r.legend_covers_data);
+  CHECK_FALSE(r.legend_covers_reference);
+  auto [left, top, right, bottom] = chart.plot_area();
+  CHECK(pixels_of(chart, colours::black, left + 5, left + 60, top + 3, top + 80) > 20);  // the "runs" sample, top left
+  CHECK(pixels_of(chart, colours::black, right - 200, right - 3, top + 3, top + 80) == 0);  // none over the band
+}
+
 TEST_CASE("the legend keeps clear of error bars as of points", "[plot]") {
   Chart::keep_records();
   Chart chart(600, 400, 0, 1, 0, 1);
