@@ -194,7 +194,7 @@ void check_against_case(CampaignPlan& plan, PlanRig& rig, const SourceRef& set_w
     throw CaseError(rig.settings.empty() ? set_where : rig.settings.front().where,
                     what + " refuses the settings: " + e.what());
   }
-  rig.case_identity = spec.identity;
+  rig.case_identity_as_given = spec.identity;
   if (!spec.experiment.type.empty() && spec.experiment.type != rig.experiment)
     throw CaseError(rig.name.empty() ? SourceRef{plan.path, "campaign.experiment", 0} : rig.where,
                     what + " " + rig.case_path + " is a '" + spec.experiment.type + "' experiment, not '" + rig.experiment + "'");
@@ -208,6 +208,9 @@ void check_against_case(CampaignPlan& plan, PlanRig& rig, const SourceRef& set_w
         throw CaseError(f.where, "not a key " + what + " accepts at " + format_number(v) + ": " + e.what());
       }
     }
+  std::vector<CaseOverride> pinned = base;
+  for (const auto& f : plan.factors) pinned.push_back({f.key, exact_number(f.low)});
+  rig.case_identity = load_case_from_string(rig.case_text, rig.case_path, pinned).identity;
 }
 
 // The campaign's base seed when the plan gives none: the base case's simulation.seed.

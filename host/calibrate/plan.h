@@ -38,7 +38,10 @@ struct PlanRig {
   std::string experiment;  // registered experiment type
   std::string case_path;   // resolved against the plan's folder
   std::string case_text;   // its content (sent to MPI ranks)
-  std::string case_identity;  // CaseSpec::identity with [set] applied (hashed into the plan)
+  // CaseSpec::identity with [set] applied and every factor at its low end (hashed into the plan):
+  // a factor's value in the base case is no run's, so editing it keeps the campaign.
+  std::string case_identity;
+  std::string case_identity_as_given;  // without the factors pinned: databases from before
   std::string seed_key = "simulation.seed";
   std::vector<PlanSetting> settings;
   SourceRef where;
@@ -137,6 +140,8 @@ CampaignPlan load_plan(const std::string& path);
 // Comments, layout and key order do not change it.
 constexpr const char* kCaseLinePrefix = "case| ";
 std::string canonical_plan_text(const CampaignPlan& plan);
+// The same text as plans before the factors were pinned in the base case wrote it.
+std::string canonical_plan_text_as_given(const CampaignPlan& plan);
 std::string plan_hash(const std::string& canonical_text);  // FNV-1a 64, hex
 // "factor.e.high: 0.55 -> 0.6; design.centre: 3 -> 5" between two canonical texts.
 std::string describe_plan_change(const std::string& stored, const std::string& current);

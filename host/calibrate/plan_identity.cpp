@@ -121,6 +121,12 @@ std::string canonical_plan_text(const CampaignPlan& p) {
   return text;
 }
 
+std::string canonical_plan_text_as_given(const CampaignPlan& plan) {
+  CampaignPlan given = plan;
+  for (PlanRig& rig : given.rigs) rig.case_identity = rig.case_identity_as_given;
+  return canonical_plan_text(given);
+}
+
 std::string plan_hash(const std::string& text) { return fnv1a_hex(text); }
 
 namespace {

@@ -101,8 +101,7 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
   {
     Statement q(db_, "SELECT hash, canonical, plan_file FROM plan WHERE id = 1");
     if (q.step()) {
-      if (q.text(0) != hash_ && !adopt_older_plan_row(q.text(0), canonical, plan) &&
-          !adopt_count_change(q.text(1), canonical))
+      if (q.text(0) != hash_ && !adopt_plan_row(q.text(0), q.text(1), plan, canonical))
         throw std::runtime_error(path + ": this database belongs to another version of the plan (" + q.text(2) +
                                  "); changed since: " + describe_plan_change(q.text(1), canonical) +
                                  ". Restore the plan, or start over with --new (discards the " +
@@ -121,41 +120,51 @@ void RunStore::open(const CampaignPlan& plan, bool fresh) {
 
 RunStore::~RunStore() { sqlite3_close(db_); }
 
-// Databases made before the plan hashed its parsed base case (they hashed the case's text as
-// campaign.case_content_hash) are adopted when that text is unchanged: their runs are the same.
-bool RunStore::adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical,
-                                    const CampaignPlan& plan) {
+namespace {
+
+// The hash that databases made before the plan hashed its parsed base case stored for `canonical`
+// (they hashed the case's text as campaign.case_content_hash); "" when it has no case hash.
+std::string case_text_era_hash(const std::string& canonical, const CampaignPlan& plan) {
   const std::string key = "campaign.case_hash = ";
   size_t at = canonical.find(key);
-  if (at == std::string::npos) return false;
+  if (at == std::string::npos) return "";
   size_t end = canonical.find('\n', at);
   size_t case_lines = canonical.find(kCaseLinePrefix);
-  std::string older = canonical.substr(0, at) + "campaign.case_content_hash = " + plan_hash(plan.rigs[0].case_text) +
-                      canonical.substr(end, case_lines == std::string::npos ? std::string::npos : case_lines - end);
-  if (plan_hash(older) != stored_hash) return false;
-  Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
-  up.bind(1, hash_);
-  up.bind(2, canonical);
-  up.step();
-  return true;
+  return plan_hash(canonical.substr(0, at) + "campaign.case_content_hash = " + plan_hash(plan.rigs[0].case_text) +
+                   canonical.substr(end, case_lines == std::string::npos ? std::string::npos : case_lines - end));
 }
 
-// A plan whose adaptive budget or verification count was raised (or lowered) is the same
-// campaign: neither is part of the canonical text where the runs do not depend on it
-// (canonical_plan_text), and a database that still holds them in its plan row is adopted.
-bool RunStore::adopt_count_change(const std::string& stored_canonical, const std::string& canonical) {
-  std::istringstream in(stored_canonical);
+// Whether `stored` is `canonical` but for an adaptive budget or a verification count that is no
+// longer part of the text where the runs do not depend on it (canonical_plan_text).
+bool same_but_counts(const std::string& stored, const std::string& canonical) {
+  std::istringstream in(stored);
   std::string without, line;
   while (std::getline(in, line)) {
     bool count = line.rfind("adaptive.budget = ", 0) == 0 || line.rfind("verification.runs = ", 0) == 0;
     if (!count || canonical.find(line.substr(0, line.find(" = ") + 3)) != std::string::npos) without += line + "\n";
   }
-  if (without != canonical) return false;
-  Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
-  up.bind(1, hash_);
-  up.bind(2, canonical);
-  up.step();
-  return true;
+  return without == canonical;
+}
+
+}  // namespace
+
+// A database whose plan row an earlier version of Repose wrote for this same plan is adopted (its
+// row rewritten to today's text) when its runs are the same ones: a row that hashed the case's
+// text, held a raised or lowered count, or took the base case's values of the factors, which
+// no run uses (canonical_plan_text_as_given), or any of these together.
+bool RunStore::adopt_plan_row(const std::string& stored_hash, const std::string& stored_canonical,
+                              const CampaignPlan& plan, const std::string& canonical) {
+  for (const std::string& text : {canonical, canonical_plan_text_as_given(plan)}) {
+    if (plan_hash(text) != stored_hash && case_text_era_hash(text, plan) != stored_hash &&
+        !same_but_counts(stored_canonical, text))
+      continue;
+    Statement up(db_, "UPDATE plan SET hash = ?, canonical = ? WHERE id = 1");
+    up.bind(1, hash_);
+    up.bind(2, canonical);
+    up.step();
+    return true;
+  }
+  return false;
 }
 
 void RunStore::exec(const std::string& sql) {
@@ -215,7 +224,9 @@ std::map<std::string, RunRecord> RunStore::read_only(const std::string& path, co
     sqlite3_busy_timeout(db, 2000);
     Statement q(db, "SELECT hash FROM plan WHERE id = 1");
     // Runs of another plan (another version of this one) say nothing about this plan's cost.
-    if (q.step() && q.text(0) == plan_hash(canonical_plan_text(plan))) runs = read_runs(db, plan.factor_names(), rigs);
+    if (q.step() && (q.text(0) == plan_hash(canonical_plan_text(plan)) ||
+                     q.text(0) == plan_hash(canonical_plan_text_as_given(plan))))
+      runs = read_runs(db, plan.factor_names(), rigs);
   } catch (const std::exception&) {
     runs.clear();  // not a campaign database: nothing to learn from it
   }

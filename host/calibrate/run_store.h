@@ -38,8 +38,8 @@ class RunStore {
 
  private:
   void open(const CampaignPlan& plan, bool fresh);
-  bool adopt_older_plan_row(const std::string& stored_hash, const std::string& canonical, const CampaignPlan& plan);
-  bool adopt_count_change(const std::string& stored_canonical, const std::string& canonical);
+  bool adopt_plan_row(const std::string& stored_hash, const std::string& stored_canonical, const CampaignPlan& plan,
+                      const std::string& canonical);
   void exec(const std::string& sql);
   void load_runs();
 

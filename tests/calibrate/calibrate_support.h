@@ -73,6 +73,33 @@ inline std::map<std::string, std::string> database_rows(const std::string& path)
   return rows;
 }
 
+// Runs one SQL statement on a database, its ?s bound to `texts` in order; true when it ran.
+inline bool sql_exec(const std::string& path, const std::string& sql, const std::vector<std::string>& texts = {}) {
+  sqlite3* db = nullptr;
+  bool ok = sqlite3_open(path.c_str(), &db) == SQLITE_OK;
+  sqlite3_stmt* q = nullptr;
+  ok = ok && sqlite3_prepare_v2(db, sql.c_str(), -1, &q, nullptr) == SQLITE_OK;
+  for (size_t i = 0; ok && i < texts.size(); ++i)
+    ok = sqlite3_bind_text(q, int(i + 1), texts[i].c_str(), -1, SQLITE_TRANSIENT) == SQLITE_OK;
+  ok = ok && sqlite3_step(q) == SQLITE_DONE;
+  sqlite3_finalize(q);
+  sqlite3_close(db);
+  return ok;
+}
+
+// The first column of the first row a query returns ("" when none).
+inline std::string sql_text(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  std::string out;
+  sqlite3_stmt* q = nullptr;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READONLY, nullptr) == SQLITE_OK &&
+      sqlite3_prepare_v2(db, sql.c_str(), -1, &q, nullptr) == SQLITE_OK && sqlite3_step(q) == SQLITE_ROW)
+    if (auto t = sqlite3_column_text(q, 0)) out = reinterpret_cast<const char*>(t);
+  sqlite3_finalize(q);
+  sqlite3_close(db);
+  return out;
+}
+
 inline int count_runs(const std::string& path) {
   if (!std::filesystem::exists(path)) return 0;
   sqlite3* db = nullptr;

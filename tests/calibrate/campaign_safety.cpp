@@ -58,6 +58,30 @@ TEST_CASE("a plan's identity: the case as parsed and its files by content, not i
   CHECK(change.find("`interaction.0.static_friction = 0.31` -> `interaction.0.static_friction = 0.32`") != std::string::npos);
 }
 
+TEST_CASE("a factor's value in the base case is no run's: editing it keeps the campaign") {
+  // The shipped drop case gives the stalk-steel restitution (0.44) that factor e sets in every run:
+  // a case that ships another value (as the cabbage cases took their calibrated ones) is the same plan.
+  std::string dir = test::scratch_dir("pinned");
+  write_clump_campaign(dir, "", "0.004,0,0,0.005");
+  const CampaignPlan first = load_plan(dir + "/plan.toml");
+  std::string text = test::read_text_file(dir + "/case.toml");
+  text.replace(text.find("restitution = 0.44"), 18, "restitution = 0.61");
+  test::write_text(dir + "/case.toml", text);
+  const CampaignPlan edited = load_plan(dir + "/plan.toml");
+  CHECK(plan_hash(canonical_plan_text(edited)) == plan_hash(canonical_plan_text(first)));
+  CHECK(canonical_plan_text_as_given(edited) != canonical_plan_text_as_given(first));
+  // A database whose plan row was written before the factors were pinned (the base value hashed
+  // in) is adopted, its row rewritten; one whose plan differs elsewhere is still refused.
+  const std::string db = dir + "/campaign.sqlite";
+  { RunStore store(db, first, true); }
+  const std::string given = canonical_plan_text_as_given(first);
+  REQUIRE(test::sql_exec(db, "UPDATE plan SET hash = ?, canonical = ?", {plan_hash(given), given}));
+  CHECK_NOTHROW(RunStore(db, first, false));
+  CHECK(test::sql_text(db, "SELECT hash FROM plan") == plan_hash(canonical_plan_text(first)));
+  REQUIRE(test::sql_exec(db, "UPDATE plan SET hash = 'f00d', canonical = 'another plan'"));
+  CHECK_THROWS_WITH(RunStore(db, first, false), Catch::Contains("another version of the plan"));
+}
+
 TEST_CASE("a second campaign on a busy database is refused, the first finishes") {
   std::string dir = test::scratch_dir("busy");
   test::write_text(dir + "/plan.toml", test::small_ccd_plan());
