@@ -29,15 +29,37 @@ double lowest_bottom(const std::vector<Sphere>& spheres) {
   return z;
 }
 
+// A face steeper than any slope (kSmallestSpan) fitted as x against z, which stays well posed:
+// the angle from the floor, 90 degrees for a vertical face, more where it overhangs.
+SlopeFit fit_face(const std::vector<double>& x, const std::vector<double>& z, bool falling) {
+  SlopeFit out;
+  const LineFit inverse = fit_line(z, x);
+  const double run = falling ? -inverse.slope : inverse.slope;  // horizontal run per metre of rise
+  out.angle_deg = std::atan2(1.0, run) * 180.0 / kPi;
+  double x_mean = 0, z_mean = 0;
+  for (size_t i = 0; i < x.size(); ++i) x_mean += x[i] / double(x.size()), z_mean += z[i] / double(x.size());
+  out.line.slope = inverse.slope != 0 ? 1.0 / inverse.slope : (falling ? -1e6 : 1e6);
+  out.line.intercept = z_mean - out.line.slope * x_mean;
+  out.line.r_squared = inverse.r_squared;
+  out.line.points = inverse.points;
+  out.from = *std::min_element(x.begin(), x.end());
+  out.to = *std::max_element(x.begin(), x.end());
+  out.valid = true;
+  return out;
+}
+
 // Fits z against x; `falling` is true where the slope should fall with x (right side, radius).
-// band_height: the height range the points were taken from (m).
-SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, bool falling, double band_height) {
+// band_height: the height range the points were taken from (m). A face steeper than a slope is a
+// wall the heap leans on, unless `face_counts` (the heap's own face where nothing ran out).
+SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, bool falling, double band_height,
+                   bool face_counts = false) {
   SlopeFit out;
   if (x.size() < kMinimumPoints) {
     out.problem = "only " + std::to_string(x.size()) + " boundary points in the height band";
     return out;
   }
   const double span = *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
+  if (span < kSmallestSpan * band_height && face_counts) return fit_face(x, z, falling);
   if (span < kSmallestSpan * band_height) {
     out.problem = "its " + std::to_string(x.size()) + " boundary points span " + std::to_string(1e3 * span).substr(0, 5) +
                   " mm across a " + std::to_string(1e3 * band_height).substr(0, 5) +
@@ -125,7 +147,8 @@ HeapAngle measure_heap_image(BinaryImage image, double floor_z, const HeapAngleO
   collect(crest_first - 1, -1, 1, u_left, z_left);
   collect(crest_last + 1, +1, 2, u_right, z_right);
   out.left = fit_slope(u_left, z_left, false, z_high - z_low);
-  out.right = fit_slope(u_right, z_right, true, z_high - z_low);
+  // Beyond a hidden box the right face is the heap's own: cabbages standing at the opening.
+  out.right = fit_slope(u_right, z_right, true, z_high - z_low, options.visible_from.has_value());
 
   int valid = 0;
   double sum = 0;

@@ -252,6 +252,18 @@ TEST_CASE("visible_from hides what a box's front wall hides: the free slope beyo
   CHECK(std::abs(seen.right.angle_deg - 20.0) < kTolerance);
   CHECK(through.right.angle_deg > 22.0);                 // the stack steepens the fit
   CHECK(seen.heap_height < 0.75 * through.heap_height);  // the stack's top is hidden
+  // Nothing ran out: the bodies stand at the opening in a vertical face, which is the heap's own
+  // (the steepest heap there is), not a wall to refuse as through the walls.
+  // Layers of spheres whose edge steps back 0.4 mm a layer (2.9 degrees from the vertical).
+  std::vector<Sphere> standing;
+  for (double z = 0.004; z < 0.2; z += 0.008)
+    for (double x = -0.05 * z; x > -0.2; x -= 0.008) standing.push_back({{x, 0.0, z}, 0.004});
+  options.visible_from = -0.03;
+  const HeapAngle face = measure_heap_angle(standing, options);
+  INFO("standing face " << face.right.angle_deg << " (" << face.right.problem << ")");
+  REQUIRE(face.right.valid);
+  CHECK(std::abs(face.right.angle_deg - 87.1) < 1.0);
+  CHECK_FALSE(measure_heap_angle(standing, {}).right.valid);
   options.visible_from = 1.0;                            // beyond the heap: nothing to see
   CHECK_THROWS_WITH(measure_heap_angle(heap, options), Catch::Contains("nothing of the heap is visible"));
 }
