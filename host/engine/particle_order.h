@@ -1,0 +1,44 @@
+// Where each particle sits in the device buffers. A particle's global id is its place in the case
+// (the order of Model::pos, of the host's state and of every output); its slot is where the
+// device stores it. Storing neighbours in nearby slots (cell order) keeps a walk's reads in cache;
+// the kernels order every float sum by global id (shaders/repose_shared.h), so the bytes of a run
+// do not depend on the slots. Simulation converts between the two at the host/device boundary.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/backend.h"
+
+namespace repose {
+
+struct Model;
+
+struct ParticleOrder {
+  std::vector<uint32_t> id_of;    // slot -> global id
+  std::vector<uint32_t> slot_of;  // global id -> slot
+
+  static ParticleOrder identity(uint32_t n);
+  // The order that stores global id id_of[s] in slot s; throws std::invalid_argument unless
+  // id_of is a permutation of 0..n-1.
+  static ParticleOrder from_ids(std::vector<uint32_t> id_of);
+  bool is_identity() const;
+  size_t size() const { return id_of.size(); }
+  // The device's id table (binding Ids): id_of, then slot_of.
+  std::vector<uint32_t> table() const;
+};
+
+// Slots in Morton (Z) order of the hash-grid cells of edge `cell` holding each position (by
+// global id), ties by global id: the particles of one cell and of its neighbours sit close.
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
+
+// The host state `global` (rows by global id, contacts as the kernels would list them by global
+// id) as the device stores it under `order`, and back. `contact_of`, when given, receives for each
+// stored contact its index in the global list (Simulation::contact_forces).
+HostState stored_state(const HostState& global, const ParticleOrder& order);
+HostState global_state(const HostState& stored, const ParticleOrder& order,
+                       std::vector<uint32_t>* contact_of = nullptr);
+
+// The model's constant rows as the device stores them under `order`, with the id table.
+ConstantData stored_constants(const Model& m, const ParticleOrder& order);
+
+}  // namespace repose
