@@ -8,6 +8,7 @@
 
 #include "engine/buffer_table.h"
 #include "engine/model.h"
+#include "util/morton.h"
 
 namespace repose {
 
@@ -41,21 +42,6 @@ std::vector<uint32_t> ParticleOrder::table() const {
   return t;
 }
 
-namespace {
-
-// The low 21 bits of x spread to every third bit (a Morton code's one axis).
-uint64_t spread_bits(uint64_t x) {
-  x &= 0x1fffffu;
-  x = (x | x << 32) & 0x1f00000000ffffULL;
-  x = (x | x << 16) & 0x1f0000ff0000ffULL;
-  x = (x | x << 8) & 0x100f00f00f00f00fULL;
-  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
-  x = (x | x << 2) & 0x1249249249249249ULL;
-  return x;
-}
-
-}  // namespace
-
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
   for (const gpu::vec4& p : pos) {
@@ -65,12 +51,12 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
   }
   auto axis = [&](float x, int k) {
     double c = std::floor((double(x) - lo[k]) / cell);
-    return spread_bits(uint64_t(std::clamp(c, 0.0, double(0x1fffff))));
+    return uint64_t(std::clamp(c, 0.0, double(0x1fffff)));
   };
   std::vector<std::pair<uint64_t, uint32_t>> keys(pos.size());
   for (size_t g = 0; g < pos.size(); ++g) {
     const gpu::vec4& p = pos[g];
-    keys[g] = {axis(p.x, 0) | axis(p.y, 1) << 1 | axis(p.z, 2) << 2, uint32_t(g)};
+    keys[g] = {morton_code(axis(p.x, 0), axis(p.y, 1), axis(p.z, 2)), uint32_t(g)};
   }
   std::sort(keys.begin(), keys.end());
   std::vector<uint32_t> ids(pos.size());

@@ -80,6 +80,7 @@ void Simulation::download() {
   }
   HostState stored;
   backend_->download_state(stored);
+  state_ = HostState{};  // two copies at the most (engine/memory_need.h)
   state_ = global_state(stored, order_, &contact_of_);
 }
 
