@@ -8,7 +8,6 @@
 
 #include "engine/buffer_table.h"
 #include "engine/model.h"
-#include "util/morton.h"
 
 namespace repose {
 
@@ -56,7 +55,7 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
   std::vector<std::pair<uint64_t, uint32_t>> keys(pos.size());
   for (size_t g = 0; g < pos.size(); ++g) {
     const gpu::vec4& p = pos[g];
-    keys[g] = {morton_code(axis(p.x, 0), axis(p.y, 1), axis(p.z, 2)), uint32_t(g)};
+    keys[g] = {axis(p.z, 2) << 42 | axis(p.y, 1) << 21 | axis(p.x, 0), uint32_t(g)};
   }
   std::sort(keys.begin(), keys.end());
   std::vector<uint32_t> ids(pos.size());

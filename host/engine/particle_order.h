@@ -27,8 +27,11 @@ struct ParticleOrder {
   std::vector<uint32_t> table() const;
 };
 
-// Slots in Morton (Z) order of the hash-grid cells of edge `cell` holding each position (by
-// global id), ties by global id: the particles of one cell and of its neighbours sit close.
+// Slots in the order of the grid cells of edge `cell` holding each position (by global id): by
+// layer (z), row (y), then along the row (x), ties by global id. A walk's neighbours then sit in
+// a few runs of slots that advance together, which the CPU's prefetchers follow (on the settled
+// 50k bed, contact_forces 1.6-1.8 ms per step in these rows, 1.7-2.6 in Morton order, 2.1-3.1 in
+// the fill's random order; README, speed).
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
 
 // The host state `global` (rows by global id, contacts as the kernels would list them by global

@@ -1,5 +1,5 @@
 // Morton (Z-order) codes of grid cells: cells close in space get close codes, so sorting by the
-// code puts neighbours near each other in memory (particle fills, the device's particle order).
+// code puts neighbours near each other in memory (large particle fills).
 #pragma once
 #include <cstdint>
 
