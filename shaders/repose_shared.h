@@ -20,8 +20,8 @@ namespace repose::gpu {
 // files (host/engine/buffer_table.h). Adding per-contact state is a row here plus the kernel
 // that uses it. Columns:
 //   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
-//   count:  Particles N, ParticlesPlusOne N+1, ParticlesTwice 2N, Contacts C (the list capacity), ContactsTwice 2C,
-//           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
+//   count:  Particles N, ParticlesPlusOne N+1, ParticlesTwice 2N, Contacts C (the list capacity),
+//           ContactsTwice 2C, Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
 //           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
 //           CandidateSlots N*kCandidateSlots,
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or

@@ -92,22 +92,24 @@ std::vector<T> scattered(const std::vector<T>& v, const std::vector<uint32_t>& n
 
 // The state with every particle moved from its index to new_of_old[index] (old_of_new its
 // inverse): per-particle rows, the rows of both contact lists, and the particle indices in them.
-HostState moved_state(const HostState& s, const std::vector<uint32_t>& old_of_new,
+HostState moved_state(HostState out, const std::vector<uint32_t>& old_of_new,
                       const std::vector<uint32_t>& new_of_old, std::vector<uint32_t>* contact_of) {
-  HostState out = s;
-  std::vector<uint32_t> contact_to, trans_to;
-  move_rows(s.row_start, old_of_new, out.row_start, contact_to);
-  move_rows(s.trans_start, old_of_new, out.trans_start, trans_to);
+  std::vector<uint32_t> contact_to, trans_to, row_start, trans_start;
+  move_rows(out.row_start, old_of_new, row_start, contact_to);
+  move_rows(out.trans_start, old_of_new, trans_start, trans_to);
+  out.row_start = std::move(row_start);
+  out.trans_start = std::move(trans_start);
   for_each_kept(out, [&](const BufferSpec& b, auto& v) {
     using T = typename std::decay_t<decltype(v)>::value_type;
     if (b.count == BufferCount::Particles && !v.empty()) {
-      std::vector<T> old = v;
+      std::vector<T> old = std::move(v);
+      v.resize(old.size());
       for (size_t r = 0; r < v.size(); ++r) v[r] = old[old_of_new[r]];
     } else if ((b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice) && !v.empty()) {
       v = scattered(v, contact_to);
     }
   });
-  out.trans_list = scattered(s.trans_list, trans_to);
+  out.trans_list = scattered(out.trans_list, trans_to);
   for (uint32_t& c : out.trans_list) c = contact_to[c];
   uint32_t n = uint32_t(old_of_new.size());
   for (uint32_t& p : out.partner)
@@ -124,10 +126,10 @@ HostState stored_state(const HostState& global, const ParticleOrder& order) {
   return moved_state(global, order.id_of, order.slot_of, nullptr);
 }
 
-HostState global_state(const HostState& stored, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
+HostState global_state(HostState stored, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
   if (contact_of) contact_of->clear();
   if (order.is_identity()) return stored;
-  return moved_state(stored, order.slot_of, order.id_of, contact_of);
+  return moved_state(std::move(stored), order.slot_of, order.id_of, contact_of);
 }
 
 ConstantData stored_constants(const Model& m, const ParticleOrder& order) {

@@ -38,7 +38,7 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
 // id) as the device stores it under `order`, and back. `contact_of`, when given, receives for each
 // stored contact its index in the global list (Simulation::contact_forces).
 HostState stored_state(const HostState& global, const ParticleOrder& order);
-HostState global_state(const HostState& stored, const ParticleOrder& order,
+HostState global_state(HostState stored, const ParticleOrder& order,
                        std::vector<uint32_t>* contact_of = nullptr);
 
 // The model's constant rows as the device stores them under `order`, with the id table.

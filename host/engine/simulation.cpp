@@ -81,11 +81,12 @@ void Simulation::download() {
   HostState stored;
   backend_->download_state(stored);
   state_ = HostState{};  // two copies at the most (engine/memory_need.h)
-  state_ = global_state(stored, order_, &contact_of_);
+  state_ = global_state(std::move(stored), order_, &contact_of_);
 }
 
 void Simulation::store_in_order(ParticleOrder order) {
-  if (order.size() != model_.n_particles) throw std::invalid_argument("a particle order for another number of particles");
+  if (order.size() != model_.n_particles)
+    throw std::invalid_argument("a particle order for another number of particles");
   order_ = std::move(order);
   stored_by_id_ = order_.is_identity();
   constants_ = stored_constants(model_, order_);

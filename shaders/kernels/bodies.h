@@ -2,9 +2,10 @@
 // sub-spheres: body_place writes each sub-sphere's world position, velocity (the body's velocity
 // at that point) and spin from its body; after the contact forces, body_gather_kick sums each
 // body's sub-sphere forces and torques in sub-sphere order (by global id, whatever their slots:
-// bit-exact between backends and storage orders) and integrates the body. Angular momentum L (world frame) is the integrated state:
-// omega = R I^-1 R^T L with the diagonal principal inertia I, so a torque-free body keeps L to
-// the bit, and the orientation advances by a midpoint rotation (second order; no trigonometry).
+// bit-exact between backends and storage orders) and integrates the body. Angular momentum L
+// (world frame) is the integrated state: omega = R I^-1 R^T L with the diagonal principal
+// inertia I, so a torque-free body keeps L to the bit, and the orientation advances by a midpoint
+// rotation (second order; no trigonometry).
 #ifndef REPOSE_KERNELS_BODIES_H
 #define REPOSE_KERNELS_BODIES_H
 

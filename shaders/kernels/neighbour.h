@@ -144,8 +144,8 @@ bool near_pair(vec4 pi, vec4 pj, float skin) {
 }
 
 // Adds partner number k to i's row (which starts at `base`), keeping the row sorted by partner
-// id (partner_key): the gathers then sum touching contacts in the same order whatever else the list holds, so
-// results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
+// id (partner_key): the gathers then sum touching contacts in the same order whatever else the
+// list holds, so results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
 // pair's history over from i's old row (zero for a new pair). Entries beyond the capacity are
 // counted but not written (overflow: the batch is redone with a larger list).
 void write_candidate(uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
