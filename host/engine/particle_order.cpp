@@ -121,9 +121,16 @@ HostState moved_state(HostState out, const std::vector<uint32_t>& old_of_new,
 
 }  // namespace
 
-HostState stored_state(const HostState& global, const ParticleOrder& order) {
+HostState stored_state(const HostState& global, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
+  if (contact_of) contact_of->clear();
   if (order.is_identity()) return global;
-  return moved_state(global, order.id_of, order.slot_of, nullptr);
+  std::vector<uint32_t> stored_of;  // each global contact's stored index
+  HostState stored = moved_state(global, order.id_of, order.slot_of, &stored_of);
+  if (contact_of) {
+    contact_of->resize(stored_of.size());
+    for (size_t c = 0; c < stored_of.size(); ++c) (*contact_of)[stored_of[c]] = uint32_t(c);
+  }
+  return stored;
 }
 
 HostState global_state(HostState stored, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {

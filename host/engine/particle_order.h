@@ -36,8 +36,9 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
 
 // The host state `global` (rows by global id, contacts as the kernels would list them by global
 // id) as the device stores it under `order`, and back. `contact_of`, when given, receives for each
-// stored contact its index in the global list (Simulation::contact_forces).
-HostState stored_state(const HostState& global, const ParticleOrder& order);
+// stored contact its index in the global list (Simulation::contact_forces; empty: the same).
+HostState stored_state(const HostState& global, const ParticleOrder& order,
+                       std::vector<uint32_t>* contact_of = nullptr);
 HostState global_state(HostState stored, const ParticleOrder& order,
                        std::vector<uint32_t>* contact_of = nullptr);
 

@@ -69,7 +69,8 @@ void Simulation::allocate(uint32_t capacity) {
 }
 
 void Simulation::upload() {
-  backend_->upload_state(stored_by_id_ ? state_ : stored_state(state_, order_));
+  contact_of_.clear();
+  backend_->upload_state(stored_by_id_ ? state_ : stored_state(state_, order_, &contact_of_));
 }
 
 void Simulation::download() {
