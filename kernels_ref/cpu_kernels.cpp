@@ -68,7 +68,8 @@ void run_wall_reduce(Buffers& buf, uint n_walls) {
     float sx[W], sy[W], sz[W];
     for (uint t = 0; t < W; ++t) {
       vec3 acc(0.0f);
-      for (uint i = t; i < buf.push.n_particles; i += W) {
+      for (uint g = t; g < buf.push.n_particles; g += W) {
+        uint i = k.slot_of(g);
         uint end = min(buf.row_start[i + 1u], limit);
         for (uint c = min(buf.row_start[i], limit); c < end; ++c)
           if (buf.partner[c] == partner) acc = acc - k.xyz(buf.contact_force[c]);

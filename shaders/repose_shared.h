@@ -20,8 +20,8 @@ namespace repose::gpu {
 // files (host/engine/buffer_table.h). Adding per-contact state is a row here plus the kernel
 // that uses it. Columns:
 //   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
-//   count:  Particles N, ParticlesPlusOne N+1, Contacts C (the list capacity), ContactsTwice 2C,
-//           Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
+//   count:  Particles N, ParticlesPlusOne N+1, ParticlesTwice 2N, Contacts C (the list capacity),
+//           ContactsTwice 2C, Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
 //           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
 //           CandidateSlots N*kCandidateSlots,
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
@@ -37,6 +37,10 @@ namespace repose::gpu {
 // touches lives from clear_touches to the contact kernel of a step, cell_of only from
 // bucket_count to bucket_scatter of a rebuild before it; body_near from body_near to
 // contact_fill of a rebuild, cell_fill only in its bucket_scatter before.
+// Particles sit in storage slots in any order (host/engine/particle_order.h: cell order, for
+// locality); each has a global id, its place in the case, which the host's state and every output
+// use. Every order that reaches a float result goes by global id (B_ids), never by slot, so the
+// bytes do not depend on the storage order (docs/engineering.md, particle order).
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
 // at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
 #define REPOSE_BUFFERS(X) \
@@ -53,9 +57,9 @@ namespace repose::gpu {
   X(10, CellOf, cell_of, uint, Particles, Always, Scratch)    /* hash bucket of each particle */ \
   X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch)  /* counts, scanned to starts */ \
   X(12, CellFill, cell_fill, uint, Buckets, Always, Scratch)  /* scatter cursor */ \
-  X(13, Sorted, sorted, uint, Particles, Always, Scratch)     /* ids by bucket, by id within one */ \
+  X(13, Sorted, sorted, uint, Particles, Always, Scratch)     /* slots by bucket, by global id within one */ \
   X(14, RowStart, row_start, uint, ParticlesPlusOne, Always, File)  /* contacts per owner, scanned (CSR) */ \
-  X(15, Partner, partner, uint, Contacts, Always, File)       /* j > i, or N + w for wall w */ \
+  X(15, Partner, partner, uint, Contacts, Always, File)       /* slot j (global id above i's), or N + w for wall w */ \
   X(16, Owner, owner, uint, Contacts, Always, State)          /* i */ \
   X(17, History, history, vec4, Contacts, Always, File)       /* xyz tangential spring, w age (steps) */ \
   X(18, OldRowStart, old_row_start, uint, ParticlesPlusOne, Always, Scratch)  /* the list before a rebuild */ \
@@ -64,11 +68,12 @@ namespace repose::gpu {
   X(21, TorqueJ, torque_j, vec4, Contacts, FullEntries, Scratch)  /* torque on j */ \
   X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
   X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
-  X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, ascending per row */ \
+  X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, by the owner's global id per row */ \
   X(25, WallForce, wall_force, vec4, WallSums, Always, Scratch)  /* force on each wall, its sum, its peak */ \
   X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
   X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
+  X(29, Ids, ids, uint, ParticlesTwice, Always, Constant)    /* [i] slot i's global id, [N + g] id g's slot */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
   X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
@@ -209,7 +214,7 @@ struct Body {
   vec4 inv_inertia;  // xyz 1 / principal moments of inertia
   vec4 force;        // xyz sum of the sub-spheres' contact forces (no gravity)
   vec4 torque;       // xyz torque about the centre of mass
-  uvec4 spheres;     // x first sub-sphere, y count (sub-spheres of a body are contiguous)
+  uvec4 spheres;     // x first sub-sphere's global id, y count (a body's sub-spheres have consecutive ids)
   vec4 drag;         // xyz silhouette area / pi seen along each principal axis (m^2; a sphere:
                      // r^2), for air drag; zero when the case has no air drag
 };

@@ -1,7 +1,8 @@
 #version 450
 // Force on each wall: one workgroup per wall sums -F over the contacts with that wall, each
-// thread over every 256th particle's row (by particle, not by list slot, so the sum does not
-// depend on what else the list holds), then a fixed tree. The CPU twin repeats the same order.
+// thread over every 256th particle's row (by global id, not by storage or list slot, so the sum
+// depends on neither the storage order nor what else the list holds), then a fixed tree. The
+// CPU twin repeats the same order.
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/common.h"
 
@@ -18,7 +19,8 @@ void main() {
   uint partner = PC.n_particles + w;
   uint limit = B_control[kCtlContacts];
   precise vec3 acc = vec3(0.0f);
-  for (uint i = t; i < PC.n_particles; i += kWallReduceWorkgroup) {
+  for (uint g = t; g < PC.n_particles; g += kWallReduceWorkgroup) {
+    uint i = slot_of(g);
     uint end = min(B_row_start[i + 1u], limit);
     for (uint c = min(B_row_start[i], limit); c < end; ++c)
       if (B_partner[c] == partner) acc = acc - xyz(B_contact_force[c]);

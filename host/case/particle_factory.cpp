@@ -9,6 +9,7 @@
 #include "case/body_pose.h"
 #include "case/case_error.h"
 #include "case/sphere_grid.h"
+#include "util/morton.h"
 
 namespace repose {
 namespace {
@@ -66,20 +67,6 @@ void perpendicular_basis(const Vec3d& axis, Vec3d& e1, Vec3d& e2) {
   e1 = {c[0] / length, c[1] / length, c[2] / length};
   e2 = {axis[1] * e1[2] - axis[2] * e1[1], axis[2] * e1[0] - axis[0] * e1[2],
         axis[0] * e1[1] - axis[1] * e1[0]};
-}
-
-// Interleaves the low 21 bits of x, y and z (a Morton code: cells close in space get close codes).
-uint64_t morton_code(uint64_t x, uint64_t y, uint64_t z) {
-  auto spread = [](uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-  };
-  return spread(x) | spread(y) << 1 | spread(z) << 2;
 }
 
 // Puts spheres[first ...] in the Morton order of cells `cell` wide from `origin` (ties in

@@ -14,6 +14,7 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
   switch (b.count) {
     case BufferCount::Particles: return n;
     case BufferCount::ParticlesPlusOne: return n + 1;
+    case BufferCount::ParticlesTwice: return 2 * n;
     case BufferCount::Contacts: return c;
     case BufferCount::ContactsTwice: return 2 * c;
     case BufferCount::Transposed: return c;

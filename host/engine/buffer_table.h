@@ -11,7 +11,7 @@
 namespace repose {
 
 enum class BufferCount {
-  Particles, ParticlesPlusOne, Contacts, ContactsTwice, Transposed, Buckets, BucketsPlusOne, Pairs, WallRows,
+  Particles, ParticlesPlusOne, ParticlesTwice, Contacts, ContactsTwice, Transposed, Buckets, BucketsPlusOne, Pairs, WallRows,
   WallSums, Bodies, Control, CandidateSlots
 };
 enum class BufferNeed { Always, FullEntries, Bodies, RollingSprings, Alias };

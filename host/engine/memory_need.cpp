@@ -32,15 +32,16 @@ size_t device_bytes(const Layout& l) {
   return bytes;
 }
 
-// The host's copies: Simulation's state and constants, the Model's arrays, a batch of wall rows.
-size_t host_bytes(const Model& m, const Layout& l, bool frames) {
+// The host's copies: Simulation's state (twice while a download in cell order is turned to global
+// ids: `reordered`) and constants, the Model's arrays, a batch of wall rows.
+size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) {
   size_t n = m.n_particles;
   size_t model = n * (3 * sizeof(gpu::vec4) + sizeof(uint32_t)) + m.subs.size() * sizeof(gpu::SubSphere) +
                  m.bodies.size() * sizeof(gpu::Body) + m.pairs.size() * sizeof(gpu::PairParams) +
                  m.walls.size() * sizeof(ModelWall);
   size_t walls = size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState);
   size_t frame = frames ? size_t(kFrameBytesPerParticle * double(n)) : 0;
-  return rows_bytes(l, kept) + rows_bytes(l, constant) + model + walls + frame;
+  return (reordered ? 2 : 1) * rows_bytes(l, kept) + rows_bytes(l, constant) + model + walls + frame;
 }
 
 }  // namespace
@@ -50,13 +51,14 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   MemoryNeed need;
   need.layout = model_layout(m, v, batch_steps, capacity ? capacity : first_contact_capacity(m));
   need.device_bytes = device_bytes(need.layout);
-  need.host_bytes = host_bytes(m, need.layout, frames);
+  bool reordered = v.reorder != 0;
+  need.host_bytes = host_bytes(m, need.layout, frames, reordered);
   need.device_in_host_memory = device_in_host_memory;
   Layout one = need.layout;
   one.capacity = 1;
   Layout none = need.layout;
   none.capacity = 0;
-  double host_entry = double(rows_bytes(one, kept) - rows_bytes(none, kept));
+  double host_entry = (reordered ? 2.0 : 1.0) * double(rows_bytes(one, kept) - rows_bytes(none, kept));
   need.bytes_per_entry = host_entry + (device_in_host_memory ? double(bytes_per_contact(need.layout)) : 0.0);
   need.bytes_per_particle =
       (double(need.host_total()) - need.bytes_per_entry * need.layout.capacity) / std::max(1u, m.n_particles);

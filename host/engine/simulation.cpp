@@ -24,7 +24,8 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
                        uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
   layout_ = model_layout(model_, variant_, max_batch_steps);
-  constants_ = {model_.material, model_.pairs, model_.subs};
+  order_ = ParticleOrder::identity(model_.n_particles);
+  constants_ = stored_constants(model_, order_);
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
   state_.pos = model_.pos;
@@ -40,9 +41,9 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   allocate(first_capacity ? first_capacity : first_contact_capacity(model_));
   if (layout_.n_bodies) {
     backend_->execute(body_place_program(model_, layout_, variant_));
-    backend_->download_state(state_);
+    download();
     state_.pos_at_build = state_.pos;
-    backend_->upload_state(state_);
+    upload();
   }
 
   // Velocity Verlet needs F(0) before its first half kick.
@@ -57,14 +58,46 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
       if (attempt > 8) throw std::runtime_error("contact list keeps overflowing");
       grow(ctl[gpu::kCtlMaxContacts]);
     }
-    backend_->download_state(state_);
+    download();
   }
 }
 
 void Simulation::allocate(uint32_t capacity) {
   layout_.capacity = capacity;
   backend_->allocate(layout_, constants_);
-  backend_->upload_state(state_);
+  upload();
+}
+
+void Simulation::upload() {
+  contact_of_.clear();
+  backend_->upload_state(stored_by_id_ ? state_ : stored_state(state_, order_, &contact_of_));
+}
+
+void Simulation::download() {
+  contact_of_.clear();
+  if (stored_by_id_) {
+    backend_->download_state(state_);
+    return;
+  }
+  HostState stored;
+  backend_->download_state(stored);
+  state_ = HostState{};  // two copies at the most (engine/memory_need.h)
+  state_ = global_state(std::move(stored), order_, &contact_of_);
+}
+
+void Simulation::store_in_order(ParticleOrder order) {
+  if (order.size() != model_.n_particles)
+    throw std::invalid_argument("a particle order for another number of particles");
+  order_ = std::move(order);
+  stored_by_id_ = order_.is_identity();
+  constants_ = stored_constants(model_, order_);
+  allocate(layout_.capacity);  // the constants and the state anew, in the new slots
+}
+
+// Cell order before the first batch, and again every variant_.reorder rebuilds.
+bool Simulation::reorder_due() const {
+  if (variant_.reorder == 0) return false;
+  return reordered_at_ < 0 || int64_t(rebuilds()) >= reordered_at_ + int64_t(variant_.reorder);
 }
 
 // A list for `needed` contacts and some to spare, uploading state_ again. After an overflow
@@ -168,6 +201,10 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   while (step_ < target) {
     auto t0 = std::chrono::steady_clock::now();
+    if (reorder_due()) {
+      store_in_order(cell_order(state_.pos, model_.cell));
+      reordered_at_ = rebuilds();
+    }
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
     upload_walls(k);
     backend_->execute(batch_program(k), profiling_ ? &profile_.kernels : nullptr);
@@ -180,7 +217,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
       continue;
     }
     uint32_t rebuilds_before = rebuilds();
-    backend_->download_state(state_);
+    download();
     if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;
@@ -192,7 +229,13 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   }
 }
 
-std::vector<gpu::vec4> Simulation::contact_forces() { return backend_->contact_forces(contacts()); }
+std::vector<gpu::vec4> Simulation::contact_forces() {
+  std::vector<gpu::vec4> stored = backend_->contact_forces(contacts());
+  if (contact_of_.empty()) return stored;
+  std::vector<gpu::vec4> by_id(stored.size());
+  for (size_t c = 0; c < stored.size(); ++c) by_id[contact_of_[c]] = stored[c];
+  return by_id;
+}
 
 RunProfile Simulation::take_profile() {
   RunProfile p = std::move(profile_);
@@ -202,7 +245,7 @@ RunProfile Simulation::take_profile() {
 
 void Simulation::set_state(const HostState& s) {
   state_ = s;
-  backend_->upload_state(state_);
+  upload();
 }
 
 void Simulation::restore(const HostState& s, uint64_t step) {

@@ -1,6 +1,8 @@
 // Drives a backend through a case: batches of steps in one submit, device-decided list
 // rebuilds, a retry with a larger contact list when one overflows (nothing of the batch is
-// kept), and the host copy of the state after each batch for output.
+// kept), and the host copy of the state after each batch for output. The device stores the
+// particles in cell order (ParticleOrder), renewed between batches as they move; the host's state
+// is always by global id, so nothing outside sees the slots.
 #pragma once
 #include <functional>
 #include <memory>
@@ -9,6 +11,7 @@
 
 #include "engine/backend.h"
 #include "engine/model.h"
+#include "engine/particle_order.h"
 #include "engine/run_profile.h"
 #include "engine/step_program.h"
 
@@ -89,6 +92,10 @@ class Simulation {
   // the following steps give the bytes of a run that never stopped. Throws std::invalid_argument
   // when the state does not fit the model (particle, body or rolling-spring counts).
   void restore(const HostState& s, uint64_t step);
+  // From now on the device stores global id order.id_of[s] in slot s (between batches; tests
+  // scramble the order with it). The bytes of the run do not change.
+  void store_in_order(ParticleOrder order);
+  const ParticleOrder& particle_order() const { return order_; }
   // With profiling on, advance() also times every kernel (a clock read per dispatch on the cpu
   // backend, timestamp queries on Vulkan). The profile always counts steps, rebuilds, contacts
   // and the wall time inside advance(); take_profile() returns it and starts a new one.
@@ -97,6 +104,9 @@ class Simulation {
 
  private:
   void allocate(uint32_t capacity);
+  void upload();
+  void download();
+  bool reorder_due() const;
   void grow(uint32_t needed);
   void upload_walls(uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
@@ -106,7 +116,11 @@ class Simulation {
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;
-  HostState state_;
+  HostState state_;  // by global id
+  ParticleOrder order_;
+  bool stored_by_id_ = true;          // order_ is the identity
+  std::vector<uint32_t> contact_of_;  // each stored contact's index in state_'s list (empty: the same)
+  int64_t reordered_at_ = -1;         // rebuild count at the last cell ordering (-1: none yet)
   uint64_t step_ = 0;
   uint32_t retries_ = 0;
   bool profiling_ = false;

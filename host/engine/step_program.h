@@ -17,8 +17,12 @@ struct KernelVariant {
   // Lean contact entries (32 B instead of 48 B of forces per contact; torques rebuilt in the
   // gather, shaders/kernels/contacts.h). Same bytes as the full entries.
   bool lean = false;
+  // Store the particles in cell order (host/engine/particle_order.h) before the first batch and
+  // again after this many list rebuilds; 0: in the case's order. Same bytes either way.
+  uint32_t reorder = kDefaultReorder;
+  static constexpr uint32_t kDefaultReorder = 20;
   std::string name() const;
-  // "rows,lean,wg=128,rebuild=20" -> variant; throws std::invalid_argument on anything else.
+  // "rows,lean,wg=128,rebuild=20,reorder=10" -> variant; throws std::invalid_argument on anything else.
   static KernelVariant parse(const std::string& text);
   // What a run on `backend` ("vulkan" or "cpu") uses when the user names no variant: lean
   // entries on Vulkan (lavapipe runs them faster: less to load per contact), unless the model

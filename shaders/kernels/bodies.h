@@ -1,10 +1,11 @@
 // Rigid bodies made of sub-spheres (multi-sphere clumps). The contact pipeline sees only the
 // sub-spheres: body_place writes each sub-sphere's world position, velocity (the body's velocity
 // at that point) and spin from its body; after the contact forces, body_gather_kick sums each
-// body's sub-sphere forces and torques in sub-sphere order (a fixed order: bit-exact between
-// backends) and integrates the body. Angular momentum L (world frame) is the integrated state:
-// omega = R I^-1 R^T L with the diagonal principal inertia I, so a torque-free body keeps L to
-// the bit, and the orientation advances by a midpoint rotation (second order; no trigonometry).
+// body's sub-sphere forces and torques in sub-sphere order (by global id, whatever their slots:
+// bit-exact between backends and storage orders) and integrates the body. Angular momentum L
+// (world frame) is the integrated state: omega = R I^-1 R^T L with the diagonal principal
+// inertia I, so a torque-free body keeps L to the bit, and the orientation advances by a midpoint
+// rotation (second order; no trigonometry).
 #ifndef REPOSE_KERNELS_BODIES_H
 #define REPOSE_KERNELS_BODIES_H
 
@@ -120,7 +121,8 @@ void k_body_gather_kick(uint b) {
   vec4 q = B_bodies[b].quat;
   precise vec3 f = vec3(0.0f);
   precise vec3 t = vec3(0.0f);
-  for (uint s = range.x; s < range.x + range.y; ++s) {
+  for (uint g = range.x; g < range.x + range.y; ++g) {
+    uint s = slot_of(g);
     vec3 fs = xyz(B_force[s]);
     vec3 r = quat_rotate(q, xyz(B_subs[s].local));  // the arm body_place used, to the bit
     f = f + fs;

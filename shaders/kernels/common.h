@@ -21,6 +21,13 @@ uint cell_hash(int cx, int cy, int cz, uint table_size) {
   return h & (table_size - 1u);
 }
 
+// Particles sit in storage slots (repose_shared.h): the global id of the particle in slot i, and
+// the slot of global id g.
+uint global_id(uint i) { return B_ids[i]; }
+uint slot_of(uint g) { return B_ids[PC.n_particles + g]; }
+// A partner's place in a row's order: its global id, or after every particle N + w for wall w.
+uint partner_key(uint p) { return p < PC.n_particles ? global_id(p) : p; }
+
 // The force f on wall w this step (wall_reduce). With PC.wall_sums also, after the walls' forces,
 // its running sum (times dt: the impulse) and the largest force since the sums began (xyz, w its
 // squared length); 2 begins them anew with this step.

@@ -7,8 +7,8 @@
 #ifndef REPOSE_KERNELS_CONTACTS_H
 #define REPOSE_KERNELS_CONTACTS_H
 
-// Where spinning friction counts i's touching contacts: a clump's first sub-sphere stands for
-// its whole body.
+// Where spinning friction counts i's touching contacts: a clump's first sub-sphere's global id
+// stands for its whole body.
 uint touch_key(uint i) {
   if ((PC.flags & kFlagBodies) != 0u) return B_bodies[B_subs[i].info.x].spheres.x;
   return i;

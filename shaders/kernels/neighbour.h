@@ -3,11 +3,13 @@
 // (or max_interval steps passed); rebuild_args decides on the device and writes the indirect
 // dispatch sizes of every rebuild kernel, zero when there is nothing to do, so the host records
 // the same command stream every step. Atomics only count integers; every order that reaches a
-// float result is fixed by sorting (buckets by particle id, transposed rows by contact index).
+// float result is fixed by sorting, by global id (repose_shared.h: particles sit in storage slots
+// in any order): buckets by id, rows by partner id, transposed rows by owner id; a pair belongs to
+// the lower id.
 // Sizes spanning 10:1 (a clump's 160 mm core among 5 mm veins) would make cells as big as the
 // largest sphere and full of small ones, so particles above PC.large_radius skip the grid: they
 // share one extra bucket (index T) that every walk scans. A pair of a small and a large particle
-// belongs to the small one's row, a pair of two large ones to the lower index.
+// belongs to the small one's row, a pair of two large ones to the lower id.
 #ifndef REPOSE_KERNELS_NEIGHBOUR_H
 #define REPOSE_KERNELS_NEIGHBOUR_H
 
@@ -82,19 +84,20 @@ void k_bucket_scatter(uint i) {
   B_sorted[slot] = i;
 }
 
-// Insertion sort of one bucket by particle id: the scatter's order depends on thread timing.
+// Insertion sort of one bucket by global id: the scatter's order depends on thread timing.
 void k_bucket_sort(uint b) {
   if (b > PC.table_size) return;
   uint begin = B_cell_start[b];
   uint end = B_cell_start[b + 1u];
   for (uint k = begin + 1u; k < end; ++k) {
-    uint id = B_sorted[k];
+    uint slot = B_sorted[k];
+    uint id = global_id(slot);
     uint m = k;
-    while (m > begin && B_sorted[m - 1u] > id) {
+    while (m > begin && global_id(B_sorted[m - 1u]) > id) {
       B_sorted[m] = B_sorted[m - 1u];
       m = m - 1u;
     }
-    B_sorted[m] = id;
+    B_sorted[m] = slot;
   }
 }
 
@@ -103,7 +106,7 @@ void k_bucket_sort(uint b) {
 // (their walls are still tested). The same list as without it: only pairs that near_pair would
 // reject are skipped. Each body tests every other one, so the host enables it only where bodies
 // are few against their sub-spheres (Model, choose_neighbour_search).
-float body_bound(uint b) { return uintBitsToFloat(B_subs[B_bodies[b].spheres.x].info.y); }
+float body_bound(uint b) { return uintBitsToFloat(B_subs[slot_of(B_bodies[b].spheres.x)].info.y); }
 
 // The largest coordinate of x, for the rounding slack of a float distance test.
 float coordinate_size(vec3 x) { return max(abs(x.x), max(abs(x.y), abs(x.z))); }
@@ -141,8 +144,8 @@ bool near_pair(vec4 pi, vec4 pj, float skin) {
 }
 
 // Adds partner number k to i's row (which starts at `base`), keeping the row sorted by partner
-// id: the gathers then sum touching contacts in the same order whatever else the list holds, so
-// results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
+// id (partner_key): the gathers then sum touching contacts in the same order whatever else the
+// list holds, so results do not depend on the skin, the cell size or when the list is rebuilt. Carries the
 // pair's history over from i's old row (zero for a new pair). Entries beyond the capacity are
 // counted but not written (overflow: the batch is redone with a larger list).
 void write_candidate(uint base, uint k, uint i, uint partner, uint old_begin, uint old_end) {
@@ -150,7 +153,8 @@ void write_candidate(uint base, uint k, uint i, uint partner, uint old_begin, ui
   if (slot >= PC.capacity) return;
   bool springs = (PC.flags & kFlagRollingSpring) != 0u;
   B_owner[slot] = i;
-  while (slot > base && B_partner[slot - 1u] > partner) {
+  uint key = partner_key(partner);
+  while (slot > base && partner_key(B_partner[slot - 1u]) > key) {
     B_partner[slot] = B_partner[slot - 1u];
     B_history[slot] = B_history[slot - 1u];
     if (springs) B_rolling_spring[slot] = B_rolling_spring[slot - 1u];
@@ -186,22 +190,22 @@ bool no_contact(uint i, uint j) {
   return is_fixed(i) && is_fixed(j);
 }
 
-// The lowest particle id a small particle i pairs with on the grid: the pair belongs to the lower
-// id, and a clump's sub-spheres (contiguous ids) never pair with each other.
+// The lowest global id a small particle i pairs with on the grid: the pair belongs to the lower
+// id, and a clump's sub-spheres (consecutive ids) never pair with each other.
 uint first_partner_id(uint i) {
-  if ((PC.flags & kFlagBodies) == 0u) return i + 1u;
+  if ((PC.flags & kFlagBodies) == 0u) return global_id(i) + 1u;
   uvec4 range = B_bodies[B_subs[i].info.x].spheres;
   return range.x + range.y;
 }
 
-// The first slot of bucket [begin, end) (sorted by id) holding an id >= lowest: a binary search,
+// The first place in bucket [begin, end) (sorted by id) holding an id >= lowest: a binary search,
 // so a walk skips the ids it would reject (half of them; in a clump, its own sub-spheres).
 uint first_slot_from(uint begin, uint end, uint lowest) {
   uint lo = begin;
   uint hi = end;
   while (lo < hi) {
     uint mid = lo + (hi - lo) / 2u;
-    if (B_sorted[mid] < lowest) lo = mid + 1u;
+    if (global_id(B_sorted[mid]) < lowest) lo = mid + 1u;
     else hi = mid;
   }
   return lo;
@@ -244,9 +248,10 @@ uint walk_neighbours(uint i, bool fill, uint base) {
     }
   }
   uint large_end = pairs ? B_cell_start[PC.table_size + 1u] : 0u;
+  uint id_i = global_id(i);
   for (uint s = pairs ? B_cell_start[PC.table_size] : 0u; s < large_end; ++s) {
     uint j = B_sorted[s];
-    if (j == i || (large && j < i)) continue;
+    if (j == i || (large && global_id(j) < id_i)) continue;
     if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;
     emit_candidate(fill, base, k, i, j, old_begin, old_end);
     k = k + 1u;
@@ -301,14 +306,17 @@ void k_transpose_fill(uint c) {
   B_trans_list[slot] = c;
 }
 
+// Sorts i's transposed row by the owner's global id (one contact per owner), so a gather sums it
+// in the same order whatever the slots.
 void k_transpose_sort(uint i) {
   if (i >= PC.n_particles) return;
   uint begin = B_trans_start[i];
   uint end = B_trans_start[i + 1u];
   for (uint k = begin + 1u; k < end; ++k) {
     uint c = B_trans_list[k];
+    uint owner = global_id(B_owner[c]);
     uint m = k;
-    while (m > begin && B_trans_list[m - 1u] > c) {
+    while (m > begin && global_id(B_owner[B_trans_list[m - 1u]]) > owner) {
       B_trans_list[m] = B_trans_list[m - 1u];
       m = m - 1u;
     }

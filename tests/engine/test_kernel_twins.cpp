@@ -21,7 +21,8 @@ struct Binding {
   const void* cpu;
 };
 
-// Every buffer the kernels write, with its size in this layout and the twin's copy.
+// Every buffer the kernels write, and the inputs that change during a run (the id table, the
+// walls), with its size in this layout and the twin's copy.
 std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
   size_t N = l.n_particles, C = l.capacity, T = l.table_size, v4 = 16, u = 4;
   std::vector<Binding> bindings = {
@@ -35,7 +36,8 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
       {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
       {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
-      {gpu::kBindTransList, "trans_list", C * u, b.trans_list},
+      {gpu::kBindTransList, "trans_list", C * u, b.trans_list}, {gpu::kBindIds, "ids", 2 * N * u, b.ids},
+      {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
   return bindings;
@@ -99,6 +101,7 @@ void check_each_kernel_alone(const CaseSpec& spec, const char* variant_text, uin
   auto cpu_sim = simulate(spec, "cpu", 2, v, batch);
   auto gpu_sim = simulate(spec, "vulkan", 1, v, batch);
   cpu_sim->advance(warmup);
+  gpu_sim->store_in_order(cpu_sim->particle_order());  // the same slots: the buffers are copied over
   HostState s = cpu_sim->state();
   s.control[gpu::kCtlNeedRebuild] = 1;
   cpu_sim->set_state(s);

@@ -1,0 +1,48 @@
+// Where each particle sits in the device buffers. A particle's global id is its place in the case
+// (the order of Model::pos, of the host's state and of every output); its slot is where the
+// device stores it. Storing neighbours in nearby slots (cell order) keeps a walk's reads in cache;
+// the kernels order every float sum by global id (shaders/repose_shared.h), so the bytes of a run
+// do not depend on the slots. Simulation converts between the two at the host/device boundary.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "engine/backend.h"
+
+namespace repose {
+
+struct Model;
+
+struct ParticleOrder {
+  std::vector<uint32_t> id_of;    // slot -> global id
+  std::vector<uint32_t> slot_of;  // global id -> slot
+
+  static ParticleOrder identity(uint32_t n);
+  // The order that stores global id id_of[s] in slot s; throws std::invalid_argument unless
+  // id_of is a permutation of 0..n-1.
+  static ParticleOrder from_ids(std::vector<uint32_t> id_of);
+  bool is_identity() const;
+  size_t size() const { return id_of.size(); }
+  // The device's id table (binding Ids): id_of, then slot_of.
+  std::vector<uint32_t> table() const;
+};
+
+// Slots in the order of the grid cells of edge `cell` holding each position (by global id): by
+// layer (z), row (y), then along the row (x), ties by global id. A walk's neighbours then sit in
+// a few runs of slots that advance together, which the CPU's prefetchers follow (on the settled
+// 50k bed, contact_forces 1.6-1.8 ms per step in these rows, 1.7-2.6 in Morton order, 2.1-3.1 in
+// the fill's random order; README, speed).
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
+
+// The host state `global` (rows by global id, contacts as the kernels would list them by global
+// id) as the device stores it under `order`, and back. `contact_of`, when given, receives for each
+// stored contact its index in the global list (Simulation::contact_forces; empty: the same).
+HostState stored_state(const HostState& global, const ParticleOrder& order,
+                       std::vector<uint32_t>* contact_of = nullptr);
+HostState global_state(HostState stored, const ParticleOrder& order,
+                       std::vector<uint32_t>* contact_of = nullptr);
+
+// The model's constant rows as the device stores them under `order`, with the id table.
+ConstantData stored_constants(const Model& m, const ParticleOrder& order);
+
+}  // namespace repose

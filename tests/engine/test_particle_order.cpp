@@ -1,0 +1,131 @@
+// Storage order (host/engine/particle_order.h): particles stored in any slots, reordered between
+// batches, give the bytes of the case's order: the state, the state file, contact forces and
+// wall forces, on both backends and any thread count, for spheres with walls and for clumps; a
+// reordered run's state file restarts to the bytes of a run that never stopped.
+#include <catch2/catch.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <numeric>
+#include <random>
+#include <unistd.h>
+
+#include "engine/particle_order.h"
+#include "engine_test_support.h"
+#include "io/state_file.h"
+
+using namespace repose;
+using namespace repose::test;
+
+namespace {
+
+ParticleOrder scrambled(uint32_t n, uint64_t seed) {
+  std::vector<uint32_t> ids(n);
+  std::iota(ids.begin(), ids.end(), 0u);
+  std::shuffle(ids.begin(), ids.end(), std::mt19937_64(seed));
+  return ParticleOrder::from_ids(std::move(ids));
+}
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("repose_test_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+std::string state_file_bytes(const Simulation& sim, const std::string& name) {
+  std::string path = temp_path(name);
+  write_state_file(path, sim.state(), sim.step(), sim.time());
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  std::remove(path.c_str());
+  return bytes;
+}
+
+bool same_wall_forces(Simulation& a, Simulation& b) {
+  auto fa = a.wall_forces(), fb = b.wall_forces();
+  if (fa.size() != fb.size()) return false;
+  for (size_t w = 0; w < fa.size(); ++w)
+    if (fa[w].fx != fb[w].fx || fa[w].fy != fb[w].fy || fa[w].fz != fb[w].fz) return false;
+  return true;
+}
+
+// `steps` steps of `spec` in the case's order (cpu, 1 thread) and, on `backend` with `threads`,
+// stored in a scrambled order from the start, scrambled again halfway, and in cell order renewed
+// after every rebuild (reorder=1): every output must be the same to the byte.
+void check_orders(const CaseSpec& spec, uint64_t steps, const std::string& backend, unsigned threads) {
+  KernelVariant keep = KernelVariant::parse("reorder=0");
+  auto reference = simulate(spec, "cpu", 1, keep, 50);
+  reference->advance(steps);
+  REQUIRE(reference->contacts() > 50);
+  REQUIRE(reference->particle_order().is_identity());
+  uint32_t n = reference->model().n_particles;
+
+  auto shuffled = simulate(spec, backend, threads, keep, 50);
+  shuffled->store_in_order(scrambled(n, 1));
+  shuffled->advance(steps / 2);
+  shuffled->store_in_order(scrambled(n, 2));
+  shuffled->advance(steps - steps / 2);
+  auto cells = simulate(spec, backend, threads, KernelVariant::parse("reorder=1"), 50);
+  cells->advance(steps);
+  CHECK_FALSE(cells->particle_order().is_identity());
+
+  std::string reference_file = state_file_bytes(*reference, "order_reference.state");
+  for (Simulation* sim : {shuffled.get(), cells.get()}) {
+    std::string which;
+    bool same = same_state(reference->state(), sim->state(), &which);
+    INFO(backend << ", " << threads << " threads, " << sim->variant().name() << ": first difference in " << which);
+    CHECK(same);
+    CHECK(state_file_bytes(*sim, "order_other.state") == reference_file);
+    CHECK(same_bytes(reference->contact_forces(), sim->contact_forces()));
+    CHECK(same_wall_forces(*reference, *sim));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("particle order: spheres with walls give the same bytes in any storage order", "[engine][order]") {
+  CaseSpec spec = seeded_cloud(300, 11, 2.3, 0.2);
+  check_orders(spec, 400, "cpu", 1);
+  check_orders(spec, 400, "cpu", 2);
+  check_orders(spec, 400, "vulkan", 1);
+}
+
+TEST_CASE("particle order: clumps and spheres give the same bytes in any storage order", "[engine][order]") {
+  CaseSpec spec = clump_pile();
+  spec.contact.rolling = RollingModel::ElasticPlastic;
+  check_orders(spec, 1000, "cpu", 2);
+  check_orders(spec, 1000, "vulkan", 1);
+}
+
+TEST_CASE("particle order: a scrambled run's state file restarts to the bytes of an unbroken run", "[engine][order]") {
+  CaseSpec spec = seeded_cloud(200, 5, 2.3, 0.2);
+  KernelVariant keep = KernelVariant::parse("reorder=0");
+  auto whole = simulate(spec, "cpu", 1, keep);
+  whole->advance(300);
+  auto first = simulate(spec, "cpu", 1, keep);
+  first->store_in_order(scrambled(first->model().n_particles, 3));
+  first->advance(120);
+  std::string path = temp_path("order_restart.state");
+  write_state_file(path, first->state(), first->step(), first->time());
+  StateFileInfo info;
+  HostState state = read_state_file(path, info);
+  std::remove(path.c_str());
+  auto second = simulate(spec, "cpu", 2);  // cell order by default
+  second->restore(state, info.step);
+  second->advance(180);
+  std::string which;
+  bool same = same_state(whole->state(), second->state(), &which);
+  INFO("first difference in " << which);
+  CHECK(same);
+  CHECK(state_file_bytes(*whole, "order_whole.state") == state_file_bytes(*second, "order_second.state"));
+}
+
+TEST_CASE("particle order: cell order puts neighbours in nearby slots, and refuses what is no permutation",
+          "[engine][order]") {
+  // A line of 8 cells along x, filled out of order: cell order sorts them along the line.
+  std::vector<gpu::vec4> pos;
+  for (int k : {5, 2, 7, 0, 3, 6, 1, 4}) pos.push_back(gpu::vec4(float(k) + 0.5f, 0.5f, 0.5f, 0.1f));
+  ParticleOrder o = cell_order(pos, 1.0);
+  for (uint32_t s = 0; s < 8; ++s) CHECK(pos[o.id_of[s]].x == float(s) + 0.5f);
+  for (uint32_t g = 0; g < 8; ++g) CHECK(o.id_of[o.slot_of[g]] == g);
+  CHECK_THROWS(ParticleOrder::from_ids({0, 2, 2}));
+  CHECK_THROWS(ParticleOrder::from_ids({0, 3, 1}));
+}
