@@ -1,5 +1,6 @@
 #include "engine/memory_need.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "engine/buffer_table.h"
@@ -32,8 +33,16 @@ size_t device_bytes(const Layout& l) {
   return bytes;
 }
 
-// The host's copies: Simulation's state (twice while a download in cell order is turned to global
-// ids: `reordered`) and constants, the Model's arrays, a batch of wall rows.
+// Bytes that turn the state between the case's order and the slots, in place: the particle order
+// (slot -> id, id -> slot) for the run, and while converting each old entry's new index in one
+// contact list at a time and new row starts (particle_order.cpp, move_rows).
+size_t order_bytes(const Layout& l) {
+  auto row = [&](size_t k) { return buffer_elements(kBufferTable[k], l) * kBufferTable[k].element_bytes; };
+  return 2 * sizeof(uint32_t) * l.n_particles + std::max(row(kRowOwner), row(kRowTransList)) + row(kRowRowStart);
+}
+
+// The host's copies: Simulation's state, the particle order, the constants while they are
+// uploaded, the Model's arrays, a batch of wall rows.
 size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) {
   size_t n = m.n_particles;
   size_t model = n * (3 * sizeof(gpu::vec4) + sizeof(uint32_t)) + m.subs.size() * sizeof(gpu::SubSphere) +
@@ -41,7 +50,7 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
                  m.walls.size() * sizeof(ModelWall);
   size_t walls = size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState);
   size_t frame = frames ? size_t(kFrameBytesPerParticle * double(n)) : 0;
-  return (reordered ? 2 : 1) * rows_bytes(l, kept) + rows_bytes(l, constant) + model + walls + frame;
+  return rows_bytes(l, kept) + (reordered ? order_bytes(l) : 0) + rows_bytes(l, constant) + model + walls + frame;
 }
 
 }  // namespace
@@ -58,7 +67,8 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   one.capacity = 1;
   Layout none = need.layout;
   none.capacity = 0;
-  double host_entry = (reordered ? 2.0 : 1.0) * double(rows_bytes(one, kept) - rows_bytes(none, kept));
+  double host_entry = double(rows_bytes(one, kept) - rows_bytes(none, kept));
+  if (reordered) host_entry += double(order_bytes(one) - order_bytes(none));
   need.bytes_per_entry = host_entry + (device_in_host_memory ? double(bytes_per_contact(need.layout)) : 0.0);
   need.bytes_per_particle =
       (double(need.host_total()) - need.bytes_per_entry * need.layout.capacity) / std::max(1u, m.n_particles);

@@ -5,6 +5,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "engine/buffer_table.h"
 #include "engine/model.h"
@@ -66,12 +67,11 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
 namespace {
 
 // A compressed-row list whose rows move, new row r being old row old_of_new[r], each keeping its
-// entries in their order: the moved rows' starts, and each old entry's new index.
-void move_rows(const std::vector<uint32_t>& start, const std::vector<uint32_t>& old_of_new,
-               std::vector<uint32_t>& new_start, std::vector<uint32_t>& new_of_old_entry) {
+// entries in their order: `start` becomes the moved rows' starts; returns each old entry's new index.
+std::vector<uint32_t> move_rows(std::vector<uint32_t>& start, const std::vector<uint32_t>& old_of_new) {
   size_t n = old_of_new.size();
-  new_start.assign(n + 1, 0u);
-  new_of_old_entry.assign(start.size() == n + 1 ? start[n] : 0u, 0u);
+  std::vector<uint32_t> new_of_old_entry(start.size() == n + 1 ? start[n] : 0u);
+  std::vector<uint32_t> new_start(n + 1, 0u);
   uint32_t next = 0;
   for (size_t r = 0; r < n; ++r) {
     new_start[r] = next;
@@ -79,64 +79,95 @@ void move_rows(const std::vector<uint32_t>& start, const std::vector<uint32_t>& 
     for (uint32_t e = start[o]; e < start[o + 1]; ++e) new_of_old_entry[e] = next++;
   }
   new_start[n] = next;
+  start = std::move(new_start);
+  return new_of_old_entry;
 }
 
-// v with old entry k moved to new_of_old[k].
+// One bit per row: set once a cycle walk has put the row's final value in place.
+struct Marks {
+  std::vector<uint64_t> bits;
+  explicit Marks(size_t n) : bits((n + 63) / 64, 0) {}
+  bool test(size_t k) const { return bits[k >> 6] >> (k & 63) & 1; }
+  void set(size_t k) { bits[k >> 6] |= uint64_t(1) << (k & 63); }
+};
+
+// v[r] = old v[from[r]] for every r, in place (each cycle of `from` walked once): no second copy.
 template <class T>
-std::vector<T> scattered(const std::vector<T>& v, const std::vector<uint32_t>& new_of_old) {
-  if (v.size() != new_of_old.size()) throw std::logic_error("a kept row does not fit its contact list");
-  std::vector<T> out(v.size());
-  for (size_t k = 0; k < v.size(); ++k) out[new_of_old[k]] = v[k];
-  return out;
+void gather_in_place(std::vector<T>& v, const std::vector<uint32_t>& from) {
+  if (v.size() != from.size()) throw std::logic_error("a kept row does not fit its particles");
+  Marks done(v.size());
+  for (size_t first = 0; first < v.size(); ++first) {
+    if (done.test(first)) continue;
+    T kept = v[first];
+    for (size_t r = first;;) {
+      done.set(r);
+      size_t f = from[r];
+      if (f == first) {
+        v[r] = kept;
+        break;
+      }
+      v[r] = v[f];
+      r = f;
+    }
+  }
 }
 
-// The state with every particle moved from its index to new_of_old[index] (old_of_new its
-// inverse): per-particle rows, the rows of both contact lists, and the particle indices in them.
-HostState moved_state(HostState out, const std::vector<uint32_t>& old_of_new,
-                      const std::vector<uint32_t>& new_of_old, std::vector<uint32_t>* contact_of) {
-  std::vector<uint32_t> contact_to, trans_to, row_start, trans_start;
-  move_rows(out.row_start, old_of_new, row_start, contact_to);
-  move_rows(out.trans_start, old_of_new, trans_start, trans_to);
-  out.row_start = std::move(row_start);
-  out.trans_start = std::move(trans_start);
-  for_each_kept(out, [&](const BufferSpec& b, auto& v) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    if (b.count == BufferCount::Particles && !v.empty()) {
-      std::vector<T> old = std::move(v);
-      v.resize(old.size());
-      for (size_t r = 0; r < v.size(); ++r) v[r] = old[old_of_new[r]];
-    } else if ((b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice) && !v.empty()) {
-      v = scattered(v, contact_to);
+// v[to[k]] = old v[k] for every k, in place.
+template <class T>
+void scatter_in_place(std::vector<T>& v, const std::vector<uint32_t>& to) {
+  if (v.size() != to.size()) throw std::logic_error("a kept row does not fit its contact list");
+  Marks done(v.size());
+  for (size_t first = 0; first < v.size(); ++first) {
+    if (done.test(first)) continue;
+    T carried = v[first];
+    for (size_t k = to[first];; k = to[k]) {
+      std::swap(carried, v[k]);
+      done.set(k);
+      if (k == first) break;
     }
+  }
+}
+
+// Moves every particle of `s` from its index to new_of_old[index] (old_of_new its inverse), in
+// place: per-particle rows, the rows of both contact lists, and the particle indices in them.
+// Returns each old contact's new index.
+std::vector<uint32_t> move_particles(HostState& s, const std::vector<uint32_t>& old_of_new,
+                                     const std::vector<uint32_t>& new_of_old) {
+  {  // gone before contact_to comes: one entry map at a time (engine/memory_need.cpp)
+    std::vector<uint32_t> trans_to = move_rows(s.trans_start, old_of_new);
+    scatter_in_place(s.trans_list, trans_to);
+  }
+  std::vector<uint32_t> contact_to = move_rows(s.row_start, old_of_new);
+  for_each_kept(s, [&](const BufferSpec& b, auto& v) {
+    if (v.empty()) return;
+    if (b.count == BufferCount::Particles) gather_in_place(v, old_of_new);
+    if (b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice) scatter_in_place(v, contact_to);
   });
-  out.trans_list = scattered(out.trans_list, trans_to);
-  for (uint32_t& c : out.trans_list) c = contact_to[c];
+  for (uint32_t& c : s.trans_list) c = contact_to[c];
   uint32_t n = uint32_t(old_of_new.size());
-  for (uint32_t& p : out.partner)
+  for (uint32_t& p : s.partner)
     if (p < n) p = new_of_old[p];
-  for (uint32_t& i : out.owner) i = new_of_old[i];
-  if (contact_of) *contact_of = std::move(contact_to);
-  return out;
+  for (uint32_t& i : s.owner) i = new_of_old[i];
+  return contact_to;
 }
 
 }  // namespace
 
-HostState stored_state(const HostState& global, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
-  if (contact_of) contact_of->clear();
-  if (order.is_identity()) return global;
-  std::vector<uint32_t> stored_of;  // each global contact's stored index
-  HostState stored = moved_state(global, order.id_of, order.slot_of, &stored_of);
-  if (contact_of) {
-    contact_of->resize(stored_of.size());
-    for (size_t c = 0; c < stored_of.size(); ++c) (*contact_of)[stored_of[c]] = uint32_t(c);
-  }
-  return stored;
+void to_stored(HostState& state, const ParticleOrder& order) {
+  if (!order.is_identity()) move_particles(state, order.id_of, order.slot_of);
 }
 
-HostState global_state(HostState stored, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
-  if (contact_of) contact_of->clear();
-  if (order.is_identity()) return stored;
-  return moved_state(std::move(stored), order.slot_of, order.id_of, contact_of);
+void to_global(HostState& state, const ParticleOrder& order) {
+  if (!order.is_identity()) move_particles(state, order.slot_of, order.id_of);
+}
+
+std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order) {
+  std::vector<uint32_t> ids;
+  if (global.row_start.size() != order.size() + 1) return ids;
+  ids.reserve(global.row_start.back());
+  for (uint32_t g : order.id_of)
+    for (uint32_t c = global.row_start[g]; c < global.row_start[g + 1]; ++c) ids.push_back(c);
+  return ids;
 }
 
 ConstantData stored_constants(const Model& m, const ParticleOrder& order) {
