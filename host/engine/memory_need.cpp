@@ -33,12 +33,17 @@ size_t device_bytes(const Layout& l) {
   return bytes;
 }
 
-// Bytes that turn the state between the case's order and the slots, in place: the particle order
-// (slot -> id, id -> slot) for the run, and while converting each old entry's new index in one
-// contact list at a time and new row starts (particle_order.cpp, move_rows).
+// Bytes that turn the state between the case's order and the slots (particle_order.cpp): the
+// particle order (slot -> id, id -> slot) for the run, and while converting new row starts, each
+// contact's new index and a copy of one row, the largest, moving (the state moves a row at a time).
 size_t order_bytes(const Layout& l) {
-  auto row = [&](size_t k) { return buffer_elements(kBufferTable[k], l) * kBufferTable[k].element_bytes; };
-  return 2 * sizeof(uint32_t) * l.n_particles + std::max(row(kRowOwner), row(kRowTransList)) + row(kRowRowStart);
+  auto bytes = [&](const BufferSpec& b) { return buffer_elements(b, l) * b.element_bytes; };
+  size_t largest = 0;
+  for (const BufferSpec& b : kBufferTable)
+    if (kept(b) && (b.count == BufferCount::Particles || b.count == BufferCount::Contacts))
+      largest = std::max(largest, bytes(b));
+  return 2 * sizeof(uint32_t) * l.n_particles + bytes(kBufferTable[kRowRowStart]) + bytes(kBufferTable[kRowOwner]) +
+         largest;
 }
 
 // The host's copies: Simulation's state, the particle order, the constants while they are

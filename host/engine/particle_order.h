@@ -35,9 +35,9 @@ struct ParticleOrder {
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
 
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
-// in place into the slots the device stores them in under `order`, and back: per-particle rows,
-// the contact lists' rows with their owners (keeping their order) and the indices in them. In
-// place, so a conversion holds no second copy of the state (engine/memory_need.cpp).
+// into the slots the device stores them in under `order`, and back: per-particle rows, the contact
+// lists' rows with their owners (keeping their order) and the indices in them. A row at a time,
+// so a conversion holds one row twice, never a second state (engine/memory_need.cpp).
 void to_stored(HostState& state, const ParticleOrder& order);
 void to_global(HostState& state, const ParticleOrder& order);
 // For each contact of the stored list, its index in `global`'s list.
