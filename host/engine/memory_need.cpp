@@ -73,7 +73,8 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   Layout none = need.layout;
   none.capacity = 0;
   double host_entry = double(rows_bytes(one, kept) - rows_bytes(none, kept));
-  if (reordered) host_entry += double(order_bytes(one) - order_bytes(none));
+  if (reordered && need.layout.capacity)  // its scratch row is the larger of a particle's and a contact's
+    host_entry += double(order_bytes(need.layout) - order_bytes(none)) / need.layout.capacity;
   need.bytes_per_entry = host_entry + (device_in_host_memory ? double(bytes_per_contact(need.layout)) : 0.0);
   need.bytes_per_particle =
       (double(need.host_total()) - need.bytes_per_entry * need.layout.capacity) / std::max(1u, m.n_particles);
