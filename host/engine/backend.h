@@ -76,6 +76,8 @@ class Backend {
   virtual std::string describe() const = 0;
   // Creates every buffer for `layout` (dropping the previous ones) and uploads constants.
   virtual void allocate(const Layout& layout, const ConstantData& constants) = 0;
+  // Replaces the constants of the current buffers (a new particle order); the rest is kept.
+  virtual void upload_constants(const ConstantData& constants) = 0;
   virtual void upload_state(const HostState& s) = 0;
   virtual void download_state(HostState& s) = 0;
   // layout.batch_steps * n_walls states, step-major.

@@ -49,8 +49,12 @@ void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
   }
   arena_ = zeroed_arena(total);
   for (uint32_t b = 0; b < gpu::kBindingCount; ++b) storage_[b].begin = arena_.get() + offset[b];
-  for_each_constant(constants, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
   point_buffers();
+  upload_constants(constants);
+}
+
+void CpuBackend::upload_constants(const ConstantData& constants) {
+  for_each_constant(constants, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
 }
 
 void CpuBackend::point_buffers() {

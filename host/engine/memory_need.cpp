@@ -1,5 +1,6 @@
 #include "engine/memory_need.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "engine/buffer_table.h"
@@ -32,8 +33,21 @@ size_t device_bytes(const Layout& l) {
   return bytes;
 }
 
-// The host's copies: Simulation's state (twice while a download in cell order is turned to global
-// ids: `reordered`) and constants, the Model's arrays, a batch of wall rows.
+// Bytes that turn the state between the case's order and the slots (particle_order.cpp): the
+// particle order (slot -> id, id -> slot) for the run, and while converting new row starts, each
+// contact's new index and a copy of one row, the largest, moving (the state moves a row at a time).
+size_t order_bytes(const Layout& l) {
+  auto bytes = [&](const BufferSpec& b) { return buffer_elements(b, l) * b.element_bytes; };
+  size_t largest = 0;
+  for (const BufferSpec& b : kBufferTable)
+    if (kept(b) && (b.count == BufferCount::Particles || b.count == BufferCount::Contacts))
+      largest = std::max(largest, bytes(b));
+  return 2 * sizeof(uint32_t) * l.n_particles + bytes(kBufferTable[kRowRowStart]) + bytes(kBufferTable[kRowOwner]) +
+         largest;
+}
+
+// The host's copies: Simulation's state, the particle order, the constants while they are
+// uploaded, the Model's arrays, a batch of wall rows.
 size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) {
   size_t n = m.n_particles;
   size_t model = n * (3 * sizeof(gpu::vec4) + sizeof(uint32_t)) + m.subs.size() * sizeof(gpu::SubSphere) +
@@ -41,7 +55,7 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
                  m.walls.size() * sizeof(ModelWall);
   size_t walls = size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState);
   size_t frame = frames ? size_t(kFrameBytesPerParticle * double(n)) : 0;
-  return (reordered ? 2 : 1) * rows_bytes(l, kept) + rows_bytes(l, constant) + model + walls + frame;
+  return rows_bytes(l, kept) + (reordered ? order_bytes(l) : 0) + rows_bytes(l, constant) + model + walls + frame;
 }
 
 }  // namespace
@@ -58,7 +72,9 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   one.capacity = 1;
   Layout none = need.layout;
   none.capacity = 0;
-  double host_entry = (reordered ? 2.0 : 1.0) * double(rows_bytes(one, kept) - rows_bytes(none, kept));
+  double host_entry = double(rows_bytes(one, kept) - rows_bytes(none, kept));
+  if (reordered && need.layout.capacity)  // its scratch row is the larger of a particle's and a contact's
+    host_entry += double(order_bytes(need.layout) - order_bytes(none)) / need.layout.capacity;
   need.bytes_per_entry = host_entry + (device_in_host_memory ? double(bytes_per_contact(need.layout)) : 0.0);
   need.bytes_per_particle =
       (double(need.host_total()) - need.bytes_per_entry * need.layout.capacity) / std::max(1u, m.n_particles);

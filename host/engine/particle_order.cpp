@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <memory>
 #include <numeric>
 #include <stdexcept>
 #include <type_traits>
@@ -66,12 +69,11 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
 namespace {
 
 // A compressed-row list whose rows move, new row r being old row old_of_new[r], each keeping its
-// entries in their order: the moved rows' starts, and each old entry's new index.
-void move_rows(const std::vector<uint32_t>& start, const std::vector<uint32_t>& old_of_new,
-               std::vector<uint32_t>& new_start, std::vector<uint32_t>& new_of_old_entry) {
+// entries in their order: `start` becomes the moved rows' starts; returns each old entry's new index.
+std::vector<uint32_t> move_rows(std::vector<uint32_t>& start, const std::vector<uint32_t>& old_of_new) {
   size_t n = old_of_new.size();
-  new_start.assign(n + 1, 0u);
-  new_of_old_entry.assign(start.size() == n + 1 ? start[n] : 0u, 0u);
+  std::vector<uint32_t> new_of_old_entry(start.size() == n + 1 ? start[n] : 0u);
+  std::vector<uint32_t> new_start(n + 1, 0u);
   uint32_t next = 0;
   for (size_t r = 0; r < n; ++r) {
     new_start[r] = next;
@@ -79,64 +81,97 @@ void move_rows(const std::vector<uint32_t>& start, const std::vector<uint32_t>& 
     for (uint32_t e = start[o]; e < start[o + 1]; ++e) new_of_old_entry[e] = next++;
   }
   new_start[n] = next;
+  start = std::move(new_start);
+  return new_of_old_entry;
 }
 
-// v with old entry k moved to new_of_old[k].
+// One row's room, reused by every row of a conversion: a fresh vector per row would leave the
+// allocator holding freed rows (glibc keeps blocks under its mmap threshold, which grows to the
+// 16 MB of a particle row at 1e6 spheres): +36 B per sphere resident while stepping.
+class RowScratch {
+ public:
+  explicit RowScratch(size_t bytes) : room_(std::make_unique<std::byte[]>(bytes)), bytes_(bytes) {}
+  template <class T>
+  T* room(size_t n) {
+    if (n * sizeof(T) > bytes_) throw std::logic_error("a kept row is larger than the conversion's scratch");
+    return reinterpret_cast<T*>(room_.get());  // bytes from new[] hold any trivially copyable row
+  }
+
+ private:
+  std::unique_ptr<std::byte[]> room_;
+  size_t bytes_;
+};
+
+// v[r] = old v[from[r]] for every r, through the scratch: a conversion holds one row twice, never
+// the whole state (engine/memory_need.cpp). A cycle walk in place would need no scratch, but it
+// chases the permutation one dependent load at a time: 3x slower than these copies over the 50k
+// bed's state (0.25 against 0.09 ms per step).
 template <class T>
-std::vector<T> scattered(const std::vector<T>& v, const std::vector<uint32_t>& new_of_old) {
-  if (v.size() != new_of_old.size()) throw std::logic_error("a kept row does not fit its contact list");
-  std::vector<T> out(v.size());
-  for (size_t k = 0; k < v.size(); ++k) out[new_of_old[k]] = v[k];
-  return out;
+void gather_row(std::vector<T>& v, const std::vector<uint32_t>& from, RowScratch& scratch) {
+  if (v.empty()) return;
+  if (v.size() != from.size()) throw std::logic_error("a kept row does not fit its particles");
+  T* out = scratch.room<T>(v.size());
+  for (size_t r = 0; r < v.size(); ++r) out[r] = v[from[r]];
+  std::memcpy(v.data(), out, v.size() * sizeof(T));
 }
 
-// The state with every particle moved from its index to new_of_old[index] (old_of_new its
-// inverse): per-particle rows, the rows of both contact lists, and the particle indices in them.
-HostState moved_state(HostState out, const std::vector<uint32_t>& old_of_new,
-                      const std::vector<uint32_t>& new_of_old, std::vector<uint32_t>* contact_of) {
-  std::vector<uint32_t> contact_to, trans_to, row_start, trans_start;
-  move_rows(out.row_start, old_of_new, row_start, contact_to);
-  move_rows(out.trans_start, old_of_new, trans_start, trans_to);
-  out.row_start = std::move(row_start);
-  out.trans_start = std::move(trans_start);
-  for_each_kept(out, [&](const BufferSpec& b, auto& v) {
-    using T = typename std::decay_t<decltype(v)>::value_type;
-    if (b.count == BufferCount::Particles && !v.empty()) {
-      std::vector<T> old = std::move(v);
-      v.resize(old.size());
-      for (size_t r = 0; r < v.size(); ++r) v[r] = old[old_of_new[r]];
-    } else if ((b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice) && !v.empty()) {
-      v = scattered(v, contact_to);
-    }
+// v[to[k]] = old v[k] for every k, as gather_row.
+template <class T>
+void scatter_row(std::vector<T>& v, const std::vector<uint32_t>& to, RowScratch& scratch) {
+  if (v.empty()) return;
+  if (v.size() != to.size()) throw std::logic_error("a kept row does not fit its contact list");
+  T* out = scratch.room<T>(v.size());
+  for (size_t k = 0; k < v.size(); ++k) out[to[k]] = v[k];
+  std::memcpy(v.data(), out, v.size() * sizeof(T));
+}
+
+// The bytes of the largest row of `s` that moves.
+size_t largest_row_bytes(HostState& s) {
+  size_t bytes = 0;
+  for_each_kept(s, [&](const BufferSpec&, auto& v) { bytes = std::max(bytes, v.size() * sizeof(v[0])); });
+  return bytes;
+}
+
+// Moves every particle of `s` from its index to new_of_old[index] (old_of_new its inverse), a row
+// at a time: per-particle rows, the rows of both contact lists, and the particle indices in them.
+// Returns each old contact's new index.
+std::vector<uint32_t> move_particles(HostState& s, const std::vector<uint32_t>& old_of_new,
+                                     const std::vector<uint32_t>& new_of_old) {
+  RowScratch scratch(largest_row_bytes(s));
+  {  // gone before contact_to comes: one entry map at a time (engine/memory_need.cpp)
+    std::vector<uint32_t> trans_to = move_rows(s.trans_start, old_of_new);
+    scatter_row(s.trans_list, trans_to, scratch);
+  }
+  std::vector<uint32_t> contact_to = move_rows(s.row_start, old_of_new);
+  for_each_kept(s, [&](const BufferSpec& b, auto& v) {
+    if (b.count == BufferCount::Particles) gather_row(v, old_of_new, scratch);
+    if (b.count == BufferCount::Contacts || b.count == BufferCount::ContactsTwice) scatter_row(v, contact_to, scratch);
   });
-  out.trans_list = scattered(out.trans_list, trans_to);
-  for (uint32_t& c : out.trans_list) c = contact_to[c];
+  for (uint32_t& c : s.trans_list) c = contact_to[c];
   uint32_t n = uint32_t(old_of_new.size());
-  for (uint32_t& p : out.partner)
+  for (uint32_t& p : s.partner)
     if (p < n) p = new_of_old[p];
-  for (uint32_t& i : out.owner) i = new_of_old[i];
-  if (contact_of) *contact_of = std::move(contact_to);
-  return out;
+  for (uint32_t& i : s.owner) i = new_of_old[i];
+  return contact_to;
 }
 
 }  // namespace
 
-HostState stored_state(const HostState& global, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
-  if (contact_of) contact_of->clear();
-  if (order.is_identity()) return global;
-  std::vector<uint32_t> stored_of;  // each global contact's stored index
-  HostState stored = moved_state(global, order.id_of, order.slot_of, &stored_of);
-  if (contact_of) {
-    contact_of->resize(stored_of.size());
-    for (size_t c = 0; c < stored_of.size(); ++c) (*contact_of)[stored_of[c]] = uint32_t(c);
-  }
-  return stored;
+void to_stored(HostState& state, const ParticleOrder& order) {
+  if (!order.is_identity()) move_particles(state, order.id_of, order.slot_of);
 }
 
-HostState global_state(HostState stored, const ParticleOrder& order, std::vector<uint32_t>* contact_of) {
-  if (contact_of) contact_of->clear();
-  if (order.is_identity()) return stored;
-  return moved_state(std::move(stored), order.slot_of, order.id_of, contact_of);
+void to_global(HostState& state, const ParticleOrder& order) {
+  if (!order.is_identity()) move_particles(state, order.slot_of, order.id_of);
+}
+
+std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order) {
+  std::vector<uint32_t> ids;
+  if (global.row_start.size() != order.size() + 1) return ids;
+  ids.reserve(global.row_start.back());
+  for (uint32_t g : order.id_of)
+    for (uint32_t c = global.row_start[g]; c < global.row_start[g + 1]; ++c) ids.push_back(c);
+  return ids;
 }
 
 ConstantData stored_constants(const Model& m, const ParticleOrder& order) {

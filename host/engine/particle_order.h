@@ -34,13 +34,14 @@ struct ParticleOrder {
 // the fill's random order; README, speed).
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
 
-// The host state `global` (rows by global id, contacts as the kernels would list them by global
-// id) as the device stores it under `order`, and back. `contact_of`, when given, receives for each
-// stored contact its index in the global list (Simulation::contact_forces; empty: the same).
-HostState stored_state(const HostState& global, const ParticleOrder& order,
-                       std::vector<uint32_t>* contact_of = nullptr);
-HostState global_state(HostState stored, const ParticleOrder& order,
-                       std::vector<uint32_t>* contact_of = nullptr);
+// The host state (rows by global id, contacts as the kernels would list them by global id) moved
+// into the slots the device stores them in under `order`, and back: per-particle rows, the contact
+// lists' rows with their owners (keeping their order) and the indices in them. A row at a time,
+// so a conversion holds one row twice, never a second state (engine/memory_need.cpp).
+void to_stored(HostState& state, const ParticleOrder& order);
+void to_global(HostState& state, const ParticleOrder& order);
+// For each contact of the stored list, its index in `global`'s list.
+std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order);
 
 // The model's constant rows as the device stores them under `order`, with the id table.
 ConstantData stored_constants(const Model& m, const ParticleOrder& order);

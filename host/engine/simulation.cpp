@@ -24,8 +24,9 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
                        uint32_t max_batch_steps, uint32_t first_capacity)
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
   layout_ = model_layout(model_, variant_, max_batch_steps);
-  order_ = ParticleOrder::identity(model_.n_particles);
-  constants_ = stored_constants(model_, order_);
+  // Cell order from the start (one sort), so the first batch need not store the particles anew.
+  order_ = variant_.reorder ? cell_order(model_.pos, model_.cell) : ParticleOrder::identity(model_.n_particles);
+  stored_by_id_ = order_.is_identity();
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
   state_.pos = model_.pos;
@@ -60,29 +61,34 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
     }
     download();
   }
+  if (variant_.reorder) reordered_at_ = rebuilds();
 }
 
 void Simulation::allocate(uint32_t capacity) {
   layout_.capacity = capacity;
-  backend_->allocate(layout_, constants_);
+  backend_->allocate(layout_, stored_constants(model_, order_));
   upload();
 }
 
+// In cell order the state moves into its slots and back in place: no second copy of it.
 void Simulation::upload() {
-  contact_of_.clear();
-  backend_->upload_state(stored_by_id_ ? state_ : stored_state(state_, order_, &contact_of_));
+  if (stored_by_id_) {
+    backend_->upload_state(state_);
+    return;
+  }
+  to_stored(state_, order_);
+  try {
+    backend_->upload_state(state_);
+  } catch (...) {
+    to_global(state_, order_);
+    throw;
+  }
+  to_global(state_, order_);
 }
 
 void Simulation::download() {
-  contact_of_.clear();
-  if (stored_by_id_) {
-    backend_->download_state(state_);
-    return;
-  }
-  HostState stored;
-  backend_->download_state(stored);
-  state_ = HostState{};  // two copies at the most (engine/memory_need.h)
-  state_ = global_state(std::move(stored), order_, &contact_of_);
+  backend_->download_state(state_);
+  if (!stored_by_id_) to_global(state_, order_);
 }
 
 void Simulation::store_in_order(ParticleOrder order) {
@@ -90,8 +96,10 @@ void Simulation::store_in_order(ParticleOrder order) {
     throw std::invalid_argument("a particle order for another number of particles");
   order_ = std::move(order);
   stored_by_id_ = order_.is_identity();
-  constants_ = stored_constants(model_, order_);
-  allocate(layout_.capacity);  // the constants and the state anew, in the new slots
+  // The constants and the state anew, in the new slots (the scratch rows need no zeroing: a
+  // restart's are zero, a running simulation's are not, and both give the same bytes).
+  backend_->upload_constants(stored_constants(model_, order_));
+  upload();
 }
 
 // Cell order before the first batch, and again every variant_.reorder rebuilds.
@@ -231,9 +239,10 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
 
 std::vector<gpu::vec4> Simulation::contact_forces() {
   std::vector<gpu::vec4> stored = backend_->contact_forces(contacts());
-  if (contact_of_.empty()) return stored;
+  if (stored_by_id_) return stored;
+  std::vector<uint32_t> contact_of = stored_contact_ids(state_, order_);
   std::vector<gpu::vec4> by_id(stored.size());
-  for (size_t c = 0; c < stored.size(); ++c) by_id[contact_of_[c]] = stored[c];
+  for (size_t c = 0; c < stored.size() && c < contact_of.size(); ++c) by_id[contact_of[c]] = stored[c];
   return by_id;
 }
 
@@ -261,6 +270,7 @@ void Simulation::restore(const HostState& s, uint64_t step) {
   if (s.control.size() != gpu::kControlWords || s.pos_at_build.size() != s.pos.size())
     refuse("the state holds no neighbour-list bookkeeping (written by an older version)");
   state_ = s;
+  reordered_at_ = -1;  // cell order by the restored positions before the first batch
   // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
   // early past the contact count, so only coverage matters).
   uint32_t contacts = state_.control[gpu::kCtlContacts];

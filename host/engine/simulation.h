@@ -112,14 +112,12 @@ class Simulation {
   std::vector<Dispatch> batch_program(uint32_t steps) const;
   void add_batch_wall_sums();
   Model model_;
-  ConstantData constants_;
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;
   HostState state_;  // by global id
   ParticleOrder order_;
   bool stored_by_id_ = true;          // order_ is the identity
-  std::vector<uint32_t> contact_of_;  // each stored contact's index in state_'s list (empty: the same)
   int64_t reordered_at_ = -1;         // rebuild count at the last cell ordering (-1: none yet)
   uint64_t step_ = 0;
   uint32_t retries_ = 0;

@@ -75,8 +75,12 @@ void VulkanBackend::allocate(const Layout& l, const ConstantData& constants) {
     for (auto& buf : buffers_)
       if (buf.handle() != VK_NULL_HANDLE) vkCmdFillBuffer(cb, buf.handle(), 0, VK_WHOLE_SIZE, 0);
   });
-  for_each_constant(constants, [&](const BufferSpec& spec, const auto& v) { up(b(spec.binding), v); });
+  upload_constants(constants);
   kernels_.bind(bound);
+}
+
+void VulkanBackend::upload_constants(const ConstantData& constants) {
+  for_each_constant(constants, [&](const BufferSpec& spec, const auto& v) { up(b(spec.binding), v); });
 }
 
 void VulkanBackend::upload_state(const HostState& s) {

@@ -23,6 +23,7 @@ class VulkanBackend : public Backend {
   ~VulkanBackend() override;
   std::string describe() const override;
   void allocate(const Layout& layout, const ConstantData& constants) override;
+  void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
   void download_state(HostState& s) override;
   void upload_walls(const std::vector<gpu::WallState>& walls) override;

@@ -63,14 +63,15 @@ Measured run_bed_in_child(uint32_t n) {
 
 }  // namespace
 
-TEST_CASE("the memory a run needs is its measured peak within 20 %", "[engine][memory]") {
-  // The estimate counts the contact list's host copy at its capacity (6 per particle) where the
-  // unsettled bed holds 3: it is above the peak by ~10 %, which the 20 % allows; a bed twice as
-  // large shows the figure grows with the particles, not a fixed offset.
+TEST_CASE("the memory a run needs is its measured peak within 25 %", "[engine][memory]") {
+  // The estimate counts the contact list's host copy, and in cell order the scratch row and entry
+  // map that turn it to global ids, at the list's capacity (6 per particle) where the unsettled
+  // bed holds 3: it is above the peak by ~20 % (~10 % in the case's order), which the 25 % allows;
+  // a bed twice as large shows the figure grows with the particles, not a fixed offset.
   for (uint32_t n : {100000u, 200000u}) {
     Measured m = run_bed_in_child(n);
     INFO(n << " spheres: estimate " << m.estimate / 1048576 << " MiB, peak " << m.peak / 1048576 << " MiB");
-    CHECK(std::abs(m.estimate - m.peak) < 0.2 * m.peak);
+    CHECK(std::abs(m.estimate - m.peak) < 0.25 * m.peak);
   }
 }
 
