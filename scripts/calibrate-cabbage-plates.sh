@@ -59,6 +59,15 @@ d['parameters']['$f']['credible_low'], d['parameters']['$f']['credible_high'], d
 d['verification']['se'], d['measured'], 100 * d['verification']['relative_error'], d['verification']['agreement'])"
 }
 
+# roll_plan NAME LOW HIGH REPLICATES: the roll of plate $p over mu_r LOW..HIGH at 7 levels, its
+# e and mu_s calibrated ($e, $mu_s), each seed another orientation, 60 verification rolls.
+roll_plan() {
+  plan "$1" roll experiments/roll_cabbage.toml rolling_distance "${ROLL[$p]}" 0.02 \
+    interaction.0.rolling_friction "$2" "$3" 7 "$4" 60 "$p" "\"interaction.0.preset\" = [\"cabbage\", \"$p\"]" \
+    "\"experiment.random_orientation\" = true" \
+    "\"interaction.0.restitution\" = $e" "\"interaction.0.static_friction\" = $mu_s"
+}
+
 for p in "${PLATES[@]}"; do
   echo "== $p" >&2
   plan "drop_$p" drop drop_cabbage.toml rebound_height "${DROP[$p]}" 0.05 interaction.0.restitution 0.6 0.95 8 30 30 "$p"
@@ -66,19 +75,13 @@ for p in "${PLATES[@]}"; do
   plan "slide_$p" slide experiments/slide_cabbage_group.toml onset_angle_deg "${SLIDE[$p]}" 0.02 \
     interaction.0.static_friction 0.2 0.9 8 1 3 "$p" "\"interaction.0.restitution\" = $e"
   mu_s=$(value "slide_$p" "d['parameters']['static_friction']['value']")
-  plan "roll_$p" roll experiments/roll_cabbage.toml rolling_distance "${ROLL[$p]}" 0.02 \
-    interaction.0.rolling_friction 0.02 0.05 7 10 60 "$p" "\"interaction.0.preset\" = [\"cabbage\", \"$p\"]" \
-    "\"experiment.random_orientation\" = true" \
-    "\"interaction.0.restitution\" = $e" "\"interaction.0.static_friction\" = $mu_s"
+  roll_plan "roll_$p" 0.02 0.05 10
   # A roll not confirmed is swept again, the study's method once more: +-15 % about the first
   # value, 20 new orientations a level (seeds from 101), 60 new verification rolls.
   if [ "$(value "roll_$p" "d['verification']['agreement']")" != confirmed ]; then
     mu_r=$(value "roll_$p" "d['parameters']['rolling_friction']['value']")
-    BASE_SEED=101 plan "roll_fine_$p" roll experiments/roll_cabbage.toml rolling_distance "${ROLL[$p]}" 0.02 \
-      interaction.0.rolling_friction "$(python3 -c "print(round($mu_r * 0.85, 6))")" \
-      "$(python3 -c "print(round($mu_r * 1.15, 6))")" 7 20 60 "$p" "\"interaction.0.preset\" = [\"cabbage\", \"$p\"]" \
-      "\"experiment.random_orientation\" = true" \
-      "\"interaction.0.restitution\" = $e" "\"interaction.0.static_friction\" = $mu_s"
+    BASE_SEED=101 roll_plan "roll_fine_$p" "$(python3 -c "print(round($mu_r * 0.85, 6))")" \
+      "$(python3 -c "print(round($mu_r * 1.15, 6))")" 20
   fi
 done
 

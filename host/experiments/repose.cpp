@@ -293,9 +293,10 @@ HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
   HeapPictureCaption caption = slope_caption(r.heap, settings_of<ReposeSettings>(spec.experiment).heap_side);
   caption.angle_deg = r.sloped ? r.angle_deg : std::numeric_limits<double>::quiet_NaN();
   if (r.views) caption.measured_as = "the mean of " + std::to_string(r.views->azimuth_deg.size()) + " views' slopes";
-  if (auto from = settings_of<ReposeSettings>(spec.experiment).visible_from) {
+  const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
+  if (ex.visible_from) {
     char where[64];
-    std::snprintf(where, sizeof where, " beyond %s = %.3g m", settings_of<ReposeSettings>(spec.experiment).view == "x" ? "y" : "x", *from);
+    std::snprintf(where, sizeof where, " beyond %s = %.3g m", ex.view == "x" ? "y" : "x", *ex.visible_from);
     caption.measured_as += where;
   }
   return caption;

@@ -36,10 +36,9 @@ SlopeFit fit_face(const std::vector<double>& x, const std::vector<double>& z, bo
   const LineFit inverse = fit_line(z, x);
   const double run = falling ? -inverse.slope : inverse.slope;  // horizontal run per metre of rise
   out.angle_deg = std::atan2(1.0, run) * 180.0 / kPi;
-  double x_mean = 0, z_mean = 0;
-  for (size_t i = 0; i < x.size(); ++i) x_mean += x[i] / double(x.size()), z_mean += z[i] / double(x.size());
+  // z = slope (x - x0) with x0 the inverse line's x at z = 0 (a vertical face: a steep stand-in).
   out.line.slope = inverse.slope != 0 ? 1.0 / inverse.slope : (falling ? -1e6 : 1e6);
-  out.line.intercept = z_mean - out.line.slope * x_mean;
+  out.line.intercept = -out.line.slope * inverse.intercept;
   out.line.r_squared = inverse.r_squared;
   out.line.points = inverse.points;
   out.from = *std::min_element(x.begin(), x.end());

@@ -9,6 +9,17 @@
 
 using namespace repose;
 
+namespace {
+
+// Saves `chart` as a PNG in the temporary folder and returns what it recorded (records are kept).
+ChartRecord saved_record(Chart& chart, const std::string& name) {
+  std::string path = (std::filesystem::temp_directory_path() / name).string();
+  chart.save(path);
+  return Chart::recorded(path);
+}
+
+}  // namespace
+
 TEST_CASE("chart lines are clipped to the plot area", "[plot]") {
   Chart chart(600, 400, 0, 1, 0, 1);
   // A line from far left-below to far right-above, and one entirely outside.
@@ -91,9 +102,7 @@ TEST_CASE("among corners free of data the legend takes the one clear of bands an
   chart.vertical(0.8, colours::red);
   chart.marker(0.5, 0.5, colours::black);
   chart.legend({{"runs", colours::black, Mark::Dot}, {"measured", colours::green}, {"chosen", colours::red}});
-  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_bands.png").string();
-  chart.save(path);
-  ChartRecord r = Chart::recorded(path);
+  ChartRecord r = saved_record(chart, "repose_test_legend_bands.png");
   CHECK_FALSE(r.legend_covers_data);
   CHECK_FALSE(r.legend_covers_reference);
   auto [left, top, right, bottom] = chart.plot_area();
@@ -115,9 +124,7 @@ TEST_CASE("the legend keeps clear of a model's band where the data leave it a ch
   chart.band(x, low, high, colours::blue);
   chart.marker(0.5, 0.5, colours::black);
   chart.legend({{"runs", colours::black, Mark::Dot}, {"model +- 2 sd", colours::blue, Mark::Band}});
-  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_model_band.png").string();
-  chart.save(path);
-  ChartRecord r = Chart::recorded(path);
+  ChartRecord r = saved_record(chart, "repose_test_legend_model_band.png");
   CHECK_FALSE(r.legend_covers_data);
   CHECK_FALSE(r.legend_covers_reference);
   auto [left, top, right, bottom] = chart.plot_area();
@@ -137,9 +144,7 @@ TEST_CASE("the legend keeps clear of error bars as of points", "[plot]") {
   chart.marker(0.95, 0.5, colours::red);
   chart.error_bar(0.95, 0.4, 0.98, colours::red);
   chart.legend({{"runs", colours::blue, Mark::Dot}, {"mean +- se", colours::red, Mark::Dot}});
-  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend_bars.png").string();
-  chart.save(path);
-  CHECK_FALSE(Chart::recorded(path).legend_covers_data);
+  CHECK_FALSE(saved_record(chart, "repose_test_legend_bars.png").legend_covers_data);
   auto [left, top, right, bottom] = chart.plot_area();
   CHECK(pixels_of(chart, colours::blue, right - 200, right, bottom - 80, bottom) > 20);  // the "runs" sample
 }
@@ -154,9 +159,7 @@ TEST_CASE("the legend takes the corner free of data, and records what each entry
   }
   chart.polyline({0, 0.3}, {0, 0.3}, colours::green);
   chart.legend({{"runs", colours::red, Mark::Dot}, {"chosen", colours::blue, Mark::Square}, {"fit", colours::green}});
-  std::string path = (std::filesystem::temp_directory_path() / "repose_test_legend.png").string();
-  chart.save(path);
-  ChartRecord r = Chart::recorded(path);
+  ChartRecord r = saved_record(chart, "repose_test_legend.png");
   CHECK_FALSE(r.legend_covers_data);
   REQUIRE(r.legend.size() == 3);
   CHECK(r.points_of(colours::red, Mark::Dot) == 10);
