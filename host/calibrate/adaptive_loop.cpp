@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "calibrate/campaign.h"
 #include "stats/halton.h"
 #include "stats/local_search.h"
 
@@ -126,12 +127,14 @@ std::vector<RunSpec> pilot_runs(const CampaignPlan& plan) {
   return runs;
 }
 
-std::vector<RunSpec> adaptive_verification_runs(const CampaignPlan& plan, const std::vector<double>& x, int loop_runs) {
+std::vector<RunSpec> adaptive_verification_runs(const CampaignPlan& plan, const std::vector<double>& x, int loop_runs,
+                                                int round) {
   std::vector<RunSpec> runs;
   char id[48];
+  const std::uint64_t first = round == 0 ? 0 : 900000 + 1000 * std::uint64_t(round);
   for (int r = 1; r <= plan.verification_runs; ++r) {
     std::snprintf(id, sizeof id, "verify-%03d-r%d", loop_runs, r);
-    runs.push_back({id, "verify", 0, r, plan.base_seed + std::uint64_t(r), x});
+    runs.push_back({id, "verify", 0, r, plan.base_seed + first + std::uint64_t(r), x});
   }
   return runs;
 }
@@ -253,6 +256,25 @@ void print_progress(const CampaignPlan& plan, const LoopDecision& d) {
   std::fprintf(stderr, "loop: surrogate at its best estimate: %s%s\n", s.c_str(), d.repeat ? "; repeating it with a new packing" : "");
 }
 
+
+// Verifies the surrogate's choice mid-loop: true when confirmed; otherwise the round is kept
+// (its runs then train the surrogate).
+bool verify_mid_loop(const CampaignPlan& plan, RunSource& source, const LoopDecision& d, const std::vector<Observations>& obs,
+                     const std::vector<NoiseEstimate>& noise, int count, bool quiet, AdaptiveOutcome& out) {
+  VerificationRound round;
+  round.loop_runs = count;
+  round.runs = adaptive_verification_runs(plan, to_actual(plan, d.chosen), count, int(out.rounds.size()));
+  CalibrationResult res = loop_result(plan, d, obs, noise, count);
+  verify_result(plan, source, round.runs, res);
+  if (res.target_reached) return true;
+  round.checks = res.checks;
+  if (!quiet)
+    std::fprintf(stderr, "loop: the verification after loop run %d did not confirm the surrogate (%s); its runs join the surrogate's data\n",
+                 count, res.checks.empty() ? "nothing verified" : agreement_name(res.checks.front().agreement));
+  out.rounds.push_back(round);
+  return false;
+}
+
 }  // namespace
 
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool quiet) {
@@ -271,14 +293,24 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool q
   std::vector<NoiseEstimate> noise, pilot_noise;
   observe_all(plan, source, pilot, pilot_obs, pilot_noise);
   LoopDecision d;
-  for (;;) {
+  const auto train = [&] {
     std::vector<RunSpec> training = points;
     if (plan.adaptive.seed_per_run) training.insert(training.begin(), pilot.begin(), pilot.end());
+    for (const auto& round : out.rounds) training.insert(training.end(), round.runs.begin(), round.runs.end());
     observe_all(plan, source, training, obs, noise);
     d = decide(plan, obs, plan.adaptive.seed_per_run ? noise : std::vector<NoiseEstimate>(noise.size()));
+  };
+  for (;;) {
+    train();
     const int count = int(points.size());
     if (d.met && out.simulations_to_target < 0) out.simulations_to_target = count;
-    if (d.met || count >= plan.adaptive.budget) break;
+    if (count >= plan.adaptive.budget) break;
+    // With one seed for all, a verification at the same point would repeat the loop's own runs.
+    if (d.met && !plan.adaptive.seed_per_run) break;
+    if (d.met) {
+      if (verify_mid_loop(plan, source, d, obs, noise, count, quiet, out)) break;
+      train();
+    }
     if (!quiet) print_progress(plan, d);
     RunSpec spec{loop_id(count + 1), "loop", count + 1, 0, loop_seed(plan, count + 1), to_actual(plan, d.next)};
     source.run(on_rigs(plan, {spec}, rigs), "loop");

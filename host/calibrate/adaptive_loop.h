@@ -3,7 +3,9 @@
 // response, the noise held inside the pilot's confidence interval) expect the largest
 // improvement towards the measured values, until the surrogates' means at their best estimate
 // are within every tolerance and known to within it (noise-aware: one lucky run does not stop
-// it), or the budget is spent. With [adaptive] seeds = "per_run" each run packs anew and a point
+// it), or the budget is spent. When the surrogate meets the tolerance before the budget is
+// spent, the verification runs there and then: confirmed, the loop ends; otherwise its runs join
+// the surrogate's data and the loop goes on (a surrogate sure of a wrong mean does not end it). With [adaptive] seeds = "per_run" each run packs anew and a point
 // may be repeated. Every proposal depends only on the runs before it (stored by id), so a
 // resumed, distributed or budget-raised loop proposes the same points.
 #pragma once
@@ -25,8 +27,17 @@ struct LoopStep {
   double expected_improvement = 0;  // of the proposal that chose it (0 for the start)
 };
 
+// A verification the loop ran before its budget was spent, because its surrogate met the
+// tolerance, and that did not confirm it: its runs then joined the surrogate's data.
+struct VerificationRound {
+  int loop_runs = 0;                 // the loop's length when it ran (its ids: verify-NNN-rK)
+  std::vector<RunSpec> runs;         // rig 0's ids, at the point the surrogate chose then
+  std::vector<ResponseCheck> checks; // why the loop went on
+};
+
 struct AdaptiveOutcome {
   CalibrationResult result;
+  std::vector<VerificationRound> rounds;  // unconfirmed verifications fed back, in order
   std::vector<LoopStep> steps;     // in order
   std::vector<RunRecord> pilot;    // the noise pilot's runs (first calibrating response's rig)
   int initial = 0;
@@ -58,7 +69,11 @@ std::vector<RunSpec> pilot_runs(const CampaignPlan& plan);
 std::uint64_t loop_seed(const CampaignPlan& plan, int index);
 // The verification runs of a loop that ended after `loop_runs` runs: at the chosen point, each
 // its own seed, named after the loop's length (a raised budget verifies its own answer anew).
-std::vector<RunSpec> adaptive_verification_runs(const CampaignPlan& plan, const std::vector<double>& x, int loop_runs);
+// `round`: how many unconfirmed verifications were fed back before it; after one, the packings
+// are new (base + 900000 + 1000 round + r), so a verification never repeats a packing the
+// surrogate has learned from.
+std::vector<RunSpec> adaptive_verification_runs(const CampaignPlan& plan, const std::vector<double>& x, int loop_runs,
+                                                int round = 0);
 
 AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool quiet);
 

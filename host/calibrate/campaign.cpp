@@ -93,7 +93,7 @@ void calibrate_adaptively(const CampaignPlan& plan, RunSource& source, bool quie
   loop = run_adaptive(plan, source, quiet);
   record.result = loop.result;
   record.loop = &loop;
-  verify = adaptive_verification_runs(plan, record.result.chosen, int(loop.steps.size()));
+  verify = adaptive_verification_runs(plan, record.result.chosen, int(loop.steps.size()), int(loop.rounds.size()));
   verify_result(plan, source, verify, record.result);
 }
 

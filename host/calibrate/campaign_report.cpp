@@ -175,6 +175,15 @@ void loop_section(std::ostringstream& md, const CampaignPlan& plan, const Calibr
     md << "\nNoise pilot runs:\n\n";
     runs_table(md, plan, loop.pilot);
   }
+  for (const auto& round : loop.rounds) {
+    md << "\nThe surrogate met the tolerance after loop run " << round.loop_runs
+       << " and the verification there did not confirm it, so its runs joined the surrogate's data and the loop went on:\n\n";
+    for (const auto& c : round.checks) md << "- " << check_text(plan, c) << "\n";
+    if (!round.checks.empty()) {
+      md << "\n";
+      runs_table(md, plan, round.checks.front().runs);
+    }
+  }
 }
 
 std::string report_markdown(const CampaignRecord& rec) {
@@ -267,6 +276,13 @@ nlohmann::ordered_json summary_json(const CampaignRecord& rec) {
     j["simulations_to_target"] = rec.loop->simulations_to_target;
     j["loop_runs"] = int(rec.loop->steps.size());
     j["pilot_runs"] = int(rec.loop->pilot.size());
+    nlohmann::ordered_json rounds = nlohmann::ordered_json::array();
+    for (const auto& round : rec.loop->rounds) {
+      nlohmann::ordered_json r{{"after_loop_run", round.loop_runs}, {"checks", nlohmann::ordered_json::array()}};
+      for (const auto& c : round.checks) r["checks"].push_back(check_json(plan, c));
+      rounds.push_back(r);
+    }
+    j["verifications_fed_back"] = rounds;
   }
   j["parameters"] = parameters_json(res);
   for (const auto& m : res.models) j["noise"][plan.responses[size_t(m.response)].label] = noise_json(m.noise);

@@ -2,6 +2,7 @@
 // pilot, loop, posterior and verification code that runs simulations (function_runs.h).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -19,7 +20,8 @@ namespace {
 // The adaptive campaign as `repose calibrate` runs it: pilot, loop, verification.
 AdaptiveOutcome adaptive_campaign(const CampaignPlan& plan, test::FunctionRuns& runs) {
   AdaptiveOutcome loop = run_adaptive(plan, runs, true);
-  verify_result(plan, runs, adaptive_verification_runs(plan, loop.result.chosen, int(loop.steps.size())), loop.result);
+  verify_result(plan, runs, adaptive_verification_runs(plan, loop.result.chosen, int(loop.steps.size()), int(loop.rounds.size())),
+                loop.result);
   return loop;
 }
 
@@ -183,4 +185,50 @@ TEST_CASE("several responses are weighted by their lab uncertainties") {
   CHECK(res.chosen_coded[0] == Approx(0.005).margin(0.002));
   // The posterior weighs them the same way: its median sits by the precise value.
   CHECK(res.posterior.marginal[0].median == Approx(0.005).margin(0.02));
+}
+
+TEST_CASE("a surrogate sure of a wrong mean is verified before the budget, and the loop goes on with the verification's runs") {
+  // y = 10 + 4 c, except in a notch 0.1 wide around c = 0.4 where it is 6: the start (c = 0,
+  // +-0.5) and the pilot (c = 0) miss the notch, so the surrogate is sure that the measured 11.6
+  // lies at c = 0.4, and its verification there reads ~6, 5.6 below: contradicted at any count.
+  auto mean = [](const Eigen::VectorXd& c, int) { return std::abs(c[0] - 0.4) < 0.05 ? 6.0 : 10 + 4 * c[0]; };
+  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 14);
+  plan.verification_runs = 6;
+  test::FunctionRuns runs(plan, mean, 0.5, 3);
+  AdaptiveOutcome loop = adaptive_campaign(plan, runs);
+  REQUIRE(!loop.rounds.empty());
+  const VerificationRound& first = loop.rounds.front();
+  REQUIRE(first.checks.size() == 1);
+  CHECK(first.checks[0].agreement == Agreement::contradicted);
+  CHECK(first.checks[0].mean < 7.0);
+  // Verified before the budget was spent, and the loop went on after it.
+  CHECK(first.loop_runs < plan.adaptive.budget);
+  CHECK(int(loop.steps.size()) > first.loop_runs);
+  // The round's runs trained the surrogate that made the final choice.
+  const auto& trained = loop.result.primary().runs;
+  CHECK(std::any_of(trained.begin(), trained.end(), [&](const RunRecord& r) { return r.spec.id == first.runs[0].id; }));
+  // Its seeds were the first verification's; any later verification packs anew.
+  CHECK(first.runs[0].seed == plan.base_seed + 1);
+  const auto later = adaptive_verification_runs(plan, loop.result.chosen, int(loop.steps.size()), int(loop.rounds.size()));
+  for (const auto& v : later)
+    for (const auto& round : loop.rounds)
+      for (const auto& r : round.runs) CHECK(v.seed != r.seed);
+  // Every verification that ran is accounted for: pilot, loop, the rounds, the last one.
+  int verified = 0;
+  for (const auto& round : loop.rounds) verified += int(round.runs.size());
+  CHECK(runs.simulated == plan.adaptive.pilot + int(loop.steps.size()) + verified + plan.verification_runs);
+}
+
+TEST_CASE("a verification that confirms the surrogate before the budget ends the loop there") {
+  // The same line without the notch: verified where the surrogate is sure, and confirmed.
+  auto mean = [](const Eigen::VectorXd& c, int) { return 10 + 4 * c[0]; };
+  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 14);
+  plan.verification_runs = 6;
+  test::FunctionRuns runs(plan, mean, 0.5, 3);
+  AdaptiveOutcome loop = adaptive_campaign(plan, runs);
+  CHECK(loop.rounds.empty());
+  CHECK(int(loop.steps.size()) < plan.adaptive.budget);
+  REQUIRE(loop.result.checks.size() == 1);
+  CHECK(loop.result.checks[0].agreement == Agreement::confirmed);
+  CHECK(runs.simulated == plan.adaptive.pilot + int(loop.steps.size()) + plan.verification_runs);
 }
