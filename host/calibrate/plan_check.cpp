@@ -192,6 +192,9 @@ std::string describe_plan_check(const CampaignPlan& plan, const std::map<std::st
   out << "cost: at most " << total_runs << " simulations, about " << duration_text(total_seconds)
       << " of CPU time on one thread each (divide by --jobs, or spread over mpirun ranks)\n"
       << rigs.str();
+  if (plan.mode == CampaignMode::adaptive && plan.adaptive.seed_per_run && plan.verification_runs > 0)
+    out << "  and " << plan.verification_runs
+        << " more for each verification the loop runs before its budget is spent and that does not confirm it\n";
   out << precision_text(plan, stored, unreachable);
   return out.str();
 }
