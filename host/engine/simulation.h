@@ -62,7 +62,8 @@ class Simulation {
   Model& mutable_model() { return model_; }  // for tests that steer particles between batches
   // The state by global id after the last batch. A batch is downloaded in the device's slots and
   // turned to global ids here, on its first reading: a batch nobody reads costs no conversion.
-  // The reference stays valid, and by global id, until the next advance() or change of state.
+  // The reference stays valid, and by global id, until the next advance(), set_state(), restore()
+  // or store_in_order() (each of which may leave the state in slots again).
   const HostState& state() const;
   // The positions after the last batch in the order the device stores them (no conversion), for
   // checks whose answer does not depend on the order (any particle out of the domain?).

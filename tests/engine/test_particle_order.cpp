@@ -121,14 +121,11 @@ TEST_CASE("particle order: a scrambled run's state file restarts to the bytes of
 TEST_CASE("particle order: a run read after every batch and one read only at its end give the same bytes",
           "[engine][order]") {
   // The state is turned to global ids when it is read (Simulation::state), so a batch nobody reads
-  // stays in slots: uploads after an overflow and reorders then start from either form. The clump
-  // pile with a wide skin (test_overflow_retry.cpp) overflows a list of 64 entries in the
-  // constructor and the grown list as it lands, inside advance(); cell order is renewed after every
-  // rebuild. Both must give the bytes of the case's order with an ample list.
-  CaseSpec spec = clump_pile();
-  spec.contact.rolling = RollingModel::ElasticPlastic;
-  spec.neighbour.skin = 0.04;
-  spec.neighbour.rebuild_interval = 25;
+  // stays in slots: uploads after an overflow and reorders then start from either form. The pile
+  // overflows a list of 64 entries in the constructor and the grown list as it lands, inside
+  // advance(); cell order is renewed after every rebuild. Both must give the bytes of the case's
+  // order with an ample list.
+  CaseSpec spec = wide_skin_pile();
   auto start = [&](const char* variant, uint32_t capacity) {
     KernelVariant v = KernelVariant::parse(variant);
     return std::make_unique<Simulation>(build_model(spec), make_backend("cpu", -1, 2, v.workgroup), v, 50, capacity);
