@@ -1,24 +1,32 @@
 #!/usr/bin/env bash
 # Everything we want to know the first time Repose meets a hardware GPU, in one report:
 # the devices and their limits, the bit-exact twin tests run on the GPU (every kernel against the
-# CPU twin, whole runs byte-compared with the cpu backend), and `repose bench` at 1e5, 1e6 and
-# 1e7 spheres on the GPU beside the cpu backend on every core.
-# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"]
+# CPU twin, whole runs byte-compared with the cpu backend), the particle order (the order tests on
+# the GPU, a run in the case's order against the cpu backend's cell order, and `repose bench` in
+# both orders), and `repose bench` at 1e5, 1e6 and 1e7 spheres on the GPU beside the cpu backend
+# on every core.
+# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
 #   --out:    where report.md and the raw logs go (default out/gpu-check).
+#   --quick:  a check of this script itself on any Vulkan device (lavapipe through VK_DRIVER_FILES):
+#             the twin tests left out, 2,000-sphere beds, short runs and benches.
 # Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
 set -u
 cd "$(dirname "$0")/.."
-bundle="" out="out/gpu-check" sizes="100000 1000000 10000000"
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --bundle) bundle=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
+    --quick) quick=1; shift ;;
     *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
   esac
 done
+# Steps of the whole-run comparisons, spheres and steps of the order benches.
+run_steps=2000 order_n=1000000 order_steps=300
+[ $quick = 1 ] && { sizes=2000 run_steps=200 order_n=2000 order_steps=20; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 report="$out/report.md"
@@ -69,27 +77,41 @@ say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}"
 step "nvidia-smi" 30 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
 [ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" 60 "$bin/vulkaninfo" --summary
 step "repose devices" 60 "$bin/repose" devices
-# Each kernel alone from the twin's buffers first: the table of kernels whose own arithmetic differs.
-TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
-# Every twin test: the GPU against the CPU twin after each dispatch, whole runs, split dispatches.
-TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
-TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" "~repose devices lists lavapipe" -d yes
-cmp_runs() {  # a case on the GPU and on the cpu backend: the same state bytes?
-  local name=$1 steps=$2
+if [ $quick = 0 ]; then
+  # Each kernel alone from the twin's buffers first: the table of kernels whose own arithmetic differs.
+  TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
+  # Every twin test: the GPU against the CPU twin after each dispatch, whole runs, split dispatches.
+  TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
+  TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" "~repose devices lists lavapipe" -d yes
+fi
+# The particle order: scrambled, rescrambled and cell orders against the case's order on the GPU.
+TAIL=30 step "particle order tests on the GPU" 300 "$bin/test_engine" "[order]" -d yes
+cmp_runs() {  # a case on the GPU (in the variant $3, else its default) and on the cpu backend: the same state bytes?
+  local name=$1 steps=$2 variant=${3:-}
   "$bin/repose" run "cases/$name.toml" --backend vulkan --steps "$steps" --quiet --overwrite \
-      --out "$out/$name-gpu" --state-out "$out/$name-gpu.state" &&
+      ${variant:+--variant "$variant"} --out "$out/$name-gpu" --state-out "$out/$name-gpu.state" &&
     "$bin/repose" run "cases/$name.toml" --backend cpu --steps "$steps" --quiet --overwrite \
       --out "$out/$name-cpu" --state-out "$out/$name-cpu.state" &&
-    cmp "$out/$name-gpu.state" "$out/$name-cpu.state" && echo "$name: identical state after $steps steps"
+    cmp "$out/$name-gpu.state" "$out/$name-cpu.state" && echo "$name${variant:+ ($variant on the GPU)}: identical state after $steps steps"
 }
 export -f cmp_runs
-export bin out
-step "settle_box: GPU and cpu backend byte for byte" 200 bash -c 'cmp_runs settle_box 2000'
-step "cabbage_settle: GPU and cpu backend byte for byte" 300 bash -c 'cmp_runs cabbage_settle 2000'
+export bin out run_steps
+step "settle_box: GPU and cpu backend byte for byte" 200 bash -c 'cmp_runs settle_box $run_steps'
+step "settle_box: GPU in the case's order, cpu backend in cell order, byte for byte" 200 \
+    bash -c 'cmp_runs settle_box $run_steps lean,reorder=0'
+step "cabbage_settle: GPU and cpu backend byte for byte" 300 bash -c 'cmp_runs cabbage_settle $run_steps'
 for n in $sizes; do
   steps=$([ "$n" -ge 10000000 ] && echo 100 || echo 300)
+  [ $quick = 1 ] && steps=20
   TAIL=30 step "bench, $n spheres" 600 "$bin/repose" bench --n "$n" --backend vulkan cpu --steps "$steps" \
       --cache "$out/bench-cache"
 done
+# The case's order against cell order on the GPU: the lattice bed (its case order is already
+# spatial) and a random fill settled (cases/bench_bed.toml, 50k spheres, stored as the fill placed them).
+TAIL=40 step "bench, $order_n spheres, the case's order and cell order" 600 "$bin/repose" bench --n "$order_n" \
+    --backend vulkan --variant lean,reorder=0 --variant lean,reorder=20 --steps "$order_steps" --cache "$out/bench-cache"
+TAIL=40 step "bench, a random fill of 50k spheres, the case's order and cell order" 600 "$bin/repose" bench \
+    --case cases/bench_bed.toml --backend vulkan --variant lean,reorder=0 --variant lean,reorder=20 \
+    --steps "$order_steps" --cache "$out/bench-cache"
 say ""
 say "Logs: $out"

@@ -38,11 +38,11 @@ EscapeCheck::EscapeCheck(const Model& model) : model_(model) {
   reach_ = std::max(10.0, 10 * size);
 }
 
-std::optional<Escape> EscapeCheck::find(const HostState& s, double t) const {
+std::optional<Escape> EscapeCheck::find(const std::vector<gpu::vec4>& pos, double t) const {
   std::vector<gpu::WallState> walls;
   for (size_t w = 0; w < model_.walls.size(); ++w) walls.push_back(model_.wall_state(w, t));
-  for (uint32_t i = 0; i < s.pos.size(); ++i) {
-    const auto& p = s.pos[i];
+  for (uint32_t i = 0; i < pos.size(); ++i) {
+    const auto& p = pos[i];
     double d = std::sqrt((p.x - centre_[0]) * (p.x - centre_[0]) + (p.y - centre_[1]) * (p.y - centre_[1]) +
                          (p.z - centre_[2]) * (p.z - centre_[2]));
     if (!(d <= reach_)) return Escape{i, metres(d) + " from the domain"};

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "engine/backend.h"
 #include "engine/model.h"
@@ -20,8 +21,9 @@ struct Escape {
 class EscapeCheck {
  public:
   explicit EscapeCheck(const Model& model);
-  // The first escaped particle at time t (walls where they are then), if any.
-  std::optional<Escape> find(const HostState& state, double t) const;
+  // The first escaped particle of `pos` at time t (walls where they are then), if any: its index
+  // in `pos`, which is its global id when pos is by global id.
+  std::optional<Escape> find(const std::vector<gpu::vec4>& pos, double t) const;
 
  private:
   const Model& model_;

@@ -23,7 +23,10 @@ struct Access {
   int times;
 };
 
-// The buffers of each kernel, from shaders/kernels/neighbour.h, contacts.h and integrate.h.
+// The buffers of each kernel, from shaders/kernels/neighbour.h, contacts.h and integrate.h. The id
+// table (B_ids, 2 x 4 B per particle) counts once per particle: the sphere kernels read only its
+// first half, each slot's global id (global_id, partner_key in shaders/kernels/common.h), where a
+// walk, a row or a bucket is ordered by id; the step's kernels read none.
 const std::map<std::string, std::vector<Access>>& kernel_accesses() {
   using P = Per;
   static const std::map<std::string, std::vector<Access>> table = {
@@ -51,18 +54,20 @@ const std::map<std::string, std::vector<Access>>& kernel_accesses() {
                         {kRowCellStart, P::Bucket, 2}}},
       {"bucket_scatter", {{kRowCellOf, P::Particle, 1}, {kRowCellStart, P::Bucket, 1}, {kRowCellFill, P::Bucket, 2},
                           {kRowSorted, P::Particle, 1}}},
-      {"bucket_sort", {{kRowCellStart, P::Bucket, 1}, {kRowSorted, P::Particle, 2}}},
+      {"bucket_sort", {{kRowCellStart, P::Bucket, 1}, {kRowSorted, P::Particle, 2}, {kRowIds, P::Particle, 1}}},
       {"contact_count", {{kRowPos, P::Particle, 1}, {kRowVel, P::Particle, 1}, {kRowCellStart, P::Bucket, 1},
-                         {kRowSorted, P::Particle, 1}, {kRowCandidates, P::Contact, 1}, {kRowRowStart, P::Particle, 1},
-                         {kRowTransStart, P::Particle, 1}, {kRowTransFill, P::Particle, 1}}},
+                         {kRowSorted, P::Particle, 1}, {kRowIds, P::Particle, 1}, {kRowCandidates, P::Contact, 1},
+                         {kRowRowStart, P::Particle, 1}, {kRowTransStart, P::Particle, 1},
+                         {kRowTransFill, P::Particle, 1}}},
       {"contact_fill", {{kRowRowStart, P::Particle, 1}, {kRowOldRowStart, P::Particle, 1},
-                        {kRowCandidates, P::Contact, 1}, {kRowPartner, P::Contact, 1}, {kRowOwner, P::Contact, 1},
-                        {kRowHistory, P::Contact, 1}, {kRowOldPartner, P::OldContact, 1},
-                        {kRowOldHistory, P::OldContact, 1}}},
+                        {kRowCandidates, P::Contact, 1}, {kRowIds, P::Particle, 1}, {kRowPartner, P::Contact, 1},
+                        {kRowOwner, P::Contact, 1}, {kRowHistory, P::Contact, 1},
+                        {kRowOldPartner, P::OldContact, 1}, {kRowOldHistory, P::OldContact, 1}}},
       {"transpose_count", {{kRowPartner, P::Contact, 1}, {kRowTransStart, P::Particle, 2}}},
       {"transpose_fill", {{kRowPartner, P::Contact, 1}, {kRowTransStart, P::Particle, 1},
                           {kRowTransFill, P::Particle, 2}, {kRowTransList, P::Contact, 1}}},
-      {"transpose_sort", {{kRowTransStart, P::Particle, 1}, {kRowTransList, P::Contact, 2}}},
+      {"transpose_sort", {{kRowTransStart, P::Particle, 1}, {kRowTransList, P::Contact, 2}, {kRowOwner, P::Contact, 1},
+                          {kRowIds, P::Particle, 1}}},
       // The three scans of a rebuild (buckets, rows, transposed rows), in place.
       {"scan", {{kRowCellStart, P::Bucket, 2}, {kRowRowStart, P::Particle, 2}, {kRowTransStart, P::Particle, 2}}},
   };

@@ -70,30 +70,33 @@ void Simulation::allocate(uint32_t capacity) {
   upload();
 }
 
-// In cell order the state moves into its slots and back in place: no second copy of it.
+// In cell order the state moves into its slots in place (no second copy of it) and stays there
+// until someone reads it: the batch that follows replaces it anyway.
 void Simulation::upload() {
-  if (stored_by_id_) {
-    backend_->upload_state(state_);
-    return;
+  if (!stored_by_id_ && !state_in_slots_) {
+    to_stored(state_, order_);
+    state_in_slots_ = true;
   }
-  to_stored(state_, order_);
-  try {
-    backend_->upload_state(state_);
-  } catch (...) {
-    to_global(state_, order_);
-    throw;
-  }
-  to_global(state_, order_);
+  backend_->upload_state(state_);
 }
 
 void Simulation::download() {
   backend_->download_state(state_);
-  if (!stored_by_id_) to_global(state_, order_);
+  state_in_slots_ = !stored_by_id_;
+}
+
+const HostState& Simulation::state() const {
+  if (state_in_slots_) {
+    to_global(state_, order_);
+    state_in_slots_ = false;
+  }
+  return state_;
 }
 
 void Simulation::store_in_order(ParticleOrder order) {
   if (order.size() != model_.n_particles)
     throw std::invalid_argument("a particle order for another number of particles");
+  state();  // by global id before the slots change
   order_ = std::move(order);
   stored_by_id_ = order_.is_identity();
   // The constants and the state anew, in the new slots (the scratch rows need no zeroing: a
@@ -210,7 +213,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   while (step_ < target) {
     auto t0 = std::chrono::steady_clock::now();
     if (reorder_due()) {
-      store_in_order(cell_order(state_.pos, model_.cell));
+      store_in_order(cell_order(state().pos, model_.cell));
       reordered_at_ = rebuilds();
     }
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
@@ -240,7 +243,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
 std::vector<gpu::vec4> Simulation::contact_forces() {
   std::vector<gpu::vec4> stored = backend_->contact_forces(contacts());
   if (stored_by_id_) return stored;
-  std::vector<uint32_t> contact_of = stored_contact_ids(state_, order_);
+  std::vector<uint32_t> contact_of = stored_contact_ids(state(), order_);
   std::vector<gpu::vec4> by_id(stored.size());
   for (size_t c = 0; c < stored.size() && c < contact_of.size(); ++c) by_id[contact_of[c]] = stored[c];
   return by_id;
@@ -254,6 +257,7 @@ RunProfile Simulation::take_profile() {
 
 void Simulation::set_state(const HostState& s) {
   state_ = s;
+  state_in_slots_ = false;
   upload();
 }
 
@@ -270,6 +274,7 @@ void Simulation::restore(const HostState& s, uint64_t step) {
   if (s.control.size() != gpu::kControlWords || s.pos_at_build.size() != s.pos.size())
     refuse("the state holds no neighbour-list bookkeeping (written by an older version)");
   state_ = s;
+  state_in_slots_ = false;
   reordered_at_ = -1;  // cell order by the restored positions before the first batch
   // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
   // early past the contact count, so only coverage matters).
@@ -282,7 +287,7 @@ void Simulation::restore(const HostState& s, uint64_t step) {
   step_ = step;
 }
 
-EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state_); }
+EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state()); }
 
 EnergySummary kinetic_energy(const HostState& state) {
   EnergySummary e;

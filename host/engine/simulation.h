@@ -2,7 +2,7 @@
 // rebuilds, a retry with a larger contact list when one overflows (nothing of the batch is
 // kept), and the host copy of the state after each batch for output. The device stores the
 // particles in cell order (ParticleOrder), renewed between batches as they move; the host's state
-// is always by global id, so nothing outside sees the slots.
+// is by global id whenever anyone reads it, so nothing outside sees the slots.
 #pragma once
 #include <functional>
 #include <memory>
@@ -60,7 +60,14 @@ class Simulation {
 
   const Model& model() const { return model_; }
   Model& mutable_model() { return model_; }  // for tests that steer particles between batches
-  const HostState& state() const { return state_; }
+  // The state by global id after the last batch. A batch is downloaded in the device's slots and
+  // turned to global ids here, on its first reading: a batch nobody reads costs no conversion.
+  // The reference stays valid, and by global id, until the next advance(), set_state(), restore()
+  // or store_in_order() (each of which may leave the state in slots again).
+  const HostState& state() const;
+  // The positions after the last batch in the order the device stores them (no conversion), for
+  // checks whose answer does not depend on the order (any particle out of the domain?).
+  const std::vector<gpu::vec4>& positions_in_any_order() const { return state_.pos; }
   uint64_t step() const { return step_; }
   double time() const { return double(step_) * model_.dt; }
   uint32_t contacts() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlContacts]; }
@@ -115,7 +122,10 @@ class Simulation {
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;
-  HostState state_;  // by global id
+  // By global id, or by slot of order_ while state_in_slots_ (a download not yet read, or an
+  // upload). state() turns it, which a reader cannot see: hence mutable.
+  mutable HostState state_;
+  mutable bool state_in_slots_ = false;
   ParticleOrder order_;
   bool stored_by_id_ = true;          // order_ is the identity
   int64_t reordered_at_ = -1;         // rebuild count at the last cell ordering (-1: none yet)

@@ -162,8 +162,10 @@ int step_to_target(Simulation& sim, RunOutput& output, const Schedule& schedule,
     sim.advance(schedule.next_stop(sim.step()) - sim.step(), [&](const Simulation& s) {
       progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
     });
-    if (!escape_told)
-      if (auto e = escapes.find(sim.state(), sim.time())) {
+    // Checked in the device's order, so a batch nothing else reads is not turned to global ids;
+    // an escape found is then named by its global id.
+    if (!escape_told && escapes.find(sim.positions_in_any_order(), sim.time()))
+      if (auto e = escapes.find(sim.state().pos, sim.time())) {
         escape_told = true;
         std::fprintf(stderr, "warning: at t = %.6g s particle %u is %s: it passed through (too fast for the time step, "
                              "or pushed through by a moving wall?); the run goes on\n", sim.time(), e->particle, e->where.c_str());

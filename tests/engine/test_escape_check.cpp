@@ -27,22 +27,21 @@ TEST_CASE("escape check: behind a plane, outside a cylinder, far from the domain
   b.spec.walls.push_back(tube);
   Model model = build_model(b.spec);
   EscapeCheck check(model);
-  HostState s;
-  s.pos = model.pos;
-  CHECK_FALSE(check.find(s, 0.0));
-  s.pos[0].z = -0.004;  // touching the floor from below by less than a diameter: still in contact
-  CHECK_FALSE(check.find(s, 0.0));
-  s.pos[1].z = -0.5;  // passed through the floor
-  auto behind = check.find(s, 0.0);
+  std::vector<gpu::vec4> pos = model.pos;
+  CHECK_FALSE(check.find(pos, 0.0));
+  pos[0].z = -0.004;  // touching the floor from below by less than a diameter: still in contact
+  CHECK_FALSE(check.find(pos, 0.0));
+  pos[1].z = -0.5;  // passed through the floor
+  auto behind = check.find(pos, 0.0);
   REQUIRE(behind);
   CHECK(behind->particle == 1);
   CHECK(behind->where.find("behind the wall 'plane0'") != std::string::npos);
-  s.pos[1] = gpu::vec4(0.2f, 0, 0.1f, 0.005f);  // through the tube's side
-  behind = check.find(s, 0.0);
+  pos[1] = gpu::vec4(0.2f, 0, 0.1f, 0.005f);  // through the tube's side
+  behind = check.find(pos, 0.0);
   REQUIRE(behind);
   CHECK(behind->where.find("behind the wall 'tube'") != std::string::npos);
-  s.pos[1] = gpu::vec4(0, 0, -40000.0f, 0.005f);  // tunnelled far below
-  behind = check.find(s, 0.0);
+  pos[1] = gpu::vec4(0, 0, -40000.0f, 0.005f);  // tunnelled far below
+  behind = check.find(pos, 0.0);
   REQUIRE(behind);
   CHECK(behind->where.find("40 km from the domain") != std::string::npos);
 }

@@ -10,17 +10,6 @@ using namespace repose::test;
 
 namespace {
 
-// The clump pile (two walls, bodies, EPSD springs stored per contact) with a wide skin and a
-// rebuild every 25 steps: ~2000 contacts at the start, ~3300 after 1500 steps as it lands.
-CaseSpec wide_skin_pile(Integrator integrator) {
-  CaseSpec spec = clump_pile();
-  spec.contact.rolling = RollingModel::ElasticPlastic;
-  spec.neighbour.skin = 0.04;
-  spec.neighbour.rebuild_interval = 25;
-  spec.integrator = integrator;
-  return spec;
-}
-
 std::unique_ptr<Simulation> start(const CaseSpec& spec, const std::string& backend, uint32_t first_capacity) {
   return std::make_unique<Simulation>(build_model(spec), make_backend(backend, -1, 1, gpu::kDefaultWorkgroup),
                                       KernelVariant{}, 50, first_capacity);
