@@ -193,6 +193,7 @@ ConstantData stored_constants(const Model& m, const ParticleOrder& order) {
   c.material = stored(m.material);
   c.pairs = m.pairs;
   c.subs = stored(m.subs);
+  c.parts = m.parts;
   c.ids = order.table();
   return c;
 }

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 
+#include "engine/buffer_table.h"
 #include "engine/cpu_backend.h"
 #include "engine/vulkan_backend.h"
 #include "engine_test_support.h"
@@ -30,8 +31,10 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
       {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
       {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
-      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
-      {gpu::kBindCellFill, "cell_fill", (T + 1) * u, b.cell_fill},
+      // cell_of and cell_fill at their bindings' sizes: the bodies' parts live there too (part_world, part_near)
+      {gpu::kBindCellOf, "cell_of", binding_bytes(gpu::kBindCellOf, l), b.cell_of},
+      {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
+      {gpu::kBindCellFill, "cell_fill", binding_bytes(gpu::kBindCellFill, l), b.cell_fill},
       {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
       {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
       {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
@@ -159,7 +162,7 @@ TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispa
 TEST_CASE("every kernel of a clump step, rolling lever at the centre of mass: lavapipe equals the CPU twin",
           "[engine][bitexact]") {
   CaseSpec pile = clump_pile();
-  pile.neighbour.body_broad_phase = true;  // its body_near runs too
+  pile.neighbour.body_broad_phase = true;  // its part_place and part_near run too
   REQUIRE(pile.contact.rolling_lever == RollingLever::Centre);
   for (const char* variant_text : {"contact", "contact,lean", "rows,lean"})
     check_each_dispatch(pile, variant_text, 1500, 100, "clump pile");
