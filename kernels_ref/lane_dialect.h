@@ -84,18 +84,45 @@ inline VI gather_int(const void* base, VI index, int stride, int word) {
   return hn::GatherIndex(DI(), static_cast<const int32_t*>(base), at);
 }
 
-// The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w). One 16-byte copy per
-// lane and one transpose: a gather per component costs several times more.
+// The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w).
 struct V4 {
   V x, y, z, w;
   real3 xyz() const { return {x, y, z}; }
 };
+
+#if HWY_TARGET != HWY_SCALAR
+// Rows index[4 k + j] of base as the blocks k (four floats each) of one vector: 128-bit loads
+// joined in registers, as hwy's LoadInterleaved4 arranges contiguous rows before transposing them.
+template <class DB>
+HWY_INLINE hn::Vec<DB> row_blocks(DB d, const vec4* base, const uint* index, size_t j, size_t k0) {
+  if constexpr (hn::MaxLanes(DB()) <= 4) {
+    return hn::LoadU(d, &base[index[4 * k0 + j]].x);
+  } else {
+    const hn::Half<DB> dh;
+    constexpr size_t half_blocks = hn::MaxLanes(DB()) / 8;
+    return hn::Combine(d, row_blocks(dh, base, index, j, k0 + half_blocks), row_blocks(dh, base, index, j, k0));
+  }
+}
+#endif
+
+// One 128-bit load per lane and a transpose in registers (hwy's for four floats per block): a
+// gather per component costs several times more, and a copy through memory stalls the loads
+// that read it back whole.
 inline V4 rows(const vec4* base, const uint* index) {
-  alignas(64) float buf[4 * HWY_LANES(float)];
-  const size_t L = hn::Lanes(D());
-  for (size_t l = 0; l < L; ++l) std::memcpy(buf + 4 * l, base + index[l], sizeof(vec4));
   V4 r;
-  hn::LoadInterleaved4(D(), buf, r.x, r.y, r.z, r.w);
+#if HWY_TARGET == HWY_SCALAR
+  hn::LoadInterleaved4(D(), &base[index[0]].x, r.x, r.y, r.z, r.w);
+#else
+  const D d;
+  const V a = row_blocks(d, base, index, 0, 0), b = row_blocks(d, base, index, 1, 0);
+  const V c = row_blocks(d, base, index, 2, 0), e = row_blocks(d, base, index, 3, 0);
+  const V v10_even = hn::InterleaveLower(d, a, c), v10_odd = hn::InterleaveLower(d, b, e);
+  const V v32_even = hn::InterleaveUpper(d, a, c), v32_odd = hn::InterleaveUpper(d, b, e);
+  r.x = hn::InterleaveLower(d, v10_even, v10_odd);
+  r.y = hn::InterleaveUpper(d, v10_even, v10_odd);
+  r.z = hn::InterleaveLower(d, v32_even, v32_odd);
+  r.w = hn::InterleaveUpper(d, v32_even, v32_odd);
+#endif
   return r;
 }
 
