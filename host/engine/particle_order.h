@@ -34,7 +34,7 @@ struct ParticleOrder {
 // the fill's random order; README, speed). With `bodies`, a body moves as one: bodies in the order
 // of their centres' cells, each body's sub-spheres in consecutive slots by global id, so the
 // per-body gather (body_gather_kick) reads a run of slots, not one scattered row per sub-sphere
-// (the cotton-stalk study's 720-sphere stalks: 1.7 -> 0.9 s per 200 steps; docs/engineering.md).
+// (docs/engineering.md, particle order).
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell);
 
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
