@@ -27,7 +27,6 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::Control: return gpu::kControlWords;
     case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;
     case BufferCount::Parts: return l.n_parts;
-    case BufferCount::PartNearSlots: return size_t(l.n_parts) * gpu::kPartNearSlots;
   }
   return 0;
 }

@@ -79,7 +79,7 @@ TemplateFrame template_frame(const TemplateSpec& t, bool silhouette) {
 // against 25 % with 8 parts; docs/engineering.md). Each slab that holds a sub-sphere is a part,
 // centred in its sub-spheres' box, its radius rounded outwards and widened by 1e-5 of the body's
 // bounding radius: the float rotations of body_place and part_place err by far less. Sets each
-// sub-sphere's part (info.z) from `first_sub` on. `bound`: the body's bounding radius about its
+// sub-sphere's part (info.z) and its body's first (info.y) from `first_sub` on. `bound`: the body's bounding radius about its
 // centre of mass, rounded outwards here (1e-5 of it covers body_place's roundings likewise).
 void add_body_parts(const std::vector<Vec3d>& local, const std::vector<double>& radii, double bound, uint32_t body,
                     uint32_t first_sub, Model& m) {
@@ -116,6 +116,7 @@ void add_body_parts(const std::vector<Vec3d>& local, const std::vector<double>& 
       if (slab[k] != sl) continue;
       Vec3d d = sub(local[k], centre);
       radius = std::max(radius, std::sqrt(dot(d, d)) + radii[k]);
+      m.subs[first_sub + k].info.y = first_part;
       m.subs[first_sub + k].info.z = static_cast<uint32_t>(m.parts.size());
     }
     gpu::BodyPart part{};
@@ -428,9 +429,9 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   double r_cell = r_max;
   choose_large_radius(m, r_cell);
   m.cell = 2 * r_cell + m.skin;
-  // Body-level broad phase (neighbour.h part_near): each part of a body tests every other body
-  // when the list is rebuilt, which pays while bodies are few against their sub-spheres (80
-  // cabbages of 203, 454 stalks of 720; not a bed of one-sphere bodies).
+  // Body-level broad phase (neighbour.h part_near): each body tests every other one when the list
+  // is rebuilt, which pays while bodies are few against their sub-spheres (80 cabbages of 203,
+  // 454 stalks of 720; not a bed of one-sphere bodies).
   uint64_t n_bodies = m.bodies.size();
   bool pays = n_bodies * n_bodies <= 8 * uint64_t(m.n_particles);
   if (n_bodies > 1 && spec.neighbour.body_broad_phase.value_or(pays)) m.flags |= gpu::kFlagBodyBroadPhase;

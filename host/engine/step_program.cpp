@@ -152,6 +152,10 @@ struct ProgramBuilder {
   // Rebuilds the contact list when rebuild_args decides so (indirect sizes are 0 otherwise).
   void rebuild(const Layout& l) {
     direct(KernelId::RebuildArgs, 1, push);
+    if (push.flags & gpu::kFlagBodyBroadPhase) {  // before the buckets: they leave out what meets no other body
+      indirect(KernelId::PartPlace, gpu::kCtlArgsParts);
+      indirect(KernelId::PartNear, gpu::kCtlArgsBodies);
+    }
     indirect(KernelId::SaveOldRows, gpu::kCtlArgsParticles);
     indirect(KernelId::SaveOldContacts, gpu::kCtlArgsOldContacts);
     indirect(KernelId::ClearBuckets, gpu::kCtlArgsBuckets);
@@ -159,10 +163,6 @@ struct ProgramBuilder {
     scan(gpu::kScanCells, l.table_size + 1);  // the hashed buckets and the large one
     indirect(KernelId::BucketScatter, gpu::kCtlArgsParticles);
     indirect(KernelId::BucketSort, gpu::kCtlArgsBuckets);
-    if (push.flags & gpu::kFlagBodyBroadPhase) {
-      indirect(KernelId::PartPlace, gpu::kCtlArgsParts);
-      indirect(KernelId::PartNear, gpu::kCtlArgsParts);
-    }
     indirect(KernelId::ContactCount, gpu::kCtlArgsParticles);
     scan(gpu::kScanRows, l.n_particles);
     indirect(KernelId::RowsScanned, gpu::kCtlArgsOne);

@@ -36,6 +36,7 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsOne, 1u);
     set_groups(kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
     set_groups(kCtlArgsParts, groups_for(PC.n_parts, wg));
+    set_groups(kCtlArgsBodies, groups_for(PC.n_bodies, wg));
   } else {
     B_control[kCtlStepsSinceBuild] = B_control[kCtlStepsSinceBuild] + 1u;
     set_groups(kCtlArgsParticles, 0u);
@@ -44,6 +45,7 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsOldContacts, 0u);
     set_groups(kCtlArgsNewContacts, 0u);
     set_groups(kCtlArgsParts, 0u);
+    set_groups(kCtlArgsBodies, 0u);
   }
 }
 
@@ -65,54 +67,17 @@ void k_clear_buckets(uint b) {
   if (b <= PC.table_size) B_cell_fill[b] = 0u;
 }
 
-ivec3 cell_of_position(vec3 x, float inv_cell) {
-  return ivec3(cell_coord(x.x, inv_cell), cell_coord(x.y, inv_cell), cell_coord(x.z, inv_cell));
-}
-
-void k_bucket_count(uint i) {
-  if (i >= PC.n_particles) return;
-  vec4 p = B_pos[i];
-  B_pos_at_build[i] = p;
-  ivec3 c = cell_of_position(xyz(p), PC.inv_cell);
-  uint h = p.w > PC.large_radius ? PC.table_size : cell_hash(c.x, c.y, c.z, PC.table_size);
-  B_cell_of[i] = h;
-  atomicAdd(B_cell_start[h], 1u);
-}
-
-void k_bucket_scatter(uint i) {
-  if (i >= PC.n_particles) return;
-  uint h = B_cell_of[i];
-  uint slot = B_cell_start[h] + atomicAdd(B_cell_fill[h], 1u);
-  B_sorted[slot] = i;
-}
-
-// Insertion sort of one bucket by global id: the scatter's order depends on thread timing.
-void k_bucket_sort(uint b) {
-  if (b > PC.table_size) return;
-  uint begin = B_cell_start[b];
-  uint end = B_cell_start[b + 1u];
-  for (uint k = begin + 1u; k < end; ++k) {
-    uint slot = B_sorted[k];
-    uint id = global_id(slot);
-    uint m = k;
-    while (m > begin && global_id(B_sorted[m - 1u]) > id) {
-      B_sorted[m] = B_sorted[m - 1u];
-      m = m - 1u;
-    }
-    B_sorted[m] = slot;
-  }
-}
-
 // Body-level broad phase (clumps, kFlagBodyBroadPhase), by parts: each body is cut across its
-// longest axis into parts (Model, body_parts), each with a bounding sphere. At a rebuild each
-// part lists the parts of other bodies its sphere meets, widened by the skin (part_near: a body's
-// own bounding sphere first, then its parts), and a sub-sphere walks the grid only when it meets
-// one of its part's listed spheres (sub_may_pair); its walls are still tested. A long body's
-// bounding sphere (a 10 x 80 mm stalk's is 40 mm for 1 mm spheres) meets every neighbour's in a
-// heap; its parts' (5-6 mm) meet a few, and a sub-sphere on the far side of its body meets none.
-// The same list as without it: only pairs that near_pair would reject are skipped. Each part
-// tests every other body, so the host enables it only where bodies are few against their
-// sub-spheres (Model, choose_neighbour_search).
+// longest axis into parts (Model, add_body_parts), each with a bounding sphere. At the start of a
+// rebuild each part lists the parts of other bodies its sphere meets, widened by the skin
+// (part_near: a body's own bounding sphere first, then its parts), and a sub-sphere walks the grid
+// only when it meets one of its part's listed spheres (sub_may_pair; else it is in no bucket
+// either, and its walls are still tested). A long body's bounding sphere (a 10 x 80 mm stalk's is
+// 40 mm for 1 mm spheres) meets every neighbour's in a heap; its parts' (5-6 mm) meet a few, and
+// a sub-sphere on the far side of its body meets none. The same list as without it: only pairs
+// that near_pair would reject are skipped. Each body tests every other one, so the host enables it
+// only where bodies are few against their sub-spheres (Model, choose_neighbour_search).
+
 // The largest coordinate of x, for the rounding slack of a float distance test.
 float coordinate_size(vec3 x) { return max(abs(x.x), max(abs(x.y), abs(x.z))); }
 
@@ -133,48 +98,102 @@ void k_part_place(uint p) {
   uint b = B_parts[p].info.x;
   vec3 r = quat_rotate(B_bodies[b].quat, xyz(local));
   precise vec3 c = xyz(B_bodies[b].pos) + r;
-  B_part_world[p] = vec4(c, local.w);
+  B_parts[p].world = vec4(c, local.w);
 }
 
-// Lists the parts of other bodies that part p may meet, in part order (a body's parts are
-// consecutive, so the walk over parts skips a whole body whose bounding sphere p does not meet).
-void k_part_near(uint p) {
-  if (p >= PC.n_parts) return;
-  vec4 cp = B_part_world[p];
-  uint b = B_parts[p].info.x;
-  uint base = p * kPartNearSlots;
-  uint count = 0u;
+// Lists, for each part of body b, the parts of other bodies it may meet, by index. Bodies whose
+// bounding spheres miss b's are skipped whole: no sub-sphere of b can pair with theirs (a part's
+// sphere may reach beyond its body's, but its sub-spheres do not). A body's parts are consecutive,
+// so the walk over parts steps a body at a time.
+void k_part_near(uint b) {
+  if (b >= PC.n_bodies) return;
+  uint first = B_subs[slot_of(B_bodies[b].spheres.x)].info.y;
+  uint end = first + B_parts[first].info.y;
+  for (uint p = first; p < end; ++p) B_parts[p].near_count = 0u;
+  vec3 cb = xyz(B_bodies[b].pos);
+  float rb = uintBitsToFloat(B_parts[first].info.z);
   uint q = 0u;
   while (q < PC.n_parts) {
-    uvec4 info = B_parts[q].info;  // q is its body's first part
+    uvec4 info = B_parts[q].info;  // q is body info.x's first part
     uint next = q + info.y;
-    float bound = uintBitsToFloat(info.z);
-    if (info.x != b && spheres_may_meet(xyz(cp), cp.w, xyz(B_bodies[info.x].pos), bound)) {
-      for (uint k = q; k < next; ++k) {
-        vec4 ck = B_part_world[k];
-        if (!spheres_may_meet(xyz(cp), cp.w, xyz(ck), ck.w)) continue;
-        if (count + 1u < kPartNearSlots) B_part_near[base + 1u + count] = k;
-        count = count + 1u;
+    vec3 co = xyz(B_bodies[info.x].pos);
+    float ro = uintBitsToFloat(info.z);
+    if (info.x != b && spheres_may_meet(cb, rb, co, ro)) {
+      for (uint p = first; p < end; ++p) {
+        vec4 cp = B_parts[p].world;
+        if (!spheres_may_meet(xyz(cp), cp.w, co, ro)) continue;
+        uint count = B_parts[p].near_count;
+        for (uint k = q; k < next; ++k) {
+          vec4 ck = B_parts[k].world;
+          if (!spheres_may_meet(xyz(cp), cp.w, xyz(ck), ck.w)) continue;
+          if (count < kPartNearSlots) B_parts[p].near[count] = k;
+          count = count + 1u;
+        }
+        B_parts[p].near_count = count;
       }
     }
     q = next;
   }
-  B_part_near[base] = count;
 }
 
 // False when sub-sphere i meets no part its own part listed (kFlagBodyBroadPhase): i then has
-// no particle partner. A part that met more than it could list lets every sub-sphere walk.
+// no particle partner, and is left out of the buckets too. A part that met more than it could
+// list lets every sub-sphere walk.
 bool sub_may_pair(uint i) {
   if ((PC.flags & kFlagBodyBroadPhase) == 0u) return true;
-  uint base = B_subs[i].info.z * kPartNearSlots;
-  uint count = B_part_near[base];
-  if (count >= kPartNearSlots) return true;
+  uint p = B_subs[i].info.z;
+  uint count = B_parts[p].near_count;
+  if (count > kPartNearSlots) return true;
   vec4 pi = B_pos[i];
   for (uint k = 0u; k < count; ++k) {
-    vec4 c = B_part_world[B_part_near[base + 1u + k]];
+    vec4 c = B_parts[B_parts[p].near[k]].world;
     if (spheres_may_meet(xyz(pi), pi.w, xyz(c), c.w)) return true;
   }
   return false;
+}
+
+ivec3 cell_of_position(vec3 x, float inv_cell) {
+  return ivec3(cell_coord(x.x, inv_cell), cell_coord(x.y, inv_cell), cell_coord(x.z, inv_cell));
+}
+
+// A sub-sphere that meets no other body (sub_may_pair) goes in no bucket: no walk would keep it.
+void k_bucket_count(uint i) {
+  if (i >= PC.n_particles) return;
+  vec4 p = B_pos[i];
+  B_pos_at_build[i] = p;
+  if (!sub_may_pair(i)) {
+    B_cell_of[i] = kNoBucket;
+    return;
+  }
+  ivec3 c = cell_of_position(xyz(p), PC.inv_cell);
+  uint h = p.w > PC.large_radius ? PC.table_size : cell_hash(c.x, c.y, c.z, PC.table_size);
+  B_cell_of[i] = h;
+  atomicAdd(B_cell_start[h], 1u);
+}
+
+void k_bucket_scatter(uint i) {
+  if (i >= PC.n_particles) return;
+  uint h = B_cell_of[i];
+  if (h == kNoBucket) return;
+  uint slot = B_cell_start[h] + atomicAdd(B_cell_fill[h], 1u);
+  B_sorted[slot] = i;
+}
+
+// Insertion sort of one bucket by global id: the scatter's order depends on thread timing.
+void k_bucket_sort(uint b) {
+  if (b > PC.table_size) return;
+  uint begin = B_cell_start[b];
+  uint end = B_cell_start[b + 1u];
+  for (uint k = begin + 1u; k < end; ++k) {
+    uint slot = B_sorted[k];
+    uint id = global_id(slot);
+    uint m = k;
+    while (m > begin && global_id(B_sorted[m - 1u]) > id) {
+      B_sorted[m] = B_sorted[m - 1u];
+      m = m - 1u;
+    }
+    B_sorted[m] = slot;
+  }
 }
 
 // True when j is a neighbour candidate of i: within the skin of touching.

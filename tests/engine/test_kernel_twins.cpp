@@ -5,7 +5,6 @@
 #include <cstring>
 #include <random>
 
-#include "engine/buffer_table.h"
 #include "engine/cpu_backend.h"
 #include "engine/vulkan_backend.h"
 #include "engine_test_support.h"
@@ -31,10 +30,8 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindOmega, "omega", N * v4, b.omega}, {gpu::kBindForce, "force", N * v4, b.force},
       {gpu::kBindTorque, "torque", N * v4, b.torque}, {gpu::kBindPosAtBuild, "pos_at_build", N * v4, b.pos_at_build},
       {gpu::kBindControl, "control", gpu::kControlWords * u, b.control},
-      // cell_of and cell_fill at their bindings' sizes: the bodies' parts live there too (part_world, part_near)
-      {gpu::kBindCellOf, "cell_of", binding_bytes(gpu::kBindCellOf, l), b.cell_of},
-      {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
-      {gpu::kBindCellFill, "cell_fill", binding_bytes(gpu::kBindCellFill, l), b.cell_fill},
+      {gpu::kBindCellOf, "cell_of", N * u, b.cell_of}, {gpu::kBindCellStart, "cell_start", (T + 1) * u, b.cell_start},
+      {gpu::kBindCellFill, "cell_fill", (T + 1) * u, b.cell_fill},
       {gpu::kBindSorted, "sorted", N * u, b.sorted}, {gpu::kBindRowStart, "row_start", (N + 1) * u, b.row_start},
       {gpu::kBindPartner, "partner", C * u, b.partner}, {gpu::kBindOwner, "owner", C * u, b.owner},
       {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
@@ -43,6 +40,7 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  if (l.n_parts) bindings.push_back({gpu::kBindParts, "parts", l.n_parts * sizeof(gpu::BodyPart), b.parts});
   return bindings;
 }
 
