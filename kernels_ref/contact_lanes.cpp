@@ -1,7 +1,7 @@
 // process_contact in SIMD lanes (contact_lanes.h). The contact law is not written here: this file
-// gives the law's dialect (docs/engineering.md, "The contact law, written once") one contact per
-// lane and compiles shaders/kernels/contact_law.h inside LaneLaw, the text the GLSL and scalar
-// kernels compile. What is left here is memory: loading a batch of contacts' rows, gathering their
+// takes the law's dialect (docs/engineering.md, "The contact law, written once") one contact per
+// lane (lane_dialect.h) and compiles shaders/kernels/contact_law.h inside LaneLaw, the text the
+// GLSL and scalar kernels compile. What is left here is memory: loading a batch of contacts' rows, gathering their
 // pair parameters (every row of REPOSE_PAIR_PARAMS) and storing the entries. Compiled once per
 // SIMD target by Highway's foreach_target; -ffp-contract=off keeps every Mul and Add a separate
 // rounding.
@@ -18,62 +18,10 @@
 #include <hwy/foreach_target.h>  // re-includes this file once per target
 #include <hwy/highway.h>
 
+#include "lane_dialect.h"  // once per target, as this file
+
 HWY_BEFORE_NAMESPACE();
 namespace repose::gpu::HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<D>;
-using V = hn::Vec<D>;
-using VI = hn::Vec<DI>;
-using M = hn::Mask<D>;
-
-// ---- The law's dialect, one contact per lane. ----
-// Each operation is the IEEE operation of the scalar kernel (correctly rounded in every SIMD
-// width); a cond converts to no bool, so an `if` on data does not compile: the law picks.
-struct cond {
-  M m;
-};
-struct real {
-  V v;
-  real() = default;
-  real(V x) : v(x) {}
-  real(float f) : v(hn::Set(D(), f)) {}
-};
-struct real3 {
-  real x, y, z;
-  real3() = default;
-  real3(real a, real b, real c) : x(a), y(b), z(c) {}
-  explicit real3(float f) : x(f), y(f), z(f) {}
-};
-inline real operator+(real a, real b) { return hn::Add(a.v, b.v); }
-inline real operator-(real a, real b) { return hn::Sub(a.v, b.v); }
-inline real operator*(real a, real b) { return hn::Mul(a.v, b.v); }
-inline real operator-(real a) { return hn::Neg(a.v); }
-inline cond operator<(real a, real b) { return {hn::Lt(a.v, b.v)}; }
-inline cond operator>(real a, real b) { return {hn::Gt(a.v, b.v)}; }
-inline cond operator<=(real a, real b) { return {hn::Le(a.v, b.v)}; }
-inline cond operator>=(real a, real b) { return {hn::Ge(a.v, b.v)}; }
-inline cond operator&&(cond a, cond b) { return {hn::And(a.m, b.m)}; }
-inline cond operator||(cond a, cond b) { return {hn::Or(a.m, b.m)}; }
-inline cond operator!(cond a) { return {hn::Not(a.m)}; }
-// A bool is the same for every lane (the flags).
-inline cond operator&&(bool a, cond b) { return a ? b : cond{hn::FirstN(D(), 0)}; }
-inline cond operator&&(cond a, bool b) { return b ? a : cond{hn::FirstN(D(), 0)}; }
-inline real3 operator+(real3 a, real3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline real3 operator-(real3 a, real3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-// The law divides and takes roots only through div_rn and sqrt_rn (GLSL corrects a device's
-// rounding there); lanes round both correctly, so they are Div and Sqrt. No operator/ nor sqrt:
-// a plain one in the law does not compile here.
-inline real div_rn(real a, real b) { return hn::Div(a.v, b.v); }
-inline real sqrt_rn(real a) { return hn::Sqrt(a.v); }
-inline real abs(real a) { return hn::Abs(a.v); }
-// std::max(a, b) and std::min(a, b) exactly: which operand wins on equal zeros and on NaN (a SIMD
-// max returns its second operand there).
-inline real max(real a, real b) { return hn::IfThenElse(hn::Lt(a.v, b.v), b.v, a.v); }
-inline real min(real a, real b) { return hn::IfThenElse(hn::Lt(b.v, a.v), b.v, a.v); }
-inline real pick(cond c, real yes, real no) { return hn::IfThenElse(c.m, yes.v, no.v); }
-inline real3 pick(cond c, real3 yes, real3 no) { return {pick(c, yes.x, no.x), pick(c, yes.y, no.y), pick(c, yes.z, no.z)}; }
 
 // The contact law in lanes: the shared text, its types and functions as members.
 struct LaneLaw {
@@ -86,16 +34,6 @@ struct LaneLaw {
 #include "kernels/vector3.h"
 #include "kernels/contact_law.h"
 };
-
-// Field `word` of the structs at indices `index`, each `stride` 4-byte words long.
-V gather(const void* base, VI index, int stride, int word) {
-  VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
-  return hn::GatherIndex(D(), static_cast<const float*>(base), at);
-}
-VI gather_int(const void* base, VI index, int stride, int word) {
-  VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
-  return hn::GatherIndex(DI(), static_cast<const int32_t*>(base), at);
-}
 
 // The pair parameters of materials mi and mj in each lane, gathered row by row from the table.
 HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
@@ -129,21 +67,6 @@ real rolling_lever(Kernels& k, LaneLaw& law, VI sphere, real3 cp, real r) {
   return law.centre_of_mass_lever(cp, com, r, lone);
 }
 
-// The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w). One 16-byte copy per
-// lane and one transpose: a gather per component costs several times more.
-struct V4 {
-  V x, y, z, w;
-  real3 xyz() const { return {x, y, z}; }
-};
-V4 rows(const vec4* base, const uint* index) {
-  alignas(64) float buf[4 * HWY_LANES(float)];
-  const size_t L = hn::Lanes(D());
-  for (size_t l = 0; l < L; ++l) std::memcpy(buf + 4 * l, base + index[l], sizeof(vec4));
-  V4 r;
-  hn::LoadInterleaved4(D(), buf, r.x, r.y, r.z, r.w);
-  return r;
-}
-
 // contacts.h sphere_state for the lanes' owners i and partners p, the rows loaded as the pairs
 // need them (i's and p's positions, velocities, spins): the partners' rows miss the cache, and
 // their loads start early.
@@ -161,10 +84,6 @@ HWY_INLINE void sphere_states(Kernels& k, const uint* i, const uint* p, LaneLaw:
   si.w = rows(k.B_omega, i).xyz();
   sj.w = rows(k.B_omega, p).xyz();
 }
-
-void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
-real zero_unless(cond c, real a) { return hn::IfThenElseZero(c.m, a.v); }
-real3 zero_unless(cond c, real3 a) { return {zero_unless(c, a.x), zero_unless(c, a.y), zero_unless(c, a.z)}; }
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
 void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) {

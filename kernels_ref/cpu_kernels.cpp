@@ -1,6 +1,7 @@
 // Compiles the shared kernel bodies as C++. Must stay at -ffp-contract=off (see CMakeLists.txt).
 #include "cpu_kernels.h"
 
+#include "body_lanes.h"
 #include "contact_lanes.h"
 #include "twin_kernels.h"
 
@@ -21,9 +22,18 @@ static void run_contact_lanes(Kernels& k, uint64_t end, ThreadPool& pool) {
   pool.parallel_for(end, [&](uint64_t begin, uint64_t stop) { contact_forces_lanes(k, begin, stop); });
 }
 
+// A kernel whose lanes take invocations [begin, end) (body_lanes.h), over the pool.
+template <void (*Lanes)(Kernels&, uint64_t, uint64_t)>
+static void run_lanes(Kernels& k, uint64_t n, ThreadPool& pool) {
+  pool.parallel_for(n, [&](uint64_t begin, uint64_t end) { Lanes(k, begin, end); });
+}
+
 void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
   if (invocations == 0) return;
   Kernels k(buf);
+  if (id == KernelId::BodyPlace && body_lanes_enabled()) return run_lanes<body_place_lanes>(k, invocations, pool);
+  if (id == KernelId::BodyGatherKick && body_lanes_enabled())
+    return run_lanes<body_gather_kick_lanes>(k, invocations, pool);
   uint limit = buf.control[kCtlContacts];
   if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);

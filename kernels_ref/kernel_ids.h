@@ -20,7 +20,8 @@
   X(BucketCount, bucket_count, Each) \
   X(BucketScatter, bucket_scatter, Each) \
   X(BucketSort, bucket_sort, Each) \
-  X(BodyNear, body_near, Each) \
+  X(PartPlace, part_place, Each) \
+  X(PartNear, part_near, Each) \
   X(ContactCount, contact_count, Each) \
   X(RowsScanned, rows_scanned, Once) \
   X(ContactFill, contact_fill, Each) \

@@ -23,20 +23,21 @@ namespace repose::gpu {
 //   count:  Particles N, ParticlesPlusOne N+1, ParticlesTwice 2N, Contacts C (the list capacity),
 //           ContactsTwice 2C, Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
 //           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
-//           CandidateSlots N*kCandidateSlots,
+//           CandidateSlots N*kCandidateSlots, Parts P (the bodies' parts),
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
 //           which costs no descriptor; no kernel uses both names of one buffer),
 //   keep:   Scratch (rewritten by the kernels), State (the host keeps a copy between batches, and
 //           state files hold it after the File rows, in table order, for restarts), File (kept,
-//           and written to state files in table order), Constant (uploaded once),
+//           and written to state files in table order), Constant (uploaded once; the parts'
+//           rows also hold what each rebuild finds, BodyPart),
 //           Walls (uploaded every batch).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
 // contact_force and torque_i (the contact kernel) are rewritten after that in the same step;
 // touches lives from clear_touches to the contact kernel of a step, cell_of only from
-// bucket_count to bucket_scatter of a rebuild before it; body_near from body_near to
-// contact_fill of a rebuild, cell_fill only in its bucket_scatter before.
+// bucket_count to bucket_scatter of a rebuild before it, cell_fill only in its bucket_scatter
+// before.
 // Particles sit in storage slots in any order (host/engine/particle_order.h: cell order, for
 // locality); each has a global id, its place in the case, which the host's state and every output
 // use. Every order that reaches a float result goes by global id (B_ids), never by slot, so the
@@ -74,16 +75,20 @@ namespace repose::gpu {
   X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
   X(29, Ids, ids, uint, ParticlesTwice, Always, Constant)    /* [i] slot i's global id, [N + g] id g's slot */ \
+  X(30, Parts, parts, BodyPart, Parts, Bodies, Constant)     /* the bodies' parts, for the broad phase */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
   X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
-  X(10, Touches, touches, uint, Particles, Alias, Scratch)   /* touching contacts per body (spinning friction) */ \
-  X(12, BodyNear, body_near, uint, Bodies, Alias, Scratch)   /* 1: a body's bounding sphere meets another's */
+  X(10, Touches, touches, uint, Particles, Alias, Scratch)   /* touching contacts per body (spinning friction) */
 
 // Neighbour candidates of one particle that contact_count keeps for contact_fill (more: it walks
 // again). They share torque_i's binding, whose memory is the larger of the two views
 // (binding_bytes), so any list capacity has room for them.
 REPOSE_CONST kCandidateSlots = 16u;
+// Parts of other bodies whose bounding spheres meet a part's that it can list (BodyPart::near).
+REPOSE_CONST kPartNearSlots = 15u;
+// bucket_count's bucket for a sub-sphere that meets no other body (neighbour.h): none.
+REPOSE_CONST kNoBucket = 0xffffffffu;
 
 #define REPOSE_BINDING_CONSTANT(binding, Name, name, type, count, need, keep) REPOSE_CONST kBind##Name = binding;
 #define REPOSE_BINDING_COUNT(binding, Name, name, type, count, need, keep) REPOSE_COUNT_##need
@@ -113,6 +118,8 @@ REPOSE_CONST kCtlArgsOne = 14;       // 3 words: one group (scans)
 REPOSE_CONST kCtlArgsOldContacts = 17;  // 3 words: groups over the old list
 REPOSE_CONST kCtlArgsContacts = 20;  // 3 words: groups over the current list (every step)
 REPOSE_CONST kCtlArgsNewContacts = 23;  // 3 words: the same, only in a step that rebuilds
+REPOSE_CONST kCtlArgsParts = 26;     // 3 words: groups over the bodies' parts (0 when not rebuilding)
+REPOSE_CONST kCtlArgsBodies = 29;    // 3 words: groups over the bodies (0 when not rebuilding)
 REPOSE_CONST kControlWords = 32;
 
 // ---- Option bits (SimPush::flags). Defaults (all zero) are EDEM's. ----
@@ -130,7 +137,7 @@ REPOSE_CONST kFlagCohesionContactFriction = 1024u;  // Coulomb cap and rolling l
 REPOSE_CONST kFlagRollingLeverSphere = 2048u; // LIGGGHTS multisphere: a clump's rolling lever is the sub-sphere's
                                               // radius, not |contact point - centre of mass| (EDEM)
 REPOSE_CONST kFlagCohesionIntersection = 4096u;  // LIGGGHTS sjkr: cohesion on the spheres' intersection disc
-REPOSE_CONST kFlagBodyBroadPhase = 8192u;     // clumps: bodies culled by bounding spheres first (neighbour.h body_near)
+REPOSE_CONST kFlagBodyBroadPhase = 8192u;     // clumps: parts of bodies culled by bounding spheres first (neighbour.h part_near)
 // The options that keep each contact's torques in its entry (per-contact springs, counts of
 // contacts): they need full contact entries, never lean ones, and the SIMD lanes leave them to the
 // scalar contact kernel. The one rule for both (step_program.cpp, contact_lanes.cpp).
@@ -222,7 +229,20 @@ struct Body {
 // What a particle needs to know of its body; static during a run.
 struct SubSphere {
   vec4 local;  // xyz centre in the body frame, w radius
-  uvec4 info;  // x body index, y the body's bounding radius (float bits; neighbour.h body_bound)
+  uvec4 info;  // x body index, y its body's first part, z its own part (BodyPart index), w unused
+};
+
+// A part of a body for the broad phase (neighbour.h part_near): a slab of its sub-spheres across
+// the body's longest axis, so a long body is culled by a few small spheres, not one large one.
+// A body's parts are consecutive, in body order. `local` and `info` are static during a run;
+// each rebuild writes the rest (uploaded as zeros).
+struct BodyPart {
+  vec4 local;  // xyz centre in the body frame, w radius of a sphere about it holding its sub-spheres
+  uvec4 info;  // x body index, y the body's parts, z the body's bounding radius about its centre
+               // of mass (float bits), w unused
+  vec4 world;  // part_place: xyz the centre where the body is now, w the radius
+  uint near_count;             // part_near: parts of other bodies whose spheres meet this one's,
+  uint near[kPartNearSlots];   // the first of them by index (more than kPartNearSlots: none kept)
 };
 
 // Push constants of the simulation kernels (<= 128 bytes, lavapipe's limit).
@@ -251,6 +271,7 @@ struct SimPush {
   uint absent_wall_kinds;  // bit k: no wall of kind k in the run (0: any may be present)
   uint max_groups_x;  // workgroups per dispatch row: more go into rows along y (dispatch_rows)
   uint wall_sums;     // wall_reduce: 0 the force only; 1 also its sum and peak; 2 those anew
+  uint n_parts;       // the bodies' parts (BodyPart rows; 0 without kFlagBodies)
 };
 
 struct ScanPush {
@@ -286,6 +307,7 @@ static_assert(sizeof(PairParams) == 4 * kPairParamCount, "PairParams holds float
 static_assert(sizeof(WallState) == 144);
 static_assert(sizeof(Body) == 160);
 static_assert(sizeof(SubSphere) == 32);
+static_assert(sizeof(BodyPart) == 112, "std430: a vec4-aligned struct, its uint array packed");
 static_assert(sizeof(SimPush) <= 128, "push constants above lavapipe's 128 B");
 static_assert(sizeof(ScanPush) <= 128);
 }  // namespace repose::gpu

@@ -27,6 +27,7 @@ struct Layout {
   uint32_t table_size = 0;
   uint32_t capacity = 0;     // contact list entries
   uint32_t n_bodies = 0;     // rigid bodies; 0: every particle is a free sphere
+  uint32_t n_parts = 0;      // the bodies' parts (broad phase; gpu::BodyPart)
   uint32_t batch_steps = 1;  // wall states per upload
   bool lean_contacts = false;  // no torque_j buffer (KernelVariant::lean)
   bool rolling_springs = false;  // kFlagRollingSpring: a rolling spring per contact (and the old list's)

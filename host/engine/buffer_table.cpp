@@ -26,6 +26,7 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::Bodies: return l.n_bodies;
     case BufferCount::Control: return gpu::kControlWords;
     case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;
+    case BufferCount::Parts: return l.n_parts;
   }
   return 0;
 }

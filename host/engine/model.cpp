@@ -72,6 +72,61 @@ TemplateFrame template_frame(const TemplateSpec& t, bool silhouette) {
   return f;
 }
 
+// The parts of a body for the broad phase (neighbour.h part_near): slabs across the longest axis
+// of its sub-spheres' box (in the body frame), about twice as many as the box is longer than
+// wide, so a part is half as long as the body is wide (the cotton-stalk study's 10 x 80 mm stalk:
+// 16 parts of ~5.6 mm radius; at rest in the bucket 12 % of its sub-spheres then walk the grid
+// against 25 % with 8 parts; docs/engineering.md). Each slab that holds a sub-sphere is a part,
+// centred in its sub-spheres' box, its radius rounded outwards and widened by 1e-5 of the body's
+// bounding radius: the float rotations of body_place and part_place err by far less. Sets each
+// sub-sphere's part (info.z) and its body's first (info.y) from `first_sub` on. `bound`: the body's bounding radius about its
+// centre of mass, rounded outwards here (1e-5 of it covers body_place's roundings likewise).
+void add_body_parts(const std::vector<Vec3d>& local, const std::vector<double>& radii, double bound, uint32_t body,
+                    uint32_t first_sub, Model& m) {
+  Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (size_t k = 0; k < local.size(); ++k)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], local[k][a] - radii[k]);
+      hi[a] = std::max(hi[a], local[k][a] + radii[k]);
+    }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (hi[a] - lo[a] > hi[axis] - lo[axis]) axis = a;
+  double across = 0;
+  for (int a = 0; a < 3; ++a)
+    if (a != axis) across = std::max(across, hi[a] - lo[a]);
+  double length = hi[axis] - lo[axis];
+  int slabs = across > 0 ? int(std::clamp(std::floor(2 * length / across), 1.0, 64.0)) : 1;
+  std::vector<int> slab(local.size());
+  for (size_t k = 0; k < local.size(); ++k)
+    slab[k] = std::min(slabs - 1, int(std::floor((local[k][axis] - lo[axis]) / length * slabs)));
+  uint32_t first_part = static_cast<uint32_t>(m.parts.size());
+  for (int sl = 0; sl < slabs; ++sl) {
+    Vec3d box_lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, box_hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (size_t k = 0; k < local.size(); ++k)
+      if (slab[k] == sl)
+        for (int a = 0; a < 3; ++a) {
+          box_lo[a] = std::min(box_lo[a], local[k][a]);
+          box_hi[a] = std::max(box_hi[a], local[k][a]);
+        }
+    if (box_lo[0] > box_hi[0]) continue;  // an empty slab
+    Vec3d centre = mul(add(box_lo, box_hi), 0.5);
+    double radius = 0;
+    for (size_t k = 0; k < local.size(); ++k) {
+      if (slab[k] != sl) continue;
+      Vec3d d = sub(local[k], centre);
+      radius = std::max(radius, std::sqrt(dot(d, d)) + radii[k]);
+      m.subs[first_sub + k].info.y = first_part;
+      m.subs[first_sub + k].info.z = static_cast<uint32_t>(m.parts.size());
+    }
+    gpu::BodyPart part{};
+    part.local = v4(centre, radius * (1 + 1e-6) + 1e-5 * bound);
+    part.info = gpu::uvec4(body, 0u, std::bit_cast<uint32_t>(float(bound * (1 + 1e-5))), 0u);
+    m.parts.push_back(part);
+  }
+  for (size_t p = first_part; p < m.parts.size(); ++p) m.parts[p].info.y = uint32_t(m.parts.size() - first_part);
+}
+
 // Every particle becomes a sub-sphere of a body: lone spheres first (one-sphere bodies), then
 // the case's bodies in order, each body's sub-spheres contiguous.
 void add_bodies(const CaseSpec& spec, Model& m) {
@@ -94,14 +149,13 @@ void add_bodies(const CaseSpec& spec, Model& m) {
     b.inv_inertia = fixed ? v4({0, 0, 0}, 0) : v4({1 / moments[0], 1 / moments[1], 1 / moments[2]}, 0);
     b.spheres = gpu::uvec4(first, uint32_t(local.size()), 0u, 0u);
     b.drag = v4(mul(drag_area, 1 / kPi), 0);
-    // The bounding radius about the centre of mass (neighbour.h body_bound), rounded outwards.
+    // The bounding radius about the centre of mass (neighbour.h part_near).
     double bound = 0;
     for (size_t k = 0; k < local.size(); ++k) bound = std::max(bound, std::sqrt(dot(local[k], local[k])) + radii[k]);
-    uint32_t bound_bits = std::bit_cast<uint32_t>(float(bound * (1 + 1e-6)));
     for (size_t k = 0; k < local.size(); ++k) {
       gpu::SubSphere s{};
       s.local = v4(local[k], radii[k]);
-      s.info = gpu::uvec4(uint32_t(m.bodies.size()), bound_bits, 0u, 0u);
+      s.info = gpu::uvec4(uint32_t(m.bodies.size()), 0u, 0u, 0u);
       m.subs.push_back(s);
       Vec3d r = rotate(q, local[k]);
       m.pos.push_back(v4(add(centre, r), radii[k]));
@@ -109,6 +163,7 @@ void add_bodies(const CaseSpec& spec, Model& m) {
       m.omega.push_back(v4(w, 0));
       m.material.push_back(material);
     }
+    add_body_parts(local, radii, bound, uint32_t(m.bodies.size()), first, m);
     if (!fixed) m.total_mass += mass;
     m.bodies.push_back(b);
   };
@@ -374,9 +429,9 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   double r_cell = r_max;
   choose_large_radius(m, r_cell);
   m.cell = 2 * r_cell + m.skin;
-  // Body-level broad phase (neighbour.h body_near): each body tests every other one when the
-  // list is rebuilt, which pays while bodies are few against their sub-spheres (80 cabbages of
-  // 203, 454 stalks of 720; not a bed of one-sphere bodies).
+  // Body-level broad phase (neighbour.h part_near): each body tests every other one when the list
+  // is rebuilt, which pays while bodies are few against their sub-spheres (80 cabbages of 203,
+  // 454 stalks of 720; not a bed of one-sphere bodies).
   uint64_t n_bodies = m.bodies.size();
   bool pays = n_bodies * n_bodies <= 8 * uint64_t(m.n_particles);
   if (n_bodies > 1 && spec.neighbour.body_broad_phase.value_or(pays)) m.flags |= gpu::kFlagBodyBroadPhase;

@@ -39,6 +39,7 @@ struct Model {
   // contiguous and in body order, and pos/vel/omega above are derived by body_place.
   std::vector<gpu::Body> bodies;
   std::vector<gpu::SubSphere> subs;
+  std::vector<gpu::BodyPart> parts;        // each body's parts, in body order (body_parts)
   std::vector<ModelWall> walls;
   double dt = 0;
   double rayleigh_time = 0;

@@ -44,7 +44,7 @@ std::vector<uint32_t> ParticleOrder::table() const {
   return t;
 }
 
-ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
   for (const gpu::vec4& p : pos) {
     lo[0] = std::min(lo[0], double(p.x));
@@ -55,14 +55,23 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell) {
     double c = std::floor((double(x) - lo[k]) / cell);
     return uint64_t(std::clamp(c, 0.0, double(0x1fffff)));
   };
-  std::vector<std::pair<uint64_t, uint32_t>> keys(pos.size());
-  for (size_t g = 0; g < pos.size(); ++g) {
-    const gpu::vec4& p = pos[g];
-    keys[g] = {axis(p.z, 2) << 42 | axis(p.y, 1) << 21 | axis(p.x, 0), uint32_t(g)};
-  }
-  std::sort(keys.begin(), keys.end());
+  auto key = [&](const gpu::vec4& p) { return axis(p.z, 2) << 42 | axis(p.y, 1) << 21 | axis(p.x, 0); };
   std::vector<uint32_t> ids(pos.size());
-  for (size_t s = 0; s < keys.size(); ++s) ids[s] = keys[s].second;
+  if (bodies.empty()) {
+    std::vector<std::pair<uint64_t, uint32_t>> keys(pos.size());
+    for (size_t g = 0; g < pos.size(); ++g) keys[g] = {key(pos[g]), uint32_t(g)};
+    std::sort(keys.begin(), keys.end());
+    for (size_t s = 0; s < keys.size(); ++s) ids[s] = keys[s].second;
+    return ParticleOrder::from_ids(std::move(ids));
+  }
+  std::vector<std::pair<uint64_t, uint32_t>> keys(bodies.size());
+  for (size_t b = 0; b < bodies.size(); ++b) keys[b] = {key(bodies[b].pos), uint32_t(b)};
+  std::sort(keys.begin(), keys.end());
+  size_t s = 0;
+  for (const auto& k : keys) {
+    const gpu::uvec4& range = bodies[k.second].spheres;
+    for (uint32_t g = range.x; g < range.x + range.y && s < ids.size(); ++g) ids[s++] = g;
+  }
   return ParticleOrder::from_ids(std::move(ids));
 }
 
@@ -184,6 +193,7 @@ ConstantData stored_constants(const Model& m, const ParticleOrder& order) {
   c.material = stored(m.material);
   c.pairs = m.pairs;
   c.subs = stored(m.subs);
+  c.parts = m.parts;
   c.ids = order.table();
   return c;
 }

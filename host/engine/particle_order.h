@@ -31,8 +31,11 @@ struct ParticleOrder {
 // layer (z), row (y), then along the row (x), ties by global id. A walk's neighbours then sit in
 // a few runs of slots that advance together, which the CPU's prefetchers follow (on the settled
 // 50k bed, contact_forces 1.6-1.8 ms per step in these rows, 1.7-2.6 in Morton order, 2.1-3.1 in
-// the fill's random order; README, speed).
-ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, double cell);
+// the fill's random order; README, speed). With `bodies`, a body moves as one: bodies in the order
+// of their centres' cells, each body's sub-spheres in consecutive slots by global id, so the
+// per-body gather (body_gather_kick) reads a run of slots, not one scattered row per sub-sphere
+// (docs/engineering.md, particle order).
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell);
 
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
 // into the slots the device stores them in under `order`, and back: per-particle rows, the contact

@@ -25,7 +25,8 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
     : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
   layout_ = model_layout(model_, variant_, max_batch_steps);
   // Cell order from the start (one sort), so the first batch need not store the particles anew.
-  order_ = variant_.reorder ? cell_order(model_.pos, model_.cell) : ParticleOrder::identity(model_.n_particles);
+  order_ = variant_.reorder ? cell_order(model_.pos, model_.bodies, model_.cell)
+                            : ParticleOrder::identity(model_.n_particles);
   stored_by_id_ = order_.is_identity();
 
   // Initial host state: particles as given, empty contact list (the first step builds it).
@@ -213,7 +214,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   while (step_ < target) {
     auto t0 = std::chrono::steady_clock::now();
     if (reorder_due()) {
-      store_in_order(cell_order(state().pos, model_.cell));
+      store_in_order(cell_order(state().pos, state().bodies, model_.cell));
       reordered_at_ = rebuilds();
     }
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));

@@ -70,6 +70,7 @@ Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps
   l.lean_contacts = v.lean;
   l.rolling_springs = (m.flags & gpu::kFlagRollingSpring) != 0;
   l.n_bodies = static_cast<uint32_t>(m.bodies.size());
+  l.n_parts = static_cast<uint32_t>(m.parts.size());
   l.capacity = capacity;
   return l;
 }
@@ -84,6 +85,7 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
   p.flags = m.flags | (v.lean ? gpu::kFlagLeanContacts : 0u) |
             (l.n_bodies ? gpu::kFlagBodies : 0u);
   p.n_bodies = l.n_bodies;
+  p.n_parts = l.n_parts;
   p.wall_slot = 0;
   uint32_t interval = walls_still ? m.still_interval : m.max_interval;
   if (v.rebuild_interval && (!interval || v.rebuild_interval < interval)) interval = v.rebuild_interval;
@@ -150,6 +152,10 @@ struct ProgramBuilder {
   // Rebuilds the contact list when rebuild_args decides so (indirect sizes are 0 otherwise).
   void rebuild(const Layout& l) {
     direct(KernelId::RebuildArgs, 1, push);
+    if (push.flags & gpu::kFlagBodyBroadPhase) {  // before the buckets: they leave out what meets no other body
+      indirect(KernelId::PartPlace, gpu::kCtlArgsParts);
+      indirect(KernelId::PartNear, gpu::kCtlArgsBodies);
+    }
     indirect(KernelId::SaveOldRows, gpu::kCtlArgsParticles);
     indirect(KernelId::SaveOldContacts, gpu::kCtlArgsOldContacts);
     indirect(KernelId::ClearBuckets, gpu::kCtlArgsBuckets);
@@ -157,7 +163,6 @@ struct ProgramBuilder {
     scan(gpu::kScanCells, l.table_size + 1);  // the hashed buckets and the large one
     indirect(KernelId::BucketScatter, gpu::kCtlArgsParticles);
     indirect(KernelId::BucketSort, gpu::kCtlArgsBuckets);
-    if (push.flags & gpu::kFlagBodyBroadPhase) indirect(KernelId::BodyNear, gpu::kCtlArgsParticles);
     indirect(KernelId::ContactCount, gpu::kCtlArgsParticles);
     scan(gpu::kScanRows, l.n_particles);
     indirect(KernelId::RowsScanned, gpu::kCtlArgsOne);

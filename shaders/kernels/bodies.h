@@ -9,13 +9,10 @@
 #ifndef REPOSE_KERNELS_BODIES_H
 #define REPOSE_KERNELS_BODIES_H
 
-// v rotated by the unit quaternion q = (u, w): v + 2 w (u x v) + 2 u x (u x v).
-vec3 quat_rotate(vec4 q, vec3 v) {
-  vec3 u = xyz(q);
-  precise vec3 t = scale3(cross3(u, v), 2.0f);
-  precise vec3 r = v + scale3(t, q.w) + cross3(u, t);
-  return r;
-}
+#include "kernels/rigid_body.h"
+
+// v rotated by the unit quaternion q.
+vec3 quat_rotate(vec4 q, vec3 v) { return rotate_by(xyz(q), q.w, v); }
 
 vec3 quat_rotate_inverse(vec4 q, vec3 v) { return quat_rotate(vec4(-q.x, -q.y, -q.z, q.w), v); }
 
@@ -100,10 +97,12 @@ void k_body_place(uint i) {
   vec4 local = B_subs[i].local;
   uint b = B_subs[i].info.x;
   vec4 p4 = B_bodies[b].pos;
+  vec4 q = B_bodies[b].quat;
   vec3 w = xyz(B_bodies[b].omega);
-  vec3 r = quat_rotate(B_bodies[b].quat, xyz(local));
-  precise vec3 x = xyz(p4) + r;
-  precise vec3 v = xyz(B_bodies[b].vel) + cross3(w, r);
+  vec3 r;
+  vec3 x;
+  vec3 v;
+  place_sub(xyz(p4), xyz(B_bodies[b].vel), w, xyz(q), q.w, xyz(local), r, x, v);
   B_pos[i] = vec4(x, local.w);
   B_vel[i] = vec4(v, p4.w);
   B_omega[i] = vec4(w, 0.0f);
@@ -119,15 +118,12 @@ void k_body_gather_kick(uint b) {
   if (b >= PC.n_bodies) return;
   uvec4 range = B_bodies[b].spheres;
   vec4 q = B_bodies[b].quat;
-  precise vec3 f = vec3(0.0f);
-  precise vec3 t = vec3(0.0f);
+  vec3 f = vec3(0.0f);
+  vec3 t = vec3(0.0f);
   for (uint g = range.x; g < range.x + range.y; ++g) {
     uint s = slot_of(g);
-    vec3 fs = xyz(B_force[s]);
     vec3 r = quat_rotate(q, xyz(B_subs[s].local));  // the arm body_place used, to the bit
-    f = f + fs;
-    t = t + cross3(r, fs);
-    t = t + xyz(B_torque[s]);
+    add_sub_force(f, t, r, xyz(B_force[s]), xyz(B_torque[s]));
   }
   B_bodies[b].force = vec4(f, 0.0f);
   B_bodies[b].torque = vec4(t, 0.0f);

@@ -35,6 +35,8 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsBuckets, groups_for(PC.table_size + 2u, wg));
     set_groups(kCtlArgsOne, 1u);
     set_groups(kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
+    set_groups(kCtlArgsParts, groups_for(PC.n_parts, wg));
+    set_groups(kCtlArgsBodies, groups_for(PC.n_bodies, wg));
   } else {
     B_control[kCtlStepsSinceBuild] = B_control[kCtlStepsSinceBuild] + 1u;
     set_groups(kCtlArgsParticles, 0u);
@@ -42,6 +44,8 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsOne, 0u);
     set_groups(kCtlArgsOldContacts, 0u);
     set_groups(kCtlArgsNewContacts, 0u);
+    set_groups(kCtlArgsParts, 0u);
+    set_groups(kCtlArgsBodies, 0u);
   }
 }
 
@@ -63,14 +67,104 @@ void k_clear_buckets(uint b) {
   if (b <= PC.table_size) B_cell_fill[b] = 0u;
 }
 
+// Body-level broad phase (clumps, kFlagBodyBroadPhase), by parts: each body is cut across its
+// longest axis into parts (Model, add_body_parts), each with a bounding sphere. At the start of a
+// rebuild each part lists the parts of other bodies its sphere meets, widened by the skin
+// (part_near: a body's own bounding sphere first, then its parts), and a sub-sphere walks the grid
+// only when it meets one of its part's listed spheres (sub_may_pair; else it is in no bucket
+// either, and its walls are still tested). A long body's bounding sphere (a 10 x 80 mm stalk's is
+// 40 mm for 1 mm spheres) meets every neighbour's in a heap; its parts' (5-6 mm) meet a few, and
+// a sub-sphere on the far side of its body meets none. The same list as without it: only pairs
+// that near_pair would reject are skipped. Each body tests every other one, so the host enables it
+// only where bodies are few against their sub-spheres (Model, choose_neighbour_search).
+
+// The largest coordinate of x, for the rounding slack of a float distance test.
+float coordinate_size(vec3 x) { return max(abs(x.x), max(abs(x.y), abs(x.z))); }
+
+// True when spheres (a, ra) and (b, rb) come within the skin of each other, or nearly: positions
+// placed from a body carry a few float roundings of their coordinates and of the body-frame
+// offsets (body_place, part_place), so a slack of 1e-5 of both keeps the test conservative.
+bool spheres_may_meet(vec3 a, float ra, vec3 b, float rb) {
+  precise vec3 d = a - b;
+  precise float size = ((coordinate_size(a) + coordinate_size(b)) + ra) + rb;
+  precise float reach = ((ra + rb) + PC.skin) + 1e-5f * size;
+  return dot3(d, d) < reach * reach;
+}
+
+// Part p's bounding sphere in the world, where its body is now.
+void k_part_place(uint p) {
+  if (p >= PC.n_parts) return;
+  vec4 local = B_parts[p].local;
+  uint b = B_parts[p].info.x;
+  vec3 r = quat_rotate(B_bodies[b].quat, xyz(local));
+  precise vec3 c = xyz(B_bodies[b].pos) + r;
+  B_parts[p].world = vec4(c, local.w);
+}
+
+// Lists, for each part of body b, the parts of other bodies it may meet, by index. Bodies whose
+// bounding spheres miss b's are skipped whole: no sub-sphere of b can pair with theirs (a part's
+// sphere may reach beyond its body's, but its sub-spheres do not). A body's parts are consecutive,
+// so the walk over parts steps a body at a time.
+void k_part_near(uint b) {
+  if (b >= PC.n_bodies) return;
+  uint first = B_subs[slot_of(B_bodies[b].spheres.x)].info.y;
+  uint end = first + B_parts[first].info.y;
+  for (uint p = first; p < end; ++p) B_parts[p].near_count = 0u;
+  vec3 cb = xyz(B_bodies[b].pos);
+  float rb = uintBitsToFloat(B_parts[first].info.z);
+  uint q = 0u;
+  while (q < PC.n_parts) {
+    uvec4 info = B_parts[q].info;  // q is body info.x's first part
+    uint next = q + info.y;
+    vec3 co = xyz(B_bodies[info.x].pos);
+    float ro = uintBitsToFloat(info.z);
+    if (info.x != b && spheres_may_meet(cb, rb, co, ro)) {
+      for (uint p = first; p < end; ++p) {
+        vec4 cp = B_parts[p].world;
+        if (!spheres_may_meet(xyz(cp), cp.w, co, ro)) continue;
+        uint count = B_parts[p].near_count;
+        for (uint k = q; k < next; ++k) {
+          vec4 ck = B_parts[k].world;
+          if (!spheres_may_meet(xyz(cp), cp.w, xyz(ck), ck.w)) continue;
+          if (count < kPartNearSlots) B_parts[p].near[count] = k;
+          count = count + 1u;
+        }
+        B_parts[p].near_count = count;
+      }
+    }
+    q = next;
+  }
+}
+
+// False when sub-sphere i meets no part its own part listed (kFlagBodyBroadPhase): i then has
+// no particle partner, and is left out of the buckets too. A part that met more than it could
+// list lets every sub-sphere walk.
+bool sub_may_pair(uint i) {
+  if ((PC.flags & kFlagBodyBroadPhase) == 0u) return true;
+  uint p = B_subs[i].info.z;
+  uint count = B_parts[p].near_count;
+  if (count > kPartNearSlots) return true;
+  vec4 pi = B_pos[i];
+  for (uint k = 0u; k < count; ++k) {
+    vec4 c = B_parts[B_parts[p].near[k]].world;
+    if (spheres_may_meet(xyz(pi), pi.w, xyz(c), c.w)) return true;
+  }
+  return false;
+}
+
 ivec3 cell_of_position(vec3 x, float inv_cell) {
   return ivec3(cell_coord(x.x, inv_cell), cell_coord(x.y, inv_cell), cell_coord(x.z, inv_cell));
 }
 
+// A sub-sphere that meets no other body (sub_may_pair) goes in no bucket: no walk would keep it.
 void k_bucket_count(uint i) {
   if (i >= PC.n_particles) return;
   vec4 p = B_pos[i];
   B_pos_at_build[i] = p;
+  if (!sub_may_pair(i)) {
+    B_cell_of[i] = kNoBucket;
+    return;
+  }
   ivec3 c = cell_of_position(xyz(p), PC.inv_cell);
   uint h = p.w > PC.large_radius ? PC.table_size : cell_hash(c.x, c.y, c.z, PC.table_size);
   B_cell_of[i] = h;
@@ -80,6 +174,7 @@ void k_bucket_count(uint i) {
 void k_bucket_scatter(uint i) {
   if (i >= PC.n_particles) return;
   uint h = B_cell_of[i];
+  if (h == kNoBucket) return;
   uint slot = B_cell_start[h] + atomicAdd(B_cell_fill[h], 1u);
   B_sorted[slot] = i;
 }
@@ -99,41 +194,6 @@ void k_bucket_sort(uint b) {
     }
     B_sorted[m] = slot;
   }
-}
-
-// Body-level broad phase (clumps, kFlagBodyBroadPhase): a body whose bounding sphere, widened by
-// the skin, meets no other body's has no candidate pair, so its sub-spheres skip the grid walk
-// (their walls are still tested). The same list as without it: only pairs that near_pair would
-// reject are skipped. Each body tests every other one, so the host enables it only where bodies
-// are few against their sub-spheres (Model, choose_neighbour_search).
-float body_bound(uint b) { return uintBitsToFloat(B_subs[slot_of(B_bodies[b].spheres.x)].info.y); }
-
-// The largest coordinate of x, for the rounding slack of a float distance test.
-float coordinate_size(vec3 x) { return max(abs(x.x), max(abs(x.y), abs(x.z))); }
-
-void k_body_near(uint b) {
-  if (b >= PC.n_bodies) return;
-  vec3 c = xyz(B_bodies[b].pos);
-  float rb = body_bound(b);
-  float size_b = coordinate_size(c);
-  uint near = 0u;
-  for (uint o = 0u; o < PC.n_bodies && near == 0u; ++o) {
-    if (o == b) continue;
-    vec3 co = xyz(B_bodies[o].pos);
-    precise vec3 d = c - co;
-    // Sub-sphere positions carry a few float roundings of the coordinates (body_place): a
-    // slack of 1e-5 of the largest coordinate keeps the test conservative.
-    precise float slack = 1e-5f * (size_b + coordinate_size(co));
-    precise float reach = ((rb + body_bound(o)) + PC.skin) + slack;
-    if (dot3(d, d) < reach * reach) near = 1u;
-  }
-  B_body_near[b] = near;
-}
-
-// False when i's body meets no other body (kFlagBodyBroadPhase): i then has no particle partner.
-bool body_may_pair(uint i) {
-  if ((PC.flags & kFlagBodyBroadPhase) == 0u) return true;
-  return B_body_near[B_subs[i].info.x] != 0u;
 }
 
 // True when j is a neighbour candidate of i: within the skin of touching.
@@ -227,7 +287,7 @@ uint walk_neighbours(uint i, bool fill, uint base) {
   }
   uint lowest = large ? 0u : first_partner_id(i);
   bool i_fixed = is_fixed(i);
-  bool pairs = body_may_pair(i);
+  bool pairs = sub_may_pair(i);
   for (int dz = (large || !pairs) ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {

@@ -6,7 +6,9 @@
 #include <set>
 
 #include "engine/cpu_backend.h"
+#include "engine/step_program.h"
 #include "engine_test_support.h"
+#include "twin_kernels.h"
 
 using namespace repose;
 using namespace repose::test;
@@ -15,6 +17,19 @@ namespace {
 
 double dot3d(const gpu::vec4& a, const gpu::vec4& b) {
   return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z;
+}
+
+std::unique_ptr<Simulation> broad_phase_run(const Model& m, const char* backend) {
+  return std::make_unique<Simulation>(m, make_backend(backend, -1, 2, 64), KernelVariant{}, 25);
+}
+
+// Sub-spheres whose part meets no other body's (neighbour.h sub_may_pair) in the list just built.
+size_t culled_subs(Simulation& sim) {
+  gpu::Kernels k(dynamic_cast<CpuBackend&>(sim.backend()).buffers());
+  k.PC = base_push(sim.model(), sim.layout(), sim.variant());
+  size_t culled = 0;
+  for (uint32_t i = 0; i < sim.model().n_particles; ++i) culled += k.sub_may_pair(i) ? 0 : 1;
+  return culled;
 }
 
 }  // namespace
@@ -243,34 +258,84 @@ TEST_CASE("clumps: the neighbour skin and the rebuild interval leave the bodies 
   }
 }
 
-// The body-level broad phase (neighbour.h body_near) only skips pairs the grid walk would reject:
+// The body-level broad phase (neighbour.h part_near) only skips pairs the grid walk would reject:
 // the whole state, contact list included, is the same with it on and off, on both backends.
-TEST_CASE("clumps: the body-level broad phase changes no byte, and culls bodies apart from the rest") {
-  CaseSpec pile = clump_pile();
-  pile.neighbour.body_broad_phase = true;
-  Model on = build_model(pile);
-  pile.neighbour.body_broad_phase = false;
-  Model off = build_model(pile);
+static void check_broad_phase_keeps_bytes(CaseSpec spec, uint64_t steps, size_t least_contacts) {
+  spec.neighbour.body_broad_phase = true;
+  Model on = build_model(spec);
+  spec.neighbour.body_broad_phase = false;
+  Model off = build_model(spec);
   REQUIRE((on.flags & gpu::kFlagBodyBroadPhase) != 0);
   REQUIRE((off.flags & gpu::kFlagBodyBroadPhase) == 0);
-  auto run = [](const Model& m, const char* backend) {
-    return std::make_unique<Simulation>(m, make_backend(backend, -1, 2, 64), KernelVariant{}, 25);
-  };
-  // At the start the clumps fall 4 cm apart: some bodies meet none, and skip the walk.
-  auto first = run(on, "cpu");
-  const uint32_t* near = dynamic_cast<CpuBackend&>(first->backend()).buffers().body_near;
-  size_t apart = size_t(std::count(near, near + on.bodies.size(), 0u));
-  CHECK(apart > 0);
-  CHECK(apart < on.bodies.size());
   for (const char* backend : {"cpu", "vulkan"}) {
-    auto a = run(on, backend);
-    auto b = run(off, backend);
-    a->advance(1500);
-    b->advance(1500);
-    REQUIRE(a->contacts() > 50);
+    auto a = broad_phase_run(on, backend);
+    auto b = broad_phase_run(off, backend);
+    a->advance(steps);
+    b->advance(steps);
+    REQUIRE(a->contacts() > least_contacts);
     std::string which;
     bool same = same_state(a->state(), b->state(), &which);
     INFO(backend << ": first difference in " << which);
     CHECK(same);
   }
+}
+
+TEST_CASE("clumps: the body-level broad phase changes no byte, and culls bodies apart from the rest") {
+  CaseSpec pile = clump_pile();
+  pile.neighbour.body_broad_phase = true;
+  // At the start the clumps fall 4 cm apart: some sub-spheres meet no other body, and skip the walk.
+  auto first = broad_phase_run(build_model(pile), "cpu");
+  size_t culled = culled_subs(*first);
+  CHECK(culled > 0);
+  CHECK(culled < first->model().n_particles);
+  check_broad_phase_keeps_bytes(pile, 1500, 50);
+}
+
+// Tubes like the cotton-stalk study's stalk (12 rings of 6 spheres of 1 mm, 24 x 8 mm: 6 parts)
+// thrown together where a body's bounding sphere culls nothing and its parts' spheres cut close
+// (a 0.2 mm skin): one falls across the ends of two side by side, one hits an end face, one falls
+// on that one's far end, one stays apart; all on a floor. Every contact must stay in
+// the list, while most sub-spheres (the tubes' far sides) skip the walk.
+TEST_CASE("clumps: the broad phase by parts keeps the contacts at a long body's ends, and culls its far side") {
+  CaseBuilder b;
+  int grain = b.material(800, 5e6, 0.3);
+  int steel = b.material(7800, 8e10, 0.3);
+  b.interaction(grain, grain, 0.4, 0.5, 0.02);
+  b.interaction(grain, steel, 0.5, 0.3, 0.05);
+  b.spec.gravity = {0, 0, -9.81};
+  b.spec.time.rayleigh_fraction = 0.3;
+  b.spec.neighbour.skin = 0.0002;
+  std::vector<Sphere> tube;
+  for (int layer = 0; layer < 12; ++layer)
+    for (int k = 0; k < 6; ++k) {
+      double a = kPi / 3 * k + (layer % 2 ? kPi / 6 : 0);
+      tube.push_back({{-0.011 + 0.002 * layer, 0.003 * std::cos(a), 0.003 * std::sin(a)}, 0.001});
+    }
+  int t = b.clump_template("tube", tube);
+  std::array<double, 4> along_y{std::sqrt(0.5), 0, 0, std::sqrt(0.5)};  // 90 degrees about z
+  b.clump(t, {0, 0, 0.0045}, grain);                                               // 0: along x
+  b.clump(t, {0.0105, 0, 0.0135}, grain, along_y, {0, 0, -0.3});                  // 1: across 0's end
+  b.clump(t, {0.0255, 0, 0.0045}, grain, {1, 0, 0, 0}, {-0.3, 0, 0});             // 2: at 0's end face
+  b.clump(t, {0, 0.0095, 0.0045}, grain, {1, 0, 0, 0}, {0, -0.3, 0});             // 3: alongside 0
+  b.clump(t, {0.0355, 0, 0.0135}, grain, along_y, {0, 0, -0.3});                  // 4: on 2's far end
+  b.clump(t, {0, 0.06, 0.0045}, grain, along_y);                                   // 5: apart
+  b.plane({0, 0, 0.0005}, {0, 0, 1}, steel);
+  CaseSpec spec = b.spec;
+  spec.neighbour.body_broad_phase = true;
+  auto sim = broad_phase_run(build_model(spec), "cpu");
+  uint32_t n = sim->model().n_particles;
+  std::set<std::pair<uint32_t, uint32_t>> touched;  // bodies whose sub-spheres have touched
+  for (int batch = 0; batch < 48; ++batch) {
+    sim->advance(25);
+    HostState s = sim->state();
+    for (uint32_t i = 0; i < n; ++i)
+      for (uint32_t c = s.row_start[i]; c < s.row_start[i + 1]; ++c)
+        if (s.partner[c] < n && s.history[c].w > 0) touched.insert({i / 72, s.partner[c] / 72});
+  }
+  for (const auto& [i, j] : touched) UNSCOPED_INFO("bodies " << i << " and " << j << " touched");
+  CHECK(touched == std::set<std::pair<uint32_t, uint32_t>>{{0, 1}, {0, 2}, {0, 3}, {1, 3}, {2, 4}});
+  size_t culled = culled_subs(*sim);
+  INFO(culled << " of " << n << " sub-spheres skip the walk");
+  CHECK(culled > n / 2);
+  check_broad_phase_keeps_bytes(spec, 1200, 20);
 }

@@ -40,6 +40,7 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
+  if (l.n_parts) bindings.push_back({gpu::kBindParts, "parts", l.n_parts * sizeof(gpu::BodyPart), b.parts});
   return bindings;
 }
 
@@ -159,7 +160,7 @@ TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispa
 TEST_CASE("every kernel of a clump step, rolling lever at the centre of mass: lavapipe equals the CPU twin",
           "[engine][bitexact]") {
   CaseSpec pile = clump_pile();
-  pile.neighbour.body_broad_phase = true;  // its body_near runs too
+  pile.neighbour.body_broad_phase = true;  // its part_place and part_near run too
   REQUIRE(pile.contact.rolling_lever == RollingLever::Centre);
   for (const char* variant_text : {"contact", "contact,lean", "rows,lean"})
     check_each_dispatch(pile, variant_text, 1500, 100, "clump pile");

@@ -154,9 +154,25 @@ TEST_CASE("particle order: cell order puts neighbours in nearby slots, and refus
   // A line of 8 cells along x, filled out of order: cell order sorts them along the line.
   std::vector<gpu::vec4> pos;
   for (int k : {5, 2, 7, 0, 3, 6, 1, 4}) pos.push_back(gpu::vec4(float(k) + 0.5f, 0.5f, 0.5f, 0.1f));
-  ParticleOrder o = cell_order(pos, 1.0);
+  ParticleOrder o = cell_order(pos, {}, 1.0);
   for (uint32_t s = 0; s < 8; ++s) CHECK(pos[o.id_of[s]].x == float(s) + 0.5f);
   for (uint32_t g = 0; g < 8; ++g) CHECK(o.id_of[o.slot_of[g]] == g);
   CHECK_THROWS(ParticleOrder::from_ids({0, 2, 2}));
   CHECK_THROWS(ParticleOrder::from_ids({0, 3, 1}));
+}
+
+TEST_CASE("particle order: cell order moves a body's sub-spheres as one run, by global id", "[engine][order]") {
+  // Three bodies of 3, 1 and 2 sub-spheres whose centres lie in cells 4, 0 and 2 along x; the
+  // sub-spheres themselves spread over other cells, which must not split a body.
+  std::vector<gpu::vec4> pos;
+  for (float x : {4.5f, 0.5f, 7.5f, 0.5f, 2.5f, 1.5f}) pos.push_back(gpu::vec4(x, 0.5f, 0.5f, 0.1f));
+  std::vector<gpu::Body> bodies(3);
+  bodies[0].pos = gpu::vec4(4.5f, 0.5f, 0.5f, 1.0f);
+  bodies[0].spheres = gpu::uvec4(0, 3, 0, 0);
+  bodies[1].pos = gpu::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+  bodies[1].spheres = gpu::uvec4(3, 1, 0, 0);
+  bodies[2].pos = gpu::vec4(2.5f, 0.5f, 0.5f, 1.0f);
+  bodies[2].spheres = gpu::uvec4(4, 2, 0, 0);
+  ParticleOrder o = cell_order(pos, bodies, 1.0);
+  CHECK(o.id_of == std::vector<uint32_t>{3, 4, 5, 0, 1, 2});
 }

@@ -1,0 +1,159 @@
+// body_place and body_gather_kick in SIMD lanes (body_lanes.h): the lanes' dialect
+// (lane_dialect.h) on shaders/kernels/rigid_body.h. What is left here is memory: the sub-spheres'
+// and bodies' rows in, the placed rows and the bodies' sums out. Compiled once per SIMD target
+// by Highway's foreach_target; -ffp-contract=off keeps every Mul and Add a separate rounding.
+#include "body_lanes.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <cstring>
+
+#include "twin_kernels.h"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "body_lanes.cpp"
+#include <hwy/foreach_target.h>  // re-includes this file once per target
+#include <hwy/highway.h>
+
+#include "lane_dialect.h"  // once per target, as this file
+
+HWY_BEFORE_NAMESPACE();
+namespace repose::gpu::HWY_NAMESPACE {
+
+// The rigid-body text in lanes: its functions as members.
+struct LaneBody {
+#include "kernels/vector3.h"
+#include "kernels/rigid_body.h"
+};
+
+constexpr uint kBodyRow = sizeof(Body) / sizeof(vec4);       // vec4 rows per Body
+constexpr uint kSubRow = sizeof(SubSphere) / sizeof(vec4);   // and per SubSphere
+constexpr uint kMaxLanes = HWY_LANES(float);
+
+// Field `field` (its vec4 row in gpu::Body) of each lane's body b[l].
+V4 body_rows(const Kernels& k, const uint* b, uint field) {
+  uint at[kMaxLanes];
+  for (size_t l = 0; l < hn::Lanes(D()); ++l) at[l] = b[l] * kBodyRow + field;
+  return rows(reinterpret_cast<const vec4*>(k.B_bodies), at);
+}
+
+// A vec4 row the same in every lane.
+V4 same_row(const vec4& r) { return {hn::Set(D(), r.x), hn::Set(D(), r.y), hn::Set(D(), r.z), hn::Set(D(), r.w)}; }
+
+// k_body_place for the Lanes(D()) slots from i; true when one of them moved past half the skin.
+bool place_lanes(Kernels& k, uint64_t i) {
+  const size_t L = hn::Lanes(D());
+  LaneBody law;
+  uint body[kMaxLanes], at[kMaxLanes];
+  bool one_body = true;
+  for (size_t l = 0; l < L; ++l) {
+    body[l] = k.B_subs[i + l].info.x;
+    at[l] = uint((i + l) * kSubRow);
+    one_body = one_body && body[l] == body[0];
+  }
+  V4 local = rows(reinterpret_cast<const vec4*>(k.B_subs), at);
+  V4 p4, vel, quat, omega;
+  if (one_body) {  // cell order keeps a body's sub-spheres in a run of slots: the usual case
+    const Body& b = k.B_bodies[body[0]];
+    p4 = same_row(b.pos), vel = same_row(b.vel), quat = same_row(b.quat), omega = same_row(b.omega);
+  } else {
+    p4 = body_rows(k, body, offsetof(Body, pos) / sizeof(vec4));
+    vel = body_rows(k, body, offsetof(Body, vel) / sizeof(vec4));
+    quat = body_rows(k, body, offsetof(Body, quat) / sizeof(vec4));
+    omega = body_rows(k, body, offsetof(Body, omega) / sizeof(vec4));
+  }
+  real3 r, x, v;
+  law.place_sub(p4.xyz(), vel.xyz(), omega.xyz(), quat.xyz(), quat.w, local.xyz(), r, x, v);
+  store4(&k.B_pos[i], x.x, x.y, x.z, local.w);
+  store4(&k.B_vel[i], v.x, v.y, v.z, p4.w);
+  store4(&k.B_omega[i], omega.x, omega.y, omega.z, 0.0f);
+  if ((k.PC.flags & kFlagDrift) == 0u) return false;
+  V bx, by, bz, bw;
+  hn::LoadInterleaved4(D(), &k.B_pos_at_build[i].x, bx, by, bz, bw);
+  real3 moved = x - real3(bx, by, bz);
+  return !hn::AllFalse(D(), hn::Gt(law.dot3(moved, moved).v, hn::Set(D(), k.PC.half_skin_sq)));
+}
+
+void PlaceLanes(Kernels& k, uint64_t begin, uint64_t end) {
+  const size_t L = hn::Lanes(D());
+  end = std::min<uint64_t>(end, k.PC.n_particles);
+  bool moved = false;
+  uint64_t i = begin;
+  for (; i + L <= end; i += L) moved = place_lanes(k, i) || moved;
+  if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
+  for (; i < end; ++i) k.k_body_place(uint(i));
+}
+
+// k_body_gather_kick for the Lanes(D()) bodies from b0: lane l sums body b0 + l's sub-spheres in
+// their order (a lane whose body has fewer keeps its sums), then each body kicks on its own.
+void gather_lanes(Kernels& k, uint64_t b0) {
+  const size_t L = hn::Lanes(D());
+  LaneBody law;
+  uint first[kMaxLanes], count[kMaxLanes], body[kMaxLanes], most = 0;
+  for (size_t l = 0; l < L; ++l) {
+    body[l] = uint(b0 + l);
+    first[l] = k.B_bodies[body[l]].spheres.x;
+    count[l] = k.B_bodies[body[l]].spheres.y;
+    most = std::max(most, count[l]);
+  }
+  V4 quat = body_rows(k, body, offsetof(Body, quat) / sizeof(vec4));
+  const DI di;
+  const VI counts = hn::LoadU(di, reinterpret_cast<const int32_t*>(count));
+  real3 f(0.0f), t(0.0f);
+  uint slot[kMaxLanes], sub_row[kMaxLanes];
+  for (uint m = 0; m < most; ++m) {
+    for (size_t l = 0; l < L; ++l) {
+      slot[l] = k.slot_of(first[l] + std::min(m, count[l] - 1u));
+      sub_row[l] = slot[l] * kSubRow;
+    }
+    V4 fs = rows(k.B_force, slot), ts = rows(k.B_torque, slot);
+    V4 local = rows(reinterpret_cast<const vec4*>(k.B_subs), sub_row);
+    real3 r = law.rotate_by(quat.xyz(), quat.w, local.xyz());
+    real3 f1 = f, t1 = t;
+    law.add_sub_force(f1, t1, r, fs.xyz(), ts.xyz());
+    cond active{hn::RebindMask(D(), hn::Lt(hn::Set(di, int32_t(m)), counts))};
+    f = pick(active, f1, f);
+    t = pick(active, t1, t);
+  }
+  float sums[6][kMaxLanes];
+  const real* parts[6] = {&f.x, &f.y, &f.z, &t.x, &t.y, &t.z};
+  for (int c = 0; c < 6; ++c) hn::StoreU(parts[c]->v, D(), sums[c]);
+  for (size_t l = 0; l < L; ++l) {
+    vec3 fb(sums[0][l], sums[1][l], sums[2][l]), tb(sums[3][l], sums[4][l], sums[5][l]);
+    k.B_bodies[body[l]].force = vec4(fb, 0.0f);
+    k.B_bodies[body[l]].torque = vec4(tb, 0.0f);
+    if (k.PC.kick > 0.0f) k.body_kick_and_drift(body[l], fb, tb);
+  }
+}
+
+void GatherLanes(Kernels& k, uint64_t begin, uint64_t end) {
+  const size_t L = hn::Lanes(D());
+  end = std::min<uint64_t>(end, k.PC.n_bodies);
+  uint64_t b = begin;
+  for (; b + L <= end; b += L) gather_lanes(k, b);
+  for (; b < end; ++b) k.k_body_gather_kick(uint(b));
+}
+
+}  // namespace repose::gpu::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace repose::gpu {
+
+HWY_EXPORT(PlaceLanes);
+HWY_EXPORT(GatherLanes);
+
+namespace {
+std::atomic<bool> g_body_lanes_on{true};
+}
+
+void body_place_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(PlaceLanes)(k, begin, end); }
+void body_gather_kick_lanes(Kernels& k, uint64_t begin, uint64_t end) {
+  HWY_DYNAMIC_DISPATCH(GatherLanes)(k, begin, end);
+}
+void set_body_lanes(bool on) { g_body_lanes_on.store(on, std::memory_order_relaxed); }
+bool body_lanes_enabled() { return g_body_lanes_on.load(std::memory_order_relaxed); }
+
+}  // namespace repose::gpu
+#endif

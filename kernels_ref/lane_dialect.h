@@ -1,0 +1,136 @@
+// The kernels' dialect in SIMD lanes (Highway, one copy per target: this header is included
+// again for each target by the file that includes it, as hwy/foreach_target.h re-includes that
+// file): a real is one float per lane, a real3 three, a cond a mask, each operation the IEEE
+// operation of the scalar kernel, so shared kernel text (kernels/vector3.h, contact_law.h,
+// rigid_body.h) gives the scalar twin's bytes in every lane. With the loads and stores the
+// lanes' kernels share (contact_lanes.cpp, body_lanes.cpp).
+#if defined(REPOSE_LANE_DIALECT_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef REPOSE_LANE_DIALECT_H_
+#undef REPOSE_LANE_DIALECT_H_
+#else
+#define REPOSE_LANE_DIALECT_H_
+#endif
+
+#include <cstring>
+
+#include <hwy/highway.h>
+
+#include "twin_kernels.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace repose::gpu::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using D = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<D>;
+using V = hn::Vec<D>;
+using VI = hn::Vec<DI>;
+using M = hn::Mask<D>;
+
+// ---- The law's dialect, one contact per lane. ----
+// Each operation is the IEEE operation of the scalar kernel (correctly rounded in every SIMD
+// width); a cond converts to no bool, so an `if` on data does not compile: the law picks.
+struct cond {
+  M m;
+};
+struct real {
+  V v;
+  real() = default;
+  real(V x) : v(x) {}
+  real(float f) : v(hn::Set(D(), f)) {}
+};
+struct real3 {
+  real x, y, z;
+  real3() = default;
+  real3(real a, real b, real c) : x(a), y(b), z(c) {}
+  explicit real3(float f) : x(f), y(f), z(f) {}
+};
+inline real operator+(real a, real b) { return hn::Add(a.v, b.v); }
+inline real operator-(real a, real b) { return hn::Sub(a.v, b.v); }
+inline real operator*(real a, real b) { return hn::Mul(a.v, b.v); }
+inline real operator-(real a) { return hn::Neg(a.v); }
+inline cond operator<(real a, real b) { return {hn::Lt(a.v, b.v)}; }
+inline cond operator>(real a, real b) { return {hn::Gt(a.v, b.v)}; }
+inline cond operator<=(real a, real b) { return {hn::Le(a.v, b.v)}; }
+inline cond operator>=(real a, real b) { return {hn::Ge(a.v, b.v)}; }
+inline cond operator&&(cond a, cond b) { return {hn::And(a.m, b.m)}; }
+inline cond operator||(cond a, cond b) { return {hn::Or(a.m, b.m)}; }
+inline cond operator!(cond a) { return {hn::Not(a.m)}; }
+// A bool is the same for every lane (the flags).
+inline cond operator&&(bool a, cond b) { return a ? b : cond{hn::FirstN(D(), 0)}; }
+inline cond operator&&(cond a, bool b) { return b ? a : cond{hn::FirstN(D(), 0)}; }
+inline real3 operator+(real3 a, real3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline real3 operator-(real3 a, real3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+// The law divides and takes roots only through div_rn and sqrt_rn (GLSL corrects a device's
+// rounding there); lanes round both correctly, so they are Div and Sqrt. No operator/ nor sqrt:
+// a plain one in the law does not compile here.
+inline real div_rn(real a, real b) { return hn::Div(a.v, b.v); }
+inline real sqrt_rn(real a) { return hn::Sqrt(a.v); }
+inline real abs(real a) { return hn::Abs(a.v); }
+// std::max(a, b) and std::min(a, b) exactly: which operand wins on equal zeros and on NaN (a SIMD
+// max returns its second operand there).
+inline real max(real a, real b) { return hn::IfThenElse(hn::Lt(a.v, b.v), b.v, a.v); }
+inline real min(real a, real b) { return hn::IfThenElse(hn::Lt(b.v, a.v), b.v, a.v); }
+inline real pick(cond c, real yes, real no) { return hn::IfThenElse(c.m, yes.v, no.v); }
+inline real3 pick(cond c, real3 yes, real3 no) { return {pick(c, yes.x, no.x), pick(c, yes.y, no.y), pick(c, yes.z, no.z)}; }
+
+// Field `word` of the structs at indices `index`, each `stride` 4-byte words long.
+inline V gather(const void* base, VI index, int stride, int word) {
+  VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
+  return hn::GatherIndex(D(), static_cast<const float*>(base), at);
+}
+inline VI gather_int(const void* base, VI index, int stride, int word) {
+  VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
+  return hn::GatherIndex(DI(), static_cast<const int32_t*>(base), at);
+}
+
+// The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w).
+struct V4 {
+  V x, y, z, w;
+  real3 xyz() const { return {x, y, z}; }
+};
+
+#if HWY_TARGET != HWY_SCALAR
+// Rows index[4 k + j] of base as the blocks k (four floats each) of one vector: 128-bit loads
+// joined in registers, as hwy's LoadInterleaved4 arranges contiguous rows before transposing them.
+template <class DB>
+HWY_INLINE hn::Vec<DB> row_blocks(DB d, const vec4* base, const uint* index, size_t j, size_t k0) {
+  if constexpr (hn::MaxLanes(DB()) <= 4) {
+    return hn::LoadU(d, &base[index[4 * k0 + j]].x);
+  } else {
+    const hn::Half<DB> dh;
+    constexpr size_t half_blocks = hn::MaxLanes(DB()) / 8;
+    return hn::Combine(d, row_blocks(dh, base, index, j, k0 + half_blocks), row_blocks(dh, base, index, j, k0));
+  }
+}
+#endif
+
+// One 128-bit load per lane and a transpose in registers (hwy's for four floats per block): a
+// gather per component costs several times more, and a copy through memory stalls the loads
+// that read it back whole.
+inline V4 rows(const vec4* base, const uint* index) {
+  V4 r;
+#if HWY_TARGET == HWY_SCALAR
+  hn::LoadInterleaved4(D(), &base[index[0]].x, r.x, r.y, r.z, r.w);
+#else
+  const D d;
+  const V a = row_blocks(d, base, index, 0, 0), b = row_blocks(d, base, index, 1, 0);
+  const V c = row_blocks(d, base, index, 2, 0), e = row_blocks(d, base, index, 3, 0);
+  const V v10_even = hn::InterleaveLower(d, a, c), v10_odd = hn::InterleaveLower(d, b, e);
+  const V v32_even = hn::InterleaveUpper(d, a, c), v32_odd = hn::InterleaveUpper(d, b, e);
+  r.x = hn::InterleaveLower(d, v10_even, v10_odd);
+  r.y = hn::InterleaveUpper(d, v10_even, v10_odd);
+  r.z = hn::InterleaveLower(d, v32_even, v32_odd);
+  r.w = hn::InterleaveUpper(d, v32_even, v32_odd);
+#endif
+  return r;
+}
+
+inline void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
+inline real zero_unless(cond c, real a) { return hn::IfThenElseZero(c.m, a.v); }
+inline real3 zero_unless(cond c, real3 a) { return {zero_unless(c, a.x), zero_unless(c, a.y), zero_unless(c, a.z)}; }
+
+}  // namespace repose::gpu::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif
