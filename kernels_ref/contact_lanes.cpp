@@ -95,6 +95,13 @@ void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) 
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
+  if (hn::AllFalse(D(), t.m)) {  // what the law would store for pairs apart: zeros (a clump heap's
+    store4(&k.B_history[c], 0.0f, 0.0f, 0.0f, 0.0f);  // list is mostly such pairs)
+    store4(&k.B_contact_force[c], 0.0f, 0.0f, 0.0f, 0.0f);
+    store4(&k.B_torque_i[c], 0.0f, 0.0f, 0.0f, 0.0f);
+    if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], 0.0f, 0.0f, 0.0f, 0.0f);
+    return;
+  }
   VI i = hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at));
   VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at));
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
