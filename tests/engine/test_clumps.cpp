@@ -298,12 +298,12 @@ TEST_CASE("clumps: the body-level broad phase changes no byte, and culls bodies 
 // the list, while most sub-spheres (the tubes' far sides) skip the walk.
 TEST_CASE("clumps: the broad phase by parts keeps the contacts at a long body's ends, and culls its far side") {
   CaseBuilder b;
-  int grain = b.material(800, 5e6, 0.3);
-  int steel = b.material(7800, 8e10, 0.3);
-  b.interaction(grain, grain, 0.4, 0.5, 0.02);
-  b.interaction(grain, steel, 0.5, 0.3, 0.05);
-  b.spec.gravity = {0, 0, -9.81};
-  b.spec.time.rayleigh_fraction = 0.3;
+  b.spec = clump_pile();  // its grain and steel, gravity and time step; not its particles and walls
+  b.spec.bodies.clear();
+  b.spec.spheres.clear();
+  b.spec.templates.clear();
+  b.spec.walls.clear();
+  const int grain = 0, steel = 1;
   b.spec.neighbour.skin = 0.0002;
   std::vector<Sphere> tube;
   for (int layer = 0; layer < 12; ++layer)

@@ -15,8 +15,9 @@ using namespace repose::gpu;
 namespace {
 
 // Random particles, bodies, material pairs and contacts: touching and not, coincident centres,
-// zero and non-zero spins and histories, pairs with each extension off and on, and a plane wall
-// (the floor z = 5 mm) as the partner of a few contacts, some in runs of lanes, some alone.
+// zero and non-zero spins and histories, pairs with each extension off and on, a plane wall
+// (the floor z = 5 mm) as the partner of a few contacts, some in runs of lanes, some alone, and
+// runs of lanes whose pairs are all apart (the lanes then store zeros without the law).
 struct Scene {
   std::vector<vec4> pos, vel, omega, history;
   std::vector<uint> material, partner, owner;
@@ -40,6 +41,7 @@ struct Scene {
       subs.push_back(SubSphere{vec4(0.0f), uvec4(i / 3u, 0u, 0u, 0u)});
     }
     pos[1] = pos[0];  // coincident centres: dist 0, no contact
+    pos[3] = pos[2] + vec4(1.0f, 0.0f, 0.0f, 0.0f);  // 2 and 3 a metre apart: whole batches of pairs apart
     for (uint b = 0; b * 3u < n_particles; ++b) {
       Body body{};
       body.pos = vec4(0.03f * u(rng), 0.03f * u(rng), 0.03f * u(rng), 1.0f);
@@ -70,6 +72,7 @@ struct Scene {
       if (j == i) j = (i + 1u) % n_particles;
       if (c % 97u == 0u) i = 0u, j = 1u;
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
+      if (c >= 304u && c < 336u) i = 2u, j = 3u;
       owner.push_back(i);
       partner.push_back(j);
       history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
