@@ -48,8 +48,10 @@ std::string bad_positions(const HostState& s) {
   return "";
 }
 
-// Rows: particle i's entries row_start[i] .. row_start[i+1]-1, ascending partners after i, each
-// owned by i.
+// Rows: particle i's entries row_start[i] .. row_start[i+1]-1, ascending partners, each owned by
+// i. A pair belongs to the lower id, except that a sphere of the large bucket (a cabbage's core)
+// leaves its pairs with small spheres to them (shaders/kernels/neighbour.h): a partner before i
+// must be larger than i.
 std::string bad_rows(const HostState& s) {
   size_t n = s.pos.size(), c = s.partner.size();
   if (s.row_start.size() != n + 1) return "row_start has " + std::to_string(s.row_start.size()) + " entries, not N + 1";
@@ -61,9 +63,10 @@ std::string bad_rows(const HostState& s) {
   if (!s.owner.empty() && s.owner.size() != c) return "owner has " + std::to_string(s.owner.size()) + " entries, not C";
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t k = s.row_start[i]; k < s.row_start[i + 1]; ++k) {
-      if (s.partner[k] <= i)
-        return at("partner", k) + " = " + std::to_string(s.partner[k]) + " in the row of particle " + std::to_string(i) +
-               ": a row holds partners after its owner";
+      uint32_t j = s.partner[k];
+      if (j == i || (j < i && !(s.pos[j].w > s.pos[i].w)))
+        return at("partner", k) + " = " + std::to_string(j) + " in the row of particle " + std::to_string(i) +
+               ": a row holds partners after its owner, or larger ones";
       if (k > s.row_start[i] && s.partner[k] <= s.partner[k - 1])
         return at("partner", k) + " = " + std::to_string(s.partner[k]) + " after " + at("partner", k - 1) + " = " +
                std::to_string(s.partner[k - 1]) + ": the row of particle " + std::to_string(i) + " is not in ascending order";
