@@ -257,20 +257,42 @@ void print_progress(const CampaignPlan& plan, const LoopDecision& d) {
 }
 
 
+// A verification can check the surrogate before the budget only when its runs can train it:
+// each calibrating rig is verified (a box calibrated and a cylinder verified is a check of the
+// transfer, made once, at the end) and each run packs its own seed.
+bool verifies_surrogate(const CampaignPlan& plan) {
+  if (!plan.adaptive.seed_per_run) return false;
+  const std::vector<int> verified = plan.rigs_of(plan.verified_responses());
+  for (int rig : plan.rigs_of(plan.calibration_responses()))
+    if (std::find(verified.begin(), verified.end(), rig) == verified.end()) return false;
+  return true;
+}
+
+// True when a campaign with a smaller budget ended at this loop length and verified its choice
+// (the same point: each decision depends only on the runs before it). A raised budget resumes
+// past it, and its runs, already paid for, count as a round like any other.
+bool verified_before(const CampaignPlan& plan, const RunSource& source, const LoopDecision& d, int count, int round) {
+  const std::vector<RunSpec> runs = adaptive_verification_runs(plan, to_actual(plan, d.chosen), count, round);
+  const std::vector<int> rigs = plan.rigs_of(plan.verified_responses());
+  return !runs.empty() && !rigs.empty() && source.find(rig_run_id(plan, runs.front().id, rigs.front())) != nullptr;
+}
+
 // Verifies the surrogate's choice mid-loop: true when confirmed; otherwise the round is kept
 // (its runs then train the surrogate).
 bool verify_mid_loop(const CampaignPlan& plan, RunSource& source, const LoopDecision& d, const std::vector<Observations>& obs,
                      const std::vector<NoiseEstimate>& noise, int count, bool quiet, AdaptiveOutcome& out) {
   VerificationRound round;
   round.loop_runs = count;
+  round.budget_end = !d.met;
   round.runs = adaptive_verification_runs(plan, to_actual(plan, d.chosen), count, int(out.rounds.size()));
   CalibrationResult res = loop_result(plan, d, obs, noise, count);
   verify_result(plan, source, round.runs, res);
   if (res.target_reached) return true;
   round.checks = res.checks;
   if (!quiet)
-    std::fprintf(stderr, "loop: the verification after loop run %d did not confirm the surrogate (%s); its runs join the surrogate's data\n",
-                 count, res.checks.empty() ? "nothing verified" : agreement_name(res.checks.front().agreement));
+    std::fprintf(stderr, "loop: the verification after loop run %d%s did not confirm the surrogate (%s); its runs join the surrogate's data\n",
+                 count, round.budget_end ? " (where a smaller budget ended)" : "",
+                 res.checks.empty() ? "nothing verified" : agreement_name(res.checks.front().agreement));
   out.rounds.push_back(round);
   return false;
 }
@@ -305,9 +327,10 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool q
     const int count = int(points.size());
     if (d.met && out.simulations_to_target < 0) out.simulations_to_target = count;
     if (count >= plan.adaptive.budget) break;
-    // With one seed for all, a verification at the same point would repeat the loop's own runs.
-    if (d.met && !plan.adaptive.seed_per_run) break;
-    if (d.met) {
+    // With one seed for all, a verification at the same point would repeat the loop's own runs;
+    // on another rig it cannot train the surrogate: the loop ends where the surrogate is sure.
+    if (d.met && !verifies_surrogate(plan)) break;
+    if (verifies_surrogate(plan) && (d.met || verified_before(plan, source, d, count, int(out.rounds.size())))) {
       if (verify_mid_loop(plan, source, d, obs, noise, count, quiet, out)) break;
       train();
     }

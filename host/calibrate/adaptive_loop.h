@@ -33,6 +33,7 @@ struct VerificationRound {
   int loop_runs = 0;                 // the loop's length when it ran (its ids: verify-NNN-rK)
   std::vector<RunSpec> runs;         // rig 0's ids, at the point the surrogate chose then
   std::vector<ResponseCheck> checks; // why the loop went on
+  bool budget_end = false;           // a smaller budget ended here (resumed past), not the tolerance met
 };
 
 struct AdaptiveOutcome {

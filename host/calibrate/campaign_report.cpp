@@ -176,8 +176,12 @@ void loop_section(std::ostringstream& md, const CampaignPlan& plan, const Calibr
     runs_table(md, plan, loop.pilot);
   }
   for (const auto& round : loop.rounds) {
-    md << "\nThe surrogate met the tolerance after loop run " << round.loop_runs
-       << " and the verification there did not confirm it, so its runs joined the surrogate's data and the loop went on:\n\n";
+    if (round.budget_end)
+      md << "\nAn earlier, smaller budget ended after loop run " << round.loop_runs
+         << " and its verification did not confirm the choice; the raised budget went on with its runs in the surrogate's data:\n\n";
+    else
+      md << "\nThe surrogate met the tolerance after loop run " << round.loop_runs
+         << " and the verification there did not confirm it, so its runs joined the surrogate's data and the loop went on:\n\n";
     for (const auto& c : round.checks) md << "- " << check_text(plan, c) << "\n";
     if (!round.checks.empty()) {
       md << "\n";
@@ -278,7 +282,9 @@ nlohmann::ordered_json summary_json(const CampaignRecord& rec) {
     j["pilot_runs"] = int(rec.loop->pilot.size());
     nlohmann::ordered_json rounds = nlohmann::ordered_json::array();
     for (const auto& round : rec.loop->rounds) {
-      nlohmann::ordered_json r{{"after_loop_run", round.loop_runs}, {"checks", nlohmann::ordered_json::array()}};
+      nlohmann::ordered_json r{{"after_loop_run", round.loop_runs},
+                               {"why", round.budget_end ? "an earlier budget ended here" : "the surrogate met the tolerance"},
+                               {"checks", nlohmann::ordered_json::array()}};
       for (const auto& c : round.checks) r["checks"].push_back(check_json(plan, c));
       rounds.push_back(r);
     }

@@ -232,3 +232,40 @@ TEST_CASE("a verification that confirms the surrogate before the budget ends the
   CHECK(loop.result.checks[0].agreement == Agreement::confirmed);
   CHECK(runs.simulated == plan.adaptive.pilot + int(loop.steps.size()) + plan.verification_runs);
 }
+
+TEST_CASE("a raised budget resumes past the last verification, and its runs train the surrogate") {
+  // At a noise sd of 4 six verification runs know their mean to 1.6, more than the tolerance
+  // (1.16): the first campaign's verification cannot confirm, and its budget of 4 leaves the
+  // surrogate unsure, so the loop did not stop there on its own.
+  auto mean = [](const Eigen::VectorXd& c, int) { return 10 + 4 * c[0]; };
+  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 4);
+  plan.verification_runs = 6;
+  test::FunctionRuns runs(plan, mean, 4.0, 5);
+  AdaptiveOutcome first = adaptive_campaign(plan, runs);
+  REQUIRE(first.rounds.empty());
+  REQUIRE(first.result.checks.size() == 1);
+  REQUIRE(first.result.checks[0].agreement != Agreement::confirmed);
+  const int after_first = runs.simulated;
+  const auto first_verification =
+      adaptive_verification_runs(plan, first.result.chosen, int(first.steps.size()), int(first.rounds.size()));
+
+  plan.adaptive.budget = 8;
+  AdaptiveOutcome resumed = adaptive_campaign(plan, runs);
+  REQUIRE(!resumed.rounds.empty());
+  const VerificationRound& round = resumed.rounds.front();
+  CHECK(round.loop_runs == 4);
+  CHECK(round.budget_end);
+  REQUIRE(round.runs.size() == first_verification.size());
+  CHECK(round.runs[0].id == first_verification[0].id);
+  CHECK(round.runs[0].x == first_verification[0].x);
+  const auto& trained = resumed.result.primary().runs;
+  CHECK(std::any_of(trained.begin(), trained.end(), [&](const RunRecord& r) { return r.spec.id == round.runs[0].id; }));
+  // Nothing ran twice: the first campaign's runs, four more loop runs, any later rounds, and
+  // the last verification with new packings.
+  int later_rounds = 0;
+  for (size_t i = 1; i < resumed.rounds.size(); ++i) later_rounds += int(resumed.rounds[i].runs.size());
+  CHECK(int(resumed.steps.size()) == 8);
+  CHECK(runs.simulated == after_first + 4 + later_rounds + plan.verification_runs);
+  const auto last = adaptive_verification_runs(plan, resumed.result.chosen, 8, int(resumed.rounds.size()));
+  CHECK(last[0].seed != first_verification[0].seed);
+}
