@@ -309,6 +309,7 @@ Figure write_convergence_figure(const CampaignPlan& plan, const AdaptiveOutcome&
   r.add(0);
   r.add(100 * plan.primary().tolerance);
   r.pad(0.05);
+  r.hi += 0.3 * (r.hi - r.lo);  // room above the runs for the legend: noisy runs fill every corner
   Chart chart(860, 540, 0.5, run_axis_end(xs.size()), 0, r.hi);
   chart.horizontal(100 * plan.primary().tolerance, colours::green, 2);
   std::vector<LegendEntry> legend = {{"best run so far", colours::blue, Mark::Line}, {"tolerance", colours::green, Mark::Line},

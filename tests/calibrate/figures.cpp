@@ -110,6 +110,24 @@ TEST_CASE("the loop's convergence shows every run and the line between start and
   check_chart(dir + "/posterior.png", true);  // one factor: its density, a box legend
 }
 
+TEST_CASE("the convergence legend finds room when noisy runs fill every corner") {
+  // Errors alternating between 1 % and 50 %, from the first run to the last: the cylinder
+  // campaign's figure had data in all four corners and its legend covered a run.
+  Chart::keep_records();
+  const std::string dir = test::scratch_dir("figures_loop_corners");
+  CampaignPlan plan = test::function_plan(1, 10.5, 0.1, 0.01);
+  AdaptiveOutcome loop;
+  loop.initial = 3;
+  for (int i = 0; i < 14; ++i) {
+    LoopStep step;
+    step.relative_error = i % 2 ? 0.5 : -0.01;
+    loop.steps.push_back(step);
+  }
+  write_convergence_figure(plan, loop, dir);
+  check_chart(dir + "/convergence.png", true);
+  CHECK_FALSE(Chart::recorded(dir + "/convergence.png").legend_covers_data);
+}
+
 TEST_CASE("the steepest-ascent figure shows each point's mean, its runs and the chosen point") {
   Chart::keep_records();
   const std::string dir = test::scratch_dir("figures_path");
