@@ -157,10 +157,14 @@ REPOSE_CONST kFeatureFace = 0;
 REPOSE_CONST kFeatureEdge = 1;
 REPOSE_CONST kFeatureVertex = 2;
 // Two triangles of a mesh are coplanar (one flat patch) when |n1 . n2| reaches this (0.26 deg).
+// Spinning friction leaves relative spins below this (rad/s) alone (contact_law.h): its limiter
+// halves a spin each step, which would walk it into the denormal range that some GPUs flush.
 #ifdef __cplusplus
 inline constexpr float kCoplanarCos = 0.99999f;
+inline constexpr float kSpinFloor = 1e-20f;
 #else
 const float kCoplanarCos = 0.99999f;
+const float kSpinFloor = 1e-20f;
 #endif
 
 REPOSE_CONST kDefaultWorkgroup = 64;

@@ -210,7 +210,8 @@ real3 epsd_rolling_torque(real3 n, real3 w_i, real3 w_j, real radius_star, real 
 // bodies of (its touching contacts) x (1 / its moment of inertia about n) (the caller's
 // `stop_share`, 0 for a wall). Each of a body's contacts then takes at most half its share of
 // the stopping torque, so even all of them together cannot turn the spin over. Returns the
-// torque on i (j receives minus it); zero without spin.
+// torque on i (j receives minus it); zero without spin, and below kSpinFloor: the limiter's
+// halving would otherwise reach denormals, which a GPU without DenormPreserve reads as zero.
 real3 spinning_friction_torque(real3 n, real3 w_i, real3 w_j, real mu_spin, real radius_star,
                                real normal_force, real stop_share, float dt) {
   precise real3 w = w_i - w_j;
@@ -219,7 +220,7 @@ real3 spinning_friction_torque(real3 n, real3 w_i, real3 w_j, real mu_spin, real
   precise real t_stop = div_rn(abs(s), (2.0f * dt) * stop_share);
   precise real t = min(t_cap, t_stop);
   precise real k = pick(s > 0.0f, -t, t);
-  return pick(s > 0.0f || s < 0.0f, scale3(n, k), real3(0.0f));
+  return pick(abs(s) > kSpinFloor, scale3(n, k), real3(0.0f));
 }
 
 // The torques of a full contact entry (the lean gather derives the same from the stored entry):

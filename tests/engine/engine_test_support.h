@@ -6,6 +6,7 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <xmmintrin.h>
 
 #include "case/case_spec.h"
 #include "engine/backend_factory.h"
@@ -193,6 +194,26 @@ inline std::unique_ptr<Simulation> simulate(const CaseSpec& spec, const std::str
   return std::make_unique<Simulation>(build_model(spec),
                                       make_backend(backend, -1, threads, variant.workgroup), variant,
                                       batch);
+}
+
+// `spec` after `steps` steps on the CPU twin (2 threads, batches of 25) with the processor
+// flushing denormal results to zero and reading denormal inputs as zero (MXCSR FTZ and DAZ, which
+// the pool's threads inherit), as a GPU without shaderDenormPreserveFloat32 does (the NVIDIA
+// H200: docs/engineering.md, "On hardware GPUs"). The same bytes as a run without it means that
+// no denormal reaches the state.
+inline std::unique_ptr<Simulation> simulate_flushing_denormals(const CaseSpec& spec, uint64_t steps) {
+  const unsigned saved = _mm_getcsr();
+  _mm_setcsr(saved | 0x8040u);
+  std::unique_ptr<Simulation> sim;
+  try {
+    sim = simulate(spec, "cpu", 2, {}, 25);
+    sim->advance(steps);
+  } catch (...) {
+    _mm_setcsr(saved);
+    throw;
+  }
+  _mm_setcsr(saved);
+  return sim;
 }
 
 // `spec` after `steps` steps (cpu, 2 threads) with the given neighbour skin and rebuild interval:

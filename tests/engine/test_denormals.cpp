@@ -1,0 +1,38 @@
+// Denormals: a GPU without shaderDenormPreserveFloat32 (the NVIDIA H200) flushes them to zero,
+// lavapipe and the CPU twin keep them. Determinism across backends then needs that no denormal
+// reaches the state. The CPU twin run with the processor flushing them (MXCSR FTZ and DAZ) must
+// give the bytes of a run that keeps them, on each kind of case the tests already compare.
+#include <catch2/catch.hpp>
+
+#include "case/case_loader.h"
+#include "engine_test_support.h"
+
+using namespace repose;
+using namespace repose::test;
+
+namespace {
+
+void check_flushing_changes_nothing(const CaseSpec& spec, uint64_t steps, const char* what) {
+  auto kept = simulate(spec, "cpu", 2, {}, 25);
+  kept->advance(steps);
+  std::string which;
+  bool same = same_state(kept->state(), simulate_flushing_denormals(spec, steps)->state(), &which);
+  INFO(what << ": differs in " << which);
+  CHECK(same);
+}
+
+}  // namespace
+
+TEST_CASE("denormals flushed or kept: the same bytes for spheres, walls, clumps and rolling springs", "[engine][bitexact]") {
+  check_flushing_changes_nothing(seeded_cloud(300, 7, 2.3, 0.2), 1500, "a cloud with walls");
+  check_flushing_changes_nothing(clump_pile(), 1500, "a clump pile");
+  check_flushing_changes_nothing(epsd_clump_pairs(), 1500, "clumps with EPSD rolling springs");
+  check_flushing_changes_nothing(wide_skin_pile(), 1500, "a pile with a wide skin");
+}
+
+TEST_CASE("denormals flushed or kept: the same bytes for the shipped settling box and cabbage settle", "[engine][bitexact]") {
+  for (const char* name : {"settle_box.toml", "cabbage_settle.toml"}) {
+    CaseSpec spec = load_case(std::string(REPOSE_SOURCE_DIR) + "/cases/" + name);
+    check_flushing_changes_nothing(spec, 600, name);
+  }
+}
