@@ -36,6 +36,14 @@ CampaignPlan noisy_loop_plan(int factors, double measured, double measured_sd, d
   return plan;
 }
 
+// The line y = 10 + 4 c against a measured 11.6 (at c = 0.4), tolerance 10 %, six verification runs.
+double line(const Eigen::VectorXd& c, int) { return 10 + 4 * c[0]; }
+CampaignPlan line_plan(int budget) {
+  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, budget);
+  plan.verification_runs = 6;
+  return plan;
+}
+
 }  // namespace
 
 TEST_CASE("the posterior's 90 % region covers the truth in about 90 % of seeded trials") {
@@ -191,9 +199,8 @@ TEST_CASE("a surrogate sure of a wrong mean is verified before the budget, and t
   // y = 10 + 4 c, except in a notch 0.1 wide around c = 0.4 where it is 6: the start (c = 0,
   // +-0.5) and the pilot (c = 0) miss the notch, so the surrogate is sure that the measured 11.6
   // lies at c = 0.4, and its verification there reads ~6, 5.6 below: contradicted at any count.
-  auto mean = [](const Eigen::VectorXd& c, int) { return std::abs(c[0] - 0.4) < 0.05 ? 6.0 : 10 + 4 * c[0]; };
-  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 14);
-  plan.verification_runs = 6;
+  auto mean = [](const Eigen::VectorXd& c, int rig) { return std::abs(c[0] - 0.4) < 0.05 ? 6.0 : line(c, rig); };
+  CampaignPlan plan = line_plan(14);
   test::FunctionRuns runs(plan, mean, 0.5, 3);
   AdaptiveOutcome loop = adaptive_campaign(plan, runs);
   REQUIRE(!loop.rounds.empty());
@@ -221,10 +228,8 @@ TEST_CASE("a surrogate sure of a wrong mean is verified before the budget, and t
 
 TEST_CASE("a verification that confirms the surrogate before the budget ends the loop there") {
   // The same line without the notch: verified where the surrogate is sure, and confirmed.
-  auto mean = [](const Eigen::VectorXd& c, int) { return 10 + 4 * c[0]; };
-  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 14);
-  plan.verification_runs = 6;
-  test::FunctionRuns runs(plan, mean, 0.5, 3);
+  CampaignPlan plan = line_plan(14);
+  test::FunctionRuns runs(plan, line, 0.5, 3);
   AdaptiveOutcome loop = adaptive_campaign(plan, runs);
   CHECK(loop.rounds.empty());
   CHECK(int(loop.steps.size()) < plan.adaptive.budget);
@@ -237,10 +242,8 @@ TEST_CASE("a raised budget resumes past the last verification, and its runs trai
   // At a noise sd of 4 six verification runs know their mean to 1.6, more than the tolerance
   // (1.16): the first campaign's verification cannot confirm, and its budget of 4 leaves the
   // surrogate unsure, so the loop did not stop there on its own.
-  auto mean = [](const Eigen::VectorXd& c, int) { return 10 + 4 * c[0]; };
-  CampaignPlan plan = noisy_loop_plan(1, 11.6, 0.0, 0.1, 4);
-  plan.verification_runs = 6;
-  test::FunctionRuns runs(plan, mean, 4.0, 5);
+  CampaignPlan plan = line_plan(4);
+  test::FunctionRuns runs(plan, line, 4.0, 5);
   AdaptiveOutcome first = adaptive_campaign(plan, runs);
   REQUIRE(first.rounds.empty());
   REQUIRE(first.result.checks.size() == 1);
