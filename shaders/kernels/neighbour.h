@@ -259,10 +259,14 @@ uint first_partner_id(uint i) {
 }
 
 // The first place in bucket [begin, end) (sorted by id) holding an id >= lowest: a binary search,
-// so a walk skips the ids it would reject (half of them; in a clump, its own sub-spheres).
+// so a walk skips the ids it would reject (half of them; in a clump, its own sub-spheres). The
+// bucket's two ends first, two loads independent of each other: they settle a bucket of one or
+// two spheres (most of a bed's) without the search's chain of loads.
 uint first_slot_from(uint begin, uint end, uint lowest) {
-  uint lo = begin;
-  uint hi = end;
+  if (begin == end || global_id(B_sorted[end - 1u]) < lowest) return end;
+  if (global_id(B_sorted[begin]) >= lowest) return begin;
+  uint lo = begin + 1u;  // begin's id is below lowest, end - 1's is not
+  uint hi = end - 1u;
   while (lo < hi) {
     uint mid = lo + (hi - lo) / 2u;
     if (global_id(B_sorted[mid]) < lowest) lo = mid + 1u;
