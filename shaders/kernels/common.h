@@ -16,8 +16,11 @@ int cell_coord(float x, float inv_cell) {
   return int(max(-1048576.0f, min(1048576.0f, c)));
 }
 
+// A row of cells along x takes consecutive buckets (its start hashed from y and z), so a walk's
+// three cells along x, and the next sphere's, share cache lines in the bucket starts and the
+// sorted slots (the walk's loads were its cost; a hash of all three coordinates scattered them).
 uint cell_hash(int cx, int cy, int cz, uint table_size) {
-  uint h = uint(cx) * 73856093u ^ uint(cy) * 19349663u ^ uint(cz) * 83492791u;
+  uint h = uint(cx) + (uint(cy) * 19349663u ^ uint(cz) * 83492791u);
   return h & (table_size - 1u);
 }
 
