@@ -243,7 +243,7 @@ struct SubSphere {
 struct BodyPart {
   vec4 local;  // xyz centre in the body frame, w radius of a sphere about it holding its sub-spheres
   uvec4 info;  // x body index, y the body's parts, z the body's bounding radius about its centre
-               // of mass (float bits), w unused
+               // of mass (float bits); w the walls its sphere may meet (part_near, each rebuild)
   vec4 world;  // part_place: xyz the centre where the body is now, w the radius
   uint near_count;             // part_near: parts of other bodies whose spheres meet this one's,
   uint near[kPartNearSlots];   // the first of them by index (more than kPartNearSlots: none kept)

@@ -72,7 +72,7 @@ void k_clear_buckets(uint b) {
 // rebuild each part lists the parts of other bodies its sphere meets, widened by the skin
 // (part_near: a body's own bounding sphere first, then its parts), and a sub-sphere walks the grid
 // only when it meets one of its part's listed spheres (sub_may_pair; else it is in no bucket
-// either, and its walls are still tested). A long body's bounding sphere (a 10 x 80 mm stalk's is
+// either), and tests only the walls its part's sphere may meet (part_walls). A long body's bounding sphere (a 10 x 80 mm stalk's is
 // 40 mm for 1 mm spheres) meets every neighbour's in a heap; its parts' (5-6 mm) meet a few, and
 // a sub-sphere on the far side of its body meets none. The same list as without it: only pairs
 // that near_pair would reject are skipped. Each body tests every other one, so the host enables it
@@ -101,7 +101,43 @@ void k_part_place(uint p) {
   B_parts[p].world = vec4(c, local.w);
 }
 
-// Lists, for each part of body b, the parts of other bodies it may meet, by index. Bodies whose
+// False only when no sphere inside (c, radius) can come within `margin` of wall ws as
+// wall_contact sees it: from a plane, a triangle or a rectangle (up to 2 margins beyond its edge)
+// farther than radius + 2 margins; from a cylinder's surface radially or beyond its ends. With a
+// slack for the float roundings of the placed positions, as spheres_may_meet.
+bool part_may_meet_wall(WallState ws, vec3 c, float radius, float margin) {
+  precise vec3 rel = c - xyz(ws.p0);
+  vec3 dir = xyz(ws.p1);
+  precise float size = (coordinate_size(c) + coordinate_size(xyz(ws.p0))) + radius;
+  precise float reach = (radius + 2.0f * margin) + 1e-4f * size;
+  uint type = ws.info.x;
+  if (type == kWallPlane) return abs(dot3(rel, dir)) < reach;
+  if (type == kWallRectangle) {
+    precise float h = dot3(rel, dir);
+    precise float du = max(abs(dot3(rel, xyz(ws.p2))) - ws.p2.w, 0.0f);
+    precise float dv = max(abs(dot3(rel, xyz(ws.p3))) - ws.p3.w, 0.0f);
+    return (h * h + du * du) + dv * dv < reach * reach;
+  }
+  if (type == kWallTriangle) {
+    uint feature = kFeatureFace;
+    precise vec3 d = c - closest_on_triangle(c, xyz(ws.p0), xyz(ws.p1), xyz(ws.p2), feature);
+    return dot3(d, d) < reach * reach;
+  }
+  precise float s = dot3(rel, dir);  // a cylinder: its axis from p0 along dir for vel.w
+  if (s < -reach || s > ws.vel.w + reach) return false;
+  precise float d = length3(rel - scale3(dir, s));
+  return d > ws.p1.w - reach && d < ws.p1.w + reach;
+}
+
+// The walls (bit w of the first 32) sub-sphere i's part may meet, as part_near found them at
+// this rebuild; every wall without the body broad phase.
+uint part_walls(uint i) {
+  if ((PC.flags & kFlagBodyBroadPhase) == 0u) return 0xffffffffu;
+  return B_parts[B_subs[i].info.z].info.w;
+}
+
+// Lists, for each part of body b, the parts of other bodies it may meet, by index, and the walls
+// (of the first 32) its sphere may meet (info.w). Bodies whose
 // bounding spheres miss b's are skipped whole: no sub-sphere of b can pair with theirs (a part's
 // sphere may reach beyond its body's, but its sub-spheres do not). A body's parts are consecutive,
 // so the walk over parts steps a body at a time.
@@ -109,7 +145,14 @@ void k_part_near(uint b) {
   if (b >= PC.n_bodies) return;
   uint first = B_subs[slot_of(B_bodies[b].spheres.x)].info.y;
   uint end = first + B_parts[first].info.y;
-  for (uint p = first; p < end; ++p) B_parts[p].near_count = 0u;
+  for (uint p = first; p < end; ++p) {
+    B_parts[p].near_count = 0u;
+    vec4 cp = B_parts[p].world;
+    uint walls = 0u;
+    for (uint w = 0u; w < min(PC.n_walls, 32u); ++w)
+      if (part_may_meet_wall(B_walls[PC.wall_slot * PC.n_walls + w], xyz(cp), cp.w, PC.skin)) walls = walls | (1u << w);
+    B_parts[p].info.w = walls;
+  }
   vec3 cb = xyz(B_bodies[b].pos);
   float rb = uintBitsToFloat(B_parts[first].info.z);
   uint q = 0u;
@@ -323,7 +366,9 @@ uint walk_neighbours(uint i, bool fill, uint base) {
     k = k + 1u;
   }
   uint n_walls = i_fixed ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
+  uint near_walls = part_walls(i);
   for (uint w = 0u; w < n_walls; ++w) {
+    if (w < 32u && (near_walls & (1u << w)) == 0u) continue;  // out of reach of i's part
     WallState ws = B_walls[PC.wall_slot * PC.n_walls + w];
     vec3 n;
     float overlap;

@@ -33,6 +33,15 @@ size_t culled_subs(Simulation& sim) {
   return culled;
 }
 
+// Parts whose sphere, at the rebuild just made, may meet fewer than all of the walls (part_near).
+size_t parts_missing_walls(Simulation& sim) {
+  const gpu::Buffers& buf = dynamic_cast<CpuBackend&>(sim.backend()).buffers();
+  const uint32_t all = (1u << sim.model().walls.size()) - 1u;
+  size_t parts = 0;
+  for (uint32_t p = 0; p < sim.model().parts.size(); ++p) parts += (buf.parts[p].info.w & all) != all;
+  return parts;
+}
+
 }  // namespace
 
 TEST_CASE("a free clump keeps its angular momentum, energy and momentum") {
@@ -292,6 +301,44 @@ TEST_CASE("clumps: the body-level broad phase changes no byte, and culls bodies 
   size_t culled = culled_subs(*first);
   CHECK(culled > 0);
   CHECK(culled < first->model().n_particles);
+  check_broad_phase_keeps_bytes(pile, 1500, 50);
+}
+
+// The pile poured into a cylinder onto a floor of two triangles, over a tilted rectangle: a
+// part tests only the walls its sphere may meet (part_may_meet_wall), and the list is the same.
+TEST_CASE("clumps: each part tests only the walls within its reach, and the list is the same") {
+  CaseSpec pile = clump_pile();
+  pile.walls.clear();
+  WallSpec cylinder;
+  cylinder.type = WallSpec::Type::Cylinder;
+  cylinder.name = "cylinder";
+  cylinder.base = {0.06, 0.06, -0.02};
+  cylinder.radius = 0.1;
+  cylinder.height = 0.4;
+  cylinder.material = 1;
+  WallSpec ramp;
+  ramp.type = WallSpec::Type::Rectangle;
+  ramp.name = "ramp";
+  ramp.point = {0.1, 0.06, 0.02};
+  ramp.normal = {-0.3, 0, 0.954};
+  ramp.edge_axis = {0.954, 0, 0.3};
+  ramp.size = {0.08, 0.1};
+  ramp.material = 1;
+  WallSpec floor;
+  floor.type = WallSpec::Type::Mesh;
+  floor.name = "floor";
+  auto mesh = std::make_shared<WallMesh>();
+  mesh->vertices = {{-0.1, -0.1, -0.012}, {0.3, -0.1, -0.012}, {0.3, 0.3, -0.012}, {-0.1, 0.3, -0.012}};
+  mesh->triangles = {{0, 1, 2}, {0, 2, 3}};
+  floor.mesh = mesh;
+  floor.material = 1;
+  pile.walls = {cylinder, ramp, floor};
+  pile.neighbour.body_broad_phase = true;
+  auto sim = broad_phase_run(build_model(pile), "cpu");
+  sim->advance(600);
+  size_t parts = parts_missing_walls(*sim);
+  INFO(parts << " of " << sim->model().parts.size() << " parts test fewer than all walls");
+  CHECK(parts > sim->model().parts.size() / 2);
   check_broad_phase_keeps_bytes(pile, 1500, 50);
 }
 
