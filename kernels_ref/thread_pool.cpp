@@ -13,8 +13,13 @@ namespace repose {
 // of a step, shorter than the time between batches.
 static constexpr int kSpinBeforeSleep = 20000;
 
-ThreadPool::ThreadPool(unsigned threads) {
+// Chunks per thread's range: enough that a delayed thread leaves little behind, few enough that
+// the lanes kernels' partial batches at chunk ends stay rare.
+static constexpr unsigned kChunksPerThread = 4;
+
+ThreadPool::ThreadPool(unsigned threads) : next_chunk_(threads == 0 ? 1 : threads) {
   if (threads == 0) threads = 1;
+  for (auto& c : next_chunk_) c.store(0);
   for (unsigned t = 1; t < threads; ++t) workers_.emplace_back([this, t] { worker_loop(t); });
 }
 
@@ -28,11 +33,31 @@ ThreadPool::~ThreadPool() {
   for (auto& w : workers_) w.join();
 }
 
-static void run_share(const std::function<void(uint64_t, uint64_t)>& body, uint64_t n,
-                      unsigned index, unsigned parts) {
-  uint64_t begin = n * index / parts;
-  uint64_t end = n * (index + 1) / parts;
-  if (begin < end) body(begin, end);
+// Claims and runs the next unstarted chunk of thread `owner`'s range for this generation's job;
+// false when none is left (or the job is no longer this generation's).
+bool ThreadPool::run_chunk_of(unsigned owner, uint64_t generation) {
+  std::atomic<uint64_t>& next = next_chunk_[owner];
+  uint64_t c = next.load(std::memory_order_acquire);
+  for (;;) {
+    if ((c >> 32) != (generation & 0xffffffffu) || (c & 0xffffffffu) >= kChunksPerThread) return false;
+    if (next.compare_exchange_weak(c, c + 1, std::memory_order_acq_rel, std::memory_order_acquire)) break;
+  }
+  // Claimed: the caller waits for this chunk, so the job cannot change under it.
+  const uint64_t n = job_size_, parts = size(), k = c & 0xffffffffu;
+  const uint64_t begin = n * owner / parts, end = n * (owner + 1) / parts;
+  const uint64_t from = begin + (end - begin) * k / kChunksPerThread, to = begin + (end - begin) * (k + 1) / kChunksPerThread;
+  if (from < to) (*job_)(from, to);
+  chunks_done_.fetch_add(1, std::memory_order_acq_rel);
+  return true;
+}
+
+// A thread's own chunks in order, then those the others have not started.
+void ThreadPool::run_chunks(unsigned index, uint64_t generation) {
+  while (run_chunk_of(index, generation)) {
+  }
+  for (unsigned d = 1; d < size(); ++d)
+    while (run_chunk_of((index + d) % size(), generation)) {
+    }
 }
 
 void ThreadPool::parallel_for(uint64_t n, const std::function<void(uint64_t, uint64_t)>& body) {
@@ -44,16 +69,19 @@ void ThreadPool::parallel_for(uint64_t n, const std::function<void(uint64_t, uin
   }
   job_ = &body;
   job_size_ = n;
-  pending_.store(static_cast<unsigned>(workers_.size()), std::memory_order_relaxed);
+  chunks_done_.store(0, std::memory_order_relaxed);
+  const uint64_t g = generation_.load(std::memory_order_relaxed) + 1;
+  for (auto& c : next_chunk_) c.store((g & 0xffffffffu) << 32, std::memory_order_relaxed);
   {
-    // The release publishes job_ to workers that acquire the new generation; the lock orders it
+    // The release publishes the job to workers that acquire the new generation; the lock orders it
     // against a worker that is about to sleep.
     std::lock_guard<std::mutex> lock(mutex_);
-    generation_.fetch_add(1, std::memory_order_release);
+    generation_.store(g, std::memory_order_release);
     if (sleepers_ > 0) wake_.notify_all();
   }
-  run_share(body, n, 0, size());
-  for (int spins = 0; pending_.load(std::memory_order_acquire) != 0; ++spins) {
+  run_chunks(0, g);
+  const unsigned total = size() * kChunksPerThread;
+  for (int spins = 0; chunks_done_.load(std::memory_order_acquire) != total; ++spins) {
     if (spins < kSpinBeforeSleep) REPOSE_PAUSE();
     else std::this_thread::yield();
   }
@@ -77,8 +105,7 @@ void ThreadPool::worker_loop(unsigned index) {
     }
     if (stopping_.load()) return;
     seen = g;
-    run_share(*job_, job_size_, index, size());
-    pending_.fetch_sub(1, std::memory_order_acq_rel);
+    run_chunks(index, g);
   }
 }
 

@@ -1,6 +1,8 @@
-// A fixed pool of worker threads for the CPU twin: parallel_for splits [0, n) into one
-// contiguous range per thread. Results never depend on the split (kernels only race on integer
-// counters), so any thread count gives the same bytes.
+// A fixed pool of worker threads for the CPU twin: parallel_for gives each thread one contiguous
+// range of [0, n), cut into a few chunks; a thread that finishes its own takes the chunks another
+// has not started, so a thread the system has set aside (a busy shared machine) delays a kernel
+// by one chunk, not by its whole share. Results never depend on the split (kernels only race on
+// integer counters), so any thread count gives the same bytes.
 // A step runs a handful of short kernels (a 10k-sphere kick is ~0.1 ms), so a worker spins for a
 // while on the job counter before it sleeps on the condition variable: waking a sleeping thread
 // costs tens of microseconds, more on a loaded machine.
@@ -28,13 +30,18 @@ class ThreadPool {
 
  private:
   void worker_loop(unsigned index);
+  void run_chunks(unsigned index, uint64_t generation);
+  bool run_chunk_of(unsigned owner, uint64_t generation);
   std::vector<std::thread> workers_;
   std::mutex mutex_;
   std::condition_variable wake_;
   const std::function<void(uint64_t, uint64_t)>* job_ = nullptr;
   uint64_t job_size_ = 0;
   std::atomic<uint64_t> generation_{0};  // one more per job; workers spin on it, then sleep
-  std::atomic<unsigned> pending_{0};     // workers still running the current job
+  // Per thread: the job's generation (high 32 bits) and the next of its chunks to start; a chunk
+  // is claimed by a compare-and-swap, so a thread still holding an earlier generation claims none.
+  std::vector<std::atomic<uint64_t>> next_chunk_;
+  std::atomic<unsigned> chunks_done_{0};
   unsigned sleepers_ = 0;                // guarded by mutex_
   std::atomic<bool> stopping_{false};
 };
