@@ -222,9 +222,9 @@ std::string surrogate_text(const CampaignPlan& plan, const LoopDecision& d, cons
   return text.str();
 }
 
-// The calibration the loop's last decision gives.
-CalibrationResult loop_result(const CampaignPlan& plan, const LoopDecision& d, const std::vector<Observations>& obs,
-                              const std::vector<NoiseEstimate>& noise, int count) {
+// The surrogates at the loop's choice, with the replicates' noise: what a verification weighs.
+CalibrationResult loop_models(const LoopDecision& d, const std::vector<Observations>& obs,
+                              const std::vector<NoiseEstimate>& noise) {
   CalibrationResult res;
   res.method = "adaptive (Gaussian process + expected improvement)";
   res.chosen_coded = d.chosen;
@@ -237,6 +237,13 @@ CalibrationResult loop_result(const CampaignPlan& plan, const LoopDecision& d, c
     m.predicted_sd = m.predict_sd(d.chosen);
   }
   res.model_on_target = d.met;
+  return res;
+}
+
+// The calibration the loop's last decision gives: the surrogates, the parameters and the posterior.
+CalibrationResult loop_result(const CampaignPlan& plan, const LoopDecision& d, const std::vector<Observations>& obs,
+                              const std::vector<NoiseEstimate>& noise, int count) {
+  CalibrationResult res = loop_models(d, obs, noise);
   describe_parameters(plan, res);
   add_posterior(plan, res);
   res.model_text = surrogate_text(plan, d, res, count);
@@ -285,7 +292,7 @@ bool verify_mid_loop(const CampaignPlan& plan, RunSource& source, const LoopDeci
   round.loop_runs = count;
   round.budget_end = !d.met;
   round.runs = adaptive_verification_runs(plan, to_actual(plan, d.chosen), count, int(out.rounds.size()));
-  CalibrationResult res = loop_result(plan, d, obs, noise, count);
+  CalibrationResult res = loop_models(d, obs, noise);  // no posterior: only the verdict is kept
   verify_result(plan, source, round.runs, res);
   if (res.target_reached) return true;
   round.checks = res.checks;
@@ -322,6 +329,7 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool q
     observe_all(plan, source, training, obs, noise);
     d = decide(plan, obs, plan.adaptive.seed_per_run ? noise : std::vector<NoiseEstimate>(noise.size()));
   };
+  const bool verifies = verifies_surrogate(plan);
   for (;;) {
     train();
     const int count = int(points.size());
@@ -329,8 +337,8 @@ AdaptiveOutcome run_adaptive(const CampaignPlan& plan, RunSource& source, bool q
     if (count >= plan.adaptive.budget) break;
     // With one seed for all, a verification at the same point would repeat the loop's own runs;
     // on another rig it cannot train the surrogate: the loop ends where the surrogate is sure.
-    if (d.met && !verifies_surrogate(plan)) break;
-    if (verifies_surrogate(plan) && (d.met || verified_before(plan, source, d, count, int(out.rounds.size())))) {
+    if (d.met && !verifies) break;
+    if (verifies && (d.met || verified_before(plan, source, d, count, int(out.rounds.size())))) {
       if (verify_mid_loop(plan, source, d, obs, noise, count, quiet, out)) break;
       train();
     }

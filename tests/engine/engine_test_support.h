@@ -202,17 +202,13 @@ inline std::unique_ptr<Simulation> simulate(const CaseSpec& spec, const std::str
 // H200: docs/engineering.md, "On hardware GPUs"). The same bytes as a run without it means that
 // no denormal reaches the state.
 inline std::unique_ptr<Simulation> simulate_flushing_denormals(const CaseSpec& spec, uint64_t steps) {
-  const unsigned saved = _mm_getcsr();
-  _mm_setcsr(saved | 0x8040u);
-  std::unique_ptr<Simulation> sim;
-  try {
-    sim = simulate(spec, "cpu", 2, {}, 25);
-    sim->advance(steps);
-  } catch (...) {
-    _mm_setcsr(saved);
-    throw;
-  }
-  _mm_setcsr(saved);
+  struct FlushDenormals {  // FTZ and DAZ while in scope, then the processor's mode as it was
+    unsigned saved = _mm_getcsr();
+    FlushDenormals() { _mm_setcsr(saved | 0x8040u); }
+    ~FlushDenormals() { _mm_setcsr(saved); }
+  } flushing;
+  auto sim = simulate(spec, "cpu", 2, {}, 25);
+  sim->advance(steps);
   return sim;
 }
 
