@@ -318,6 +318,29 @@ uint first_slot_from(uint begin, uint end, uint lowest) {
   return lo;
 }
 
+// The spheres of sorted slots [begin, end) that sit in cells (x0 .. x1, c.y, c.z) and are
+// candidates of i: ids from `lowest`, within the skin. A row of three cells takes consecutive
+// buckets (cell_hash), so one run of slots holds it, in the order a cell-by-cell walk would meet
+// them (each bucket sorted by id); a sphere of another cell that shares a bucket (a hash
+// collision) is left out by its cell. Returns the candidates counted, from k.
+uint walk_cells(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
+                uint base, uint k, uint old_begin, uint old_end) {
+  for (uint s = begin; s < end; ++s) {
+    uint j = B_sorted[s];
+    if (global_id(j) < lowest) continue;  // a lower id owns the pair (or j is in i's clump)
+    if (i_fixed && is_fixed(j)) continue;
+    vec4 pj = B_pos[j];
+    // The distance first: it rejects most of the spheres in 27 cells, and costs less than the
+    // cell's three floors (the same pairs pass both tests in either order).
+    if (!near_pair(pi, pj, PC.skin)) continue;
+    ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
+    if (cj.y != c.y || cj.z != c.z || cj.x < x0 || cj.x > x1) continue;  // a hash collision
+    emit_candidate(fill, base, k, i, j, old_begin, old_end);
+    k = k + 1u;
+  }
+  return k;
+}
+
 // Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
 // then the walls. With `fill`, writes partners, owners and carried histories from `base`;
 // returns the number of candidates.
@@ -337,22 +360,18 @@ uint walk_neighbours(uint i, bool fill, uint base) {
   bool pairs = sub_may_pair(i);
   for (int dz = (large || !pairs) ? 2 : -1; dz <= 1; ++dz) {
     for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        ivec3 cc = ivec3(ci.x + dx, ci.y + dy, ci.z + dz);
-        uint h = cell_hash(cc.x, cc.y, cc.z, PC.table_size);
+      ivec3 row = ivec3(ci.x, ci.y + dy, ci.z + dz);
+      uint h0 = cell_hash(ci.x - 1, row.y, row.z, PC.table_size);
+      if (h0 + 2u < PC.table_size) {  // the row's three cells: buckets h0 .. h0 + 2, one run of slots
+        k = walk_cells(i, pi, ci.x - 1, ci.x + 1, row, B_cell_start[h0], B_cell_start[h0 + 3u], lowest, i_fixed, fill,
+                       base, k, old_begin, old_end);
+        continue;
+      }
+      for (int x = ci.x - 1; x <= ci.x + 1; ++x) {  // the row wraps around the table's end: cell by cell
+        uint h = cell_hash(x, row.y, row.z, PC.table_size);
         uint end = B_cell_start[h + 1u];
-        for (uint s = first_slot_from(B_cell_start[h], end, lowest); s < end; ++s) {
-          uint j = B_sorted[s];
-          if (i_fixed && is_fixed(j)) continue;  // lower ids and i's own clump are skipped above
-          vec4 pj = B_pos[j];
-          // The distance first: it rejects most of the spheres in 27 cells, and costs less than
-          // the cell's three floors (the same pairs pass both tests in either order).
-          if (!near_pair(pi, pj, PC.skin)) continue;
-          ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
-          if (cj.x != cc.x || cj.y != cc.y || cj.z != cc.z) continue;  // a hash collision
-          emit_candidate(fill, base, k, i, j, old_begin, old_end);
-          k = k + 1u;
-        }
+        k = walk_cells(i, pi, x, x, row, first_slot_from(B_cell_start[h], end, lowest), end, lowest, i_fixed, fill, base,
+                       k, old_begin, old_end);
       }
     }
   }
