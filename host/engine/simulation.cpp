@@ -86,11 +86,11 @@ void Simulation::upload() {
 }
 
 void Simulation::download() const {
+  std::vector<gpu::vec4>().swap(positions_);  // state_.pos holds them from now on
+  positions_current_ = false;
   backend_->download_state(state_);
   state_in_slots_ = !stored_by_id_;
   unread_batches_.clear();
-  positions_current_ = false;
-  std::vector<gpu::vec4>().swap(positions_);  // state_.pos holds them now
 }
 
 const HostState& Simulation::state() const {
@@ -137,10 +137,10 @@ void Simulation::grow(uint32_t needed) {
   allocate(std::max(layout_.capacity, grown_capacity(needed)));
 }
 
-// After grow() in an overflow: the device back at the failed batch's start. state_ is the state
-// before the batches nobody read (none downloaded them, a state's worth per batch); they run again
-// on the larger list. Each ran without overflow on the smaller one, so each does again, to the
-// same bytes (a list's capacity never changes the results). A run read at every frame or reorder
+// After grow() in an overflow: the device back at the failed batch's start. state_, uploaded by
+// grow(), is the state before the batches nobody read (none was downloaded); they run again on
+// the larger list. Each ran without overflow on the smaller one, so each does again, to the same
+// bytes (a list's capacity never changes the results). A run read at every frame or reorder
 // replays at most the batches since then; overflows are rare (the list grows by a quarter).
 void Simulation::replay_unread(std::vector<uint32_t> batches) {
   uint64_t first = step_;
