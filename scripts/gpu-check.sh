@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Everything we want to know the first time Repose meets a hardware GPU, in one report:
 # the devices and their limits, the bit-exact twin tests run on the GPU (every kernel against the
-# CPU twin, whole runs byte-compared with the cpu backend), the particle order (the order tests on
-# the GPU, a run in the case's order against the cpu backend's cell order, and `repose bench` in
-# both orders), and `repose bench` at 1e5, 1e6 and 1e7 spheres on the GPU beside the cpu backend
-# on every core.
+# CPU twin, whole runs byte-compared with the cpu backend), the particle order (the order and
+# lazy download tests on the GPU, a run in the case's order against the cpu backend's cell
+# order, and `repose bench` in both orders), and `repose bench` at 1e5, 1e6 and 1e7 spheres on
+# the GPU beside the cpu backend on every core.
 # Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
@@ -84,8 +84,9 @@ if [ $quick = 0 ]; then
   TAIL=60 step "bit-exact tests on the GPU" 300 "$bin/test_engine" "[bitexact]" -d yes
   TAIL=30 step "clump and fixed-particle twin tests on the GPU" 200 "$bin/test_engine" "*lavapipe*" "~repose devices lists lavapipe" -d yes
 fi
-# The particle order: scrambled, rescrambled and cell orders against the case's order on the GPU.
-TAIL=30 step "particle order tests on the GPU" 300 "$bin/test_engine" "[order]" -d yes
+# The particle order: scrambled, rescrambled and cell orders against the case's order on the GPU;
+# runs whose state is read after every batch, by positions alone or at the end, the same bytes.
+TAIL=30 step "particle order and lazy download tests on the GPU" 300 "$bin/test_engine" "[order],[lazy]" -d yes
 cmp_runs() {  # a case on the GPU (in the variant $3, else its default) and on the cpu backend: the same state bytes?
   local name=$1 steps=$2 variant=${3:-}
   "$bin/repose" run "cases/$name.toml" --backend vulkan --steps "$steps" --quiet --overwrite \

@@ -80,7 +80,15 @@ class Backend {
   // Replaces the constants of the current buffers (a new particle order); the rest is kept.
   virtual void upload_constants(const ConstantData& constants) = 0;
   virtual void upload_state(const HostState& s) = 0;
-  virtual void download_state(HostState& s) = 0;
+  // The whole state into s (its used part). Simulation calls it only when something reads the
+  // state; state_downloads() counts the calls, so tests can tell a batch nobody read from one read.
+  void download_state(HostState& s) {
+    ++state_downloads_;
+    read_state(s);
+  }
+  uint64_t state_downloads() const { return state_downloads_; }
+  // The positions alone (pos, 16 B per particle, in the device's slots): what an escape check reads.
+  virtual void download_positions(std::vector<gpu::vec4>& pos) = 0;
   // layout.batch_steps * n_walls states, step-major.
   virtual void upload_walls(const std::vector<gpu::WallState>& walls) = 0;
   // Runs the dispatches in order, each seeing the previous one's writes, and waits.
@@ -95,6 +103,12 @@ class Backend {
   virtual std::vector<gpu::vec4> contact_forces(uint32_t contacts) = 0;
   // Bytes of device (or, for the CPU twin, host) memory held by the simulation buffers.
   virtual size_t memory_bytes() const = 0;
+
+ protected:
+  virtual void read_state(HostState& s) = 0;
+
+ private:
+  uint64_t state_downloads_ = 0;
 };
 
 }  // namespace repose

@@ -73,7 +73,11 @@ void CpuBackend::upload_state(const HostState& s) {
   for_each_kept(s, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
 }
 
-void CpuBackend::download_state(HostState& s) {
+void CpuBackend::download_positions(std::vector<gpu::vec4>& pos) {
+  pos.assign(buf_.pos, buf_.pos + layout_.n_particles);
+}
+
+void CpuBackend::read_state(HostState& s) {
   for_each_kept(s, [&](const BufferSpec& b, auto& v) {
     using T = typename std::decay_t<decltype(v)>::value_type;
     const T* data = reinterpret_cast<const T*>(storage_[b.binding].data());

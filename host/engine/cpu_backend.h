@@ -20,7 +20,7 @@ class CpuBackend : public Backend {
   void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
-  void download_state(HostState& s) override;
+  void download_positions(std::vector<gpu::vec4>& pos) override;
   void upload_walls(const std::vector<gpu::WallState>& walls) override;
   void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
   std::vector<uint32_t> read_control() override;
@@ -30,6 +30,10 @@ class CpuBackend : public Backend {
   size_t memory_bytes() const override;
   // Binding b's array (kernel tests compare raw buffers with the Vulkan backend).
   const gpu::Buffers& buffers() const { return buf_; }
+
+
+ protected:
+  void read_state(HostState& s) override;
 
  private:
   void point_buffers();

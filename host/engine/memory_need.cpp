@@ -46,7 +46,8 @@ size_t order_bytes(const Layout& l) {
          largest;
 }
 
-// The host's copies: Simulation's state, the particle order, the constants while they are
+// The host's copies: Simulation's state, the positions alone (what `repose run`'s escape check
+// downloads between readings of the state), the particle order, the constants while they are
 // uploaded, the Model's arrays, a batch of wall rows.
 size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) {
   size_t n = m.n_particles;
@@ -55,7 +56,9 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
                  m.walls.size() * sizeof(ModelWall);
   size_t walls = size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState);
   size_t frame = frames ? size_t(kFrameBytesPerParticle * double(n)) : 0;
-  return rows_bytes(l, kept) + (reordered ? order_bytes(l) : 0) + rows_bytes(l, constant) + model + walls + frame;
+  size_t positions = n * sizeof(gpu::vec4);
+  return rows_bytes(l, kept) + positions + (reordered ? order_bytes(l) : 0) + rows_bytes(l, constant) + model + walls +
+         frame;
 }
 
 }  // namespace

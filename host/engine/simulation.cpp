@@ -60,7 +60,8 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
       if (attempt > 8) throw std::runtime_error("contact list keeps overflowing");
       grow(ctl[gpu::kCtlMaxContacts]);
     }
-    download();
+    download();  // once: a retry of the first batch starts from here
+    control_ = state_.control;
   }
   if (variant_.reorder) reordered_at_ = rebuilds();
 }
@@ -72,26 +73,42 @@ void Simulation::allocate(uint32_t capacity) {
 }
 
 // In cell order the state moves into its slots in place (no second copy of it) and stays there
-// until someone reads it: the batch that follows replaces it anyway.
+// until someone reads it: the batch that follows makes it old anyway.
 void Simulation::upload() {
   if (!stored_by_id_ && !state_in_slots_) {
     to_stored(state_, order_);
     state_in_slots_ = true;
   }
   backend_->upload_state(state_);
+  unread_batches_.clear();
+  control_ = state_.control;
+  positions_current_ = false;
 }
 
-void Simulation::download() {
+void Simulation::download() const {
+  std::vector<gpu::vec4>().swap(positions_);  // state_.pos holds them from now on
+  positions_current_ = false;
   backend_->download_state(state_);
   state_in_slots_ = !stored_by_id_;
+  unread_batches_.clear();
 }
 
 const HostState& Simulation::state() const {
+  if (!unread_batches_.empty()) download();
   if (state_in_slots_) {
     to_global(state_, order_);
     state_in_slots_ = false;
   }
   return state_;
+}
+
+const std::vector<gpu::vec4>& Simulation::positions_in_any_order() const {
+  if (unread_batches_.empty()) return state_.pos;
+  if (!positions_current_) {
+    backend_->download_positions(positions_);
+    positions_current_ = true;
+  }
+  return positions_;
 }
 
 void Simulation::store_in_order(ParticleOrder order) {
@@ -113,22 +130,40 @@ bool Simulation::reorder_due() const {
 }
 
 // A list for `needed` contacts and some to spare, uploading state_ again. After an overflow
-// state_ must still be the state before the failed attempt (its control words included: the
-// attempt's largest list, reached after contacts went missing, is no state of the run), so the
+// state_ must be a state of the run from before the failed attempt (its control words included:
+// the attempt's largest list, reached after contacts went missing, is no state of the run), so the
 // redone evaluation starts where an ample list's would.
 void Simulation::grow(uint32_t needed) {
   allocate(std::max(layout_.capacity, grown_capacity(needed)));
 }
 
-// Walls of the coming steps: velocity Verlet evaluates forces at the end of a step, symplectic
-// Euler at its start.
-void Simulation::upload_walls(uint32_t steps) {
+// After grow() in an overflow: the device back at the failed batch's start. state_, uploaded by
+// grow(), is the state before the batches nobody read (none was downloaded); they run again on
+// the larger list. Each ran without overflow on the smaller one, so each does again, to the same
+// bytes (a list's capacity never changes the results). A run read at every frame or reorder
+// replays at most the batches since then; overflows are rare (the list grows by a quarter).
+void Simulation::replay_unread(std::vector<uint32_t> batches) {
+  uint64_t first = step_;
+  for (uint32_t k : batches) first -= k;
+  for (uint32_t k : batches) {
+    upload_walls(first, k);
+    backend_->execute(batch_program(first, k), profiling_ ? &profile_.kernels : nullptr);
+    first += k;
+  }
+  unread_batches_ = std::move(batches);
+  control_ = backend_->read_control();
+  if (control_[gpu::kCtlOverflow]) throw std::logic_error("a batch run again on a larger contact list overflowed it");
+}
+
+// Walls of `steps` steps from step `first`: velocity Verlet evaluates forces at the end of a
+// step, symplectic Euler at its start.
+void Simulation::upload_walls(uint64_t first, uint32_t steps) {
   if (model_.walls.empty()) return;
   double offset = model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0;
   std::vector<gpu::WallState> w;
   w.reserve(size_t(steps) * model_.walls.size());
   for (uint32_t s = 0; s < steps; ++s) {
-    double t = (double(step_ + s) + offset) * model_.dt;
+    double t = (double(first + s) + offset) * model_.dt;
     for (size_t k = 0; k < model_.walls.size(); ++k) w.push_back(model_.wall_state(k, t));
   }
   backend_->upload_walls(w);
@@ -151,9 +186,9 @@ bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
 
 }  // namespace
 
-std::vector<Dispatch> Simulation::batch_program(uint32_t steps) const {
+std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) const {
   // A batch in which no wall moves forces no rebuilds for walls: the skin check alone suffices.
-  bool still = !walls_move_during(model_, step_, steps);
+  bool still = !walls_move_during(model_, first, steps);
   std::vector<Dispatch> program;
   for (uint32_t s = 0; s < steps; ++s) {
     auto one = step_program(model_, layout_, variant_, s, still);
@@ -218,18 +253,22 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
       reordered_at_ = rebuilds();
     }
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
-    upload_walls(k);
-    backend_->execute(batch_program(k), profiling_ ? &profile_.kernels : nullptr);
-    auto ctl = backend_->read_control();
+    upload_walls(step_, k);
+    backend_->execute(batch_program(step_, k), profiling_ ? &profile_.kernels : nullptr);
+    auto ctl = backend_->read_control();  // a few words: the state stays until someone reads it
     if (ctl[gpu::kCtlOverflow]) {
       // Redo the batch from its start with a larger list: nothing of it is kept.
       ++retries_;
+      std::vector<uint32_t> unread = std::move(unread_batches_);
       grow(ctl[gpu::kCtlMaxContacts]);
+      replay_unread(std::move(unread));
       profile_.wall_seconds += since(t0);
       continue;
     }
     uint32_t rebuilds_before = rebuilds();
-    download();
+    control_ = std::move(ctl);
+    unread_batches_.push_back(k);
+    positions_current_ = false;
     if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;

@@ -1,8 +1,9 @@
 // Drives a backend through a case: batches of steps in one submit, device-decided list
 // rebuilds, a retry with a larger contact list when one overflows (nothing of the batch is
-// kept), and the host copy of the state after each batch for output. The device stores the
-// particles in cell order (ParticleOrder), renewed between batches as they move; the host's state
-// is by global id whenever anyone reads it, so nothing outside sees the slots.
+// kept), and the host copy of the state for output, downloaded only when something reads it
+// (a few control words come back after every batch). The device stores the particles in cell
+// order (ParticleOrder), renewed between batches as they move; the host's state is by global id
+// whenever anyone reads it, so nothing outside sees the slots.
 #pragma once
 #include <functional>
 #include <memory>
@@ -59,19 +60,20 @@ class Simulation {
   void advance(uint64_t steps, const std::function<void(const Simulation&)>& on_batch = {});
 
   const Model& model() const { return model_; }
-  Model& mutable_model() { return model_; }  // for tests that steer particles between batches
-  // The state by global id after the last batch. A batch is downloaded in the device's slots and
-  // turned to global ids here, on its first reading: a batch nobody reads costs no conversion.
-  // The reference stays valid, and by global id, until the next advance(), set_state(), restore()
-  // or store_in_order() (each of which may leave the state in slots again).
+  // The state by global id after the last batch. It is downloaded here, on its first reading
+  // after a batch, in the device's slots, and turned to global ids: a batch nobody reads is never
+  // downloaded. The reference stays valid, and by global id, until the next advance(),
+  // set_state(), restore() or store_in_order() (each of which may leave it in slots again).
   const HostState& state() const;
-  // The positions after the last batch in the order the device stores them (no conversion), for
-  // checks whose answer does not depend on the order (any particle out of the domain?).
-  const std::vector<gpu::vec4>& positions_in_any_order() const { return state_.pos; }
+  // The positions after the last batch in the order the device stores them, downloaded alone
+  // (16 B per particle) unless the whole state is here already: for checks whose answer does not
+  // depend on the order (any particle out of the domain?). Valid until the next advance() or
+  // state().
+  const std::vector<gpu::vec4>& positions_in_any_order() const;
   uint64_t step() const { return step_; }
   double time() const { return double(step_) * model_.dt; }
-  uint32_t contacts() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlContacts]; }
-  uint32_t rebuilds() const { return state_.control.empty() ? 0 : state_.control[gpu::kCtlRebuildCount]; }
+  uint32_t contacts() const { return control_.empty() ? 0 : control_[gpu::kCtlContacts]; }
+  uint32_t rebuilds() const { return control_.empty() ? 0 : control_[gpu::kCtlRebuildCount]; }
   uint32_t capacity() const { return layout_.capacity; }
   const Layout& layout() const { return layout_; }
   const KernelVariant& variant() const { return variant_; }
@@ -112,20 +114,28 @@ class Simulation {
  private:
   void allocate(uint32_t capacity);
   void upload();
-  void download();
+  void download() const;
   bool reorder_due() const;
   void grow(uint32_t needed);
-  void upload_walls(uint32_t steps);
-  std::vector<Dispatch> batch_program(uint32_t steps) const;
+  void replay_unread(std::vector<uint32_t> batches);
+  void upload_walls(uint64_t first, uint32_t steps);
+  std::vector<Dispatch> batch_program(uint64_t first, uint32_t steps) const;
   void add_batch_wall_sums();
   Model model_;
   std::unique_ptr<Backend> backend_;
   KernelVariant variant_;
   Layout layout_;
-  // By global id, or by slot of order_ while state_in_slots_ (a download not yet read, or an
-  // upload). state() turns it, which a reader cannot see: hence mutable.
+  // The state of step step_ - (the unread batches' steps): by global id, or by slot of order_
+  // while state_in_slots_ (a download not yet read, or an upload). state() downloads and turns
+  // it, which a reader cannot see: hence mutable.
   mutable HostState state_;
   mutable bool state_in_slots_ = false;
+  // The steps of each batch run since state_ was downloaded or uploaded (empty: state_ is the
+  // device's state). An overflow uploads state_ into the larger list and runs them again.
+  mutable std::vector<uint32_t> unread_batches_;
+  std::vector<uint32_t> control_;  // the device's control words after the last batch or upload
+  mutable std::vector<gpu::vec4> positions_;  // downloaded alone after the last batch (slots)
+  mutable bool positions_current_ = false;
   ParticleOrder order_;
   bool stored_by_id_ = true;          // order_ is the identity
   int64_t reordered_at_ = -1;         // rebuild count at the last cell ordering (-1: none yet)

@@ -87,9 +87,11 @@ void VulkanBackend::upload_state(const HostState& s) {
   for_each_kept(s, [&](const BufferSpec& spec, const auto& v) { up(b(spec.binding), v); });
 }
 
-void VulkanBackend::download_state(HostState& s) {
+void VulkanBackend::read_state(HostState& s) {
   for_each_kept(s, [&](const BufferSpec& spec, auto& v) { down(b(spec.binding), v, used_elements(spec, layout_, s)); });
 }
+
+void VulkanBackend::download_positions(std::vector<vec4>& pos) { down(b(kBindPos), pos, layout_.n_particles); }
 
 void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBindWalls), walls); }
 

@@ -25,7 +25,7 @@ class VulkanBackend : public Backend {
   void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
-  void download_state(HostState& s) override;
+  void download_positions(std::vector<gpu::vec4>& pos) override;
   void upload_walls(const std::vector<gpu::WallState>& walls) override;
   void execute(const std::vector<Dispatch>& program, KernelTimes* times) override;
   std::vector<uint32_t> read_control() override;
@@ -39,6 +39,10 @@ class VulkanBackend : public Backend {
   void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
   void write_binding(uint32_t binding, const void* src, size_t bytes) { buffers_[binding].upload(src, bytes); }
   uint64_t validation_messages() const { return ctx_->validation_messages(); }
+
+
+ protected:
+  void read_state(HostState& s) override;
 
  private:
   vk::Buffer& b(uint32_t binding) { return buffers_[binding]; }

@@ -162,8 +162,11 @@ int step_to_target(Simulation& sim, RunOutput& output, const Schedule& schedule,
     sim.advance(schedule.next_stop(sim.step()) - sim.step(), [&](const Simulation& s) {
       progress.update(s.step(), std::to_string(s.contacts()) + " contacts");
     });
-    // Checked in the device's order, so a batch nothing else reads is not turned to global ids;
-    // an escape found is then named by its global id.
+    // Checked on the positions alone, in the device's order (16 B per particle, not the whole
+    // state: a batch nothing else reads is neither downloaded nor turned to global ids); an escape
+    // found is then named by its global id. On the host, not in a kernel: the check stays one
+    // double-precision function for both backends, with no twin to keep, and reads the very bytes
+    // a full download would give.
     if (!escape_told && escapes.find(sim.positions_in_any_order(), sim.time()))
       if (auto e = escapes.find(sim.state().pos, sim.time())) {
         escape_told = true;
