@@ -269,6 +269,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     control_ = std::move(ctl);
     unread_batches_.push_back(k);
     positions_current_ = false;
+    if (unread_batches_.size() >= kMostUnreadBatches) download();  // an overflow replays no more
     if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;

@@ -133,6 +133,9 @@ class Simulation {
   // The steps of each batch run since state_ was downloaded or uploaded (empty: state_ is the
   // device's state). An overflow uploads state_ into the larger list and runs them again.
   mutable std::vector<uint32_t> unread_batches_;
+  // A run nobody reads still downloads every so many batches, so that an overflow late in a long
+  // run replays at most these (~1,600 steps at 50 per batch) at 1/32 of the downloads it saves.
+  static constexpr size_t kMostUnreadBatches = 32;
   std::vector<uint32_t> control_;  // the device's control words after the last batch or upload
   mutable std::vector<gpu::vec4> positions_;  // downloaded alone after the last batch (slots)
   mutable bool positions_current_ = false;

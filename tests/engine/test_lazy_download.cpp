@@ -131,3 +131,20 @@ TEST_CASE("lazy download: a bench-like run nobody reads downloads no state; a re
     CHECK(device.state_downloads() == at_start + 2);
   }
 }
+
+TEST_CASE("lazy download: a long run nobody reads downloads every 32 batches, so an overflow replays no more",
+          "[engine][lazy]") {
+  Model model = build_model(bench_bed_case(2000));
+  KernelVariant case_order = KernelVariant::parse("reorder=0");  // no reorder reads the state
+  for (const char* backend : {"cpu", "vulkan"}) {
+    INFO(backend);
+    Simulation sim(model, make_backend(backend, -1, 1, case_order.workgroup), case_order, 50);
+    uint64_t at_start = sim.backend().state_downloads();
+    sim.advance(31 * 50);
+    CHECK(sim.backend().state_downloads() == at_start);
+    sim.advance(50);
+    CHECK(sim.backend().state_downloads() == at_start + 1);
+    sim.state();  // that download is the state after the 32nd batch
+    CHECK(sim.backend().state_downloads() == at_start + 1);
+  }
+}
