@@ -121,6 +121,29 @@ uint32_t max_groups_x() {
   return limit;
 }
 
+bool scan_in_blocks(uint32_t count) {
+  static const uint32_t from = [] {
+    const char* text = std::getenv("REPOSE_SCAN_BLOCKS_FROM");
+    return text ? uint32_t(std::strtoul(text, nullptr, 10)) : 8u;
+  }();
+  return gpu::scan_blocks_for(count) >= from;
+}
+
+std::vector<Dispatch> scan_dispatches(uint32_t target, uint32_t count, bool in_blocks) {
+  Dispatch d;
+  d.kernel = KernelId::Scan;
+  d.indirect_word = gpu::kCtlArgsOne;
+  d.scan = {target, count, gpu::kScanPassWhole};
+  if (!in_blocks) return {d};
+  uint32_t blocks_word = target == gpu::kScanCells ? gpu::kCtlArgsScanBuckets : gpu::kCtlArgsScanParticles;
+  std::vector<Dispatch> passes(3, d);
+  passes[0].indirect_word = passes[2].indirect_word = static_cast<int32_t>(blocks_word);
+  passes[0].scan.pass = gpu::kScanPassSums;
+  passes[1].scan.pass = gpu::kScanPassOffsets;
+  passes[2].scan.pass = gpu::kScanPassBlocks;
+  return passes;
+}
+
 namespace {
 
 uint32_t groups(uint32_t n, uint32_t wg) { return (n + wg - 1) / wg; }
@@ -143,11 +166,8 @@ struct ProgramBuilder {
     out.push_back(d);
   }
   void scan(uint32_t target, uint32_t count) {
-    Dispatch d;
-    d.kernel = KernelId::Scan;
-    d.indirect_word = gpu::kCtlArgsOne;
-    d.scan = {target, count, push.capacity, push.workgroup};
-    out.push_back(d);
+    std::vector<Dispatch> passes = scan_dispatches(target, count, scan_in_blocks(count));
+    out.insert(out.end(), passes.begin(), passes.end());
   }
   // Rebuilds the contact list when rebuild_args decides so (indirect sizes are 0 otherwise).
   void rebuild(const Layout& l) {

@@ -46,6 +46,15 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
 // The same on both backends, so their indirect arguments agree to the byte.
 uint32_t max_groups_x();
 
+// Whether a scan of `count` entries takes the three block passes over the whole device rather
+// than one workgroup (shaders/scan.comp): from kScanBlocksFrom blocks of gpu::kScanBlock on.
+bool scan_in_blocks(uint32_t count);
+// The dispatches of an exclusive scan of `count` entries of `target` (gpu::kScanCells: the T+1
+// bucket counts; kScanRows, kScanTransposed: the N rows) in a rebuild: one workgroup, or the
+// block passes over the groups that rebuild_args writes for that many entries (none when the
+// step does not rebuild).
+std::vector<Dispatch> scan_dispatches(uint32_t target, uint32_t count, bool in_blocks);
+
 // Places every sub-sphere from its body (empty without bodies): run once before the first step.
 std::vector<Dispatch> body_place_program(const Model& m, const Layout& l, const KernelVariant& v);
 // Neighbour list, forces and F(0) without moving anything (kick 0).
