@@ -178,7 +178,7 @@ const float kSpinFloor = 1e-20f;
 
 REPOSE_CONST kDefaultWorkgroup = 64;
 REPOSE_CONST kScanWorkgroup = 256;      // threads of a scan's workgroup
-REPOSE_CONST kScanPerThread = 4;        // entries each of them scans
+REPOSE_CONST kScanPerThread = 8;        // entries each of them scans
 REPOSE_CONST kScanBlock = kScanWorkgroup * kScanPerThread;  // entries of a scan's block
 REPOSE_CONST kWallReduceWorkgroup = 256;
 

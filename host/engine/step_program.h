@@ -46,8 +46,16 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
 // The same on both backends, so their indirect arguments agree to the byte.
 uint32_t max_groups_x();
 
-// Whether a scan of `count` entries takes the three block passes over the whole device rather
-// than one workgroup (shaders/scan.comp): from kScanBlocksFrom blocks of gpu::kScanBlock on.
+// A scan of this many blocks of gpu::kScanBlock entries or more takes the three block passes
+// over the whole device (shaders/scan.comp); a shorter one stays in one workgroup, whose few
+// blocks cost less than the two extra dispatches and barriers on a GPU. lavapipe, which runs a
+// workgroup at a time per CPU thread and pays ~50 us to start each, is faster in one workgroup at
+// every size (docs/engineering.md, "The scan"); it is the tests' device, not a user's.
+inline constexpr uint32_t kScanBlocksFrom = 8;
+// kScanBlocksFrom, or less with the environment variable REPOSE_SCAN_BLOCKS_FROM (tests lower it
+// to 1 to run the block passes in small cases; a GPU's bench compares the two paths with it).
+uint32_t scan_blocks_from();
+// Whether a scan of `count` entries takes the block passes.
 bool scan_in_blocks(uint32_t count);
 // The dispatches of an exclusive scan of `count` entries of `target` (gpu::kScanCells: the T+1
 // bucket counts; kScanRows, kScanTransposed: the N rows) in a rebuild: one workgroup, or the
