@@ -100,7 +100,8 @@ REPOSE_CONST kNoBucket = 0xffffffffu;
 #define REPOSE_COUNT_RollingSprings +1u
 #define REPOSE_COUNT_Alias
 REPOSE_BUFFERS(REPOSE_BINDING_CONSTANT)
-// Descriptors: the rows that are not aliases.
+// Descriptors: the rows that are not aliases. 32, lavapipe's limit of storage buffers per stage
+// (host/vk/kernel_set.cpp refuses a device with fewer): a new buffer must be an alias.
 REPOSE_CONST kBindingCount = 0u REPOSE_BUFFERS(REPOSE_BINDING_COUNT);
 #undef REPOSE_BINDING_CONSTANT
 #undef REPOSE_BINDING_COUNT
