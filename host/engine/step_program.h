@@ -48,7 +48,8 @@ uint32_t max_groups_x();
 
 // A scan of this many blocks of gpu::kScanBlock entries or more takes the three block passes
 // over the whole device (shaders/scan.comp); a shorter one stays in one workgroup, whose few
-// blocks cost less than the two extra dispatches and barriers on a GPU. lavapipe, which runs a
+// blocks should cost less on a GPU than two more dispatches and barriers (reasoned, not yet
+// measured: scripts/gpu-check.sh benches both). lavapipe, which runs a
 // workgroup at a time per CPU thread and pays ~50 us to start each, is faster in one workgroup at
 // every size (docs/engineering.md, "The scan"); it is the tests' device, not a user's.
 inline constexpr uint32_t kScanBlocksFrom = 8;
