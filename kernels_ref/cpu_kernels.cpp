@@ -1,6 +1,8 @@
 // Compiles the shared kernel bodies as C++. Must stay at -ffp-contract=off (see CMakeLists.txt).
 #include "cpu_kernels.h"
 
+#include <algorithm>
+
 #include "body_lanes.h"
 #include "contact_lanes.h"
 #include "twin_kernels.h"
@@ -56,17 +58,41 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
   }
 }
 
-void run_scan(Buffers& buf, const ScanPush& push) {
+// Scans data[begin, end) in place from `carry`; returns the carry after it.
+static uint scan_run(uint* data, uint begin, uint end, uint carry) {
+  for (uint k = begin; k < end; ++k) {
+    uint v = data[k];
+    data[k] = carry;
+    carry += v;
+  }
+  return carry;
+}
+
+void run_scan(Buffers& buf, const ScanPush& push, ThreadPool& pool) {
   uint* data = push.target == kScanCells ? buf.cell_start
              : push.target == kScanRows  ? buf.row_start
                                          : buf.trans_start;
-  uint sum = 0u;
-  for (uint k = 0; k < push.count; ++k) {
-    uint v = data[k];
-    data[k] = sum;
-    sum += v;
+  uint count = push.count, blocks = scan_blocks_for(count);
+  auto block_end = [&](uint64_t b) { return uint(std::min<uint64_t>((b + 1) * kScanBlock, count)); };
+  if (push.pass == kScanPassWhole) {
+    data[count] = scan_run(data, 0, count, 0u);
+  } else if (push.pass == kScanPassSums) {
+    pool.parallel_for(blocks, [&](uint64_t begin, uint64_t end) {
+      for (uint64_t b = begin; b < end; ++b) {
+        uint sum = 0u;
+        for (uint k = uint(b) * kScanBlock; k < block_end(b); ++k) sum += data[k];
+        buf.scan_blocks[b] = sum;
+      }
+    });
+  } else if (push.pass == kScanPassOffsets) {
+    uint total = scan_run(buf.scan_blocks, 0, blocks, 0u);
+    buf.scan_blocks[blocks] = total;
+    data[count] = total;
+  } else {
+    pool.parallel_for(blocks, [&](uint64_t begin, uint64_t end) {
+      for (uint64_t b = begin; b < end; ++b) scan_run(data, uint(b) * kScanBlock, block_end(b), buf.scan_blocks[b]);
+    });
   }
-  data[push.count] = sum;
 }
 
 void run_wall_reduce(Buffers& buf, uint n_walls) {

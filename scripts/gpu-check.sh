@@ -3,8 +3,8 @@
 # the devices and their limits, the bit-exact twin tests run on the GPU (every kernel against the
 # CPU twin, whole runs byte-compared with the cpu backend), the particle order (the order and
 # lazy download tests on the GPU, a run in the case's order against the cpu backend's cell
-# order, and `repose bench` in both orders), and `repose bench` at 1e5, 1e6 and 1e7 spheres on
-# the GPU beside the cpu backend on every core.
+# order, and `repose bench` in both orders), `repose bench` at 1e5, 1e6 and 1e7 spheres on the
+# GPU beside the cpu backend on every core, and the scan's block passes against one workgroup.
 # Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
@@ -25,8 +25,8 @@ while [ $# -gt 0 ]; do
   esac
 done
 # Steps of the whole-run comparisons, spheres and steps of the order benches.
-run_steps=2000 order_n=1000000 order_steps=300
-[ $quick = 1 ] && { sizes=2000 run_steps=200 order_n=2000 order_steps=20; }
+run_steps=2000 order_n=1000000 order_steps=300 scan_sizes="20000 1000000" scan_steps=100
+[ $quick = 1 ] && { sizes=2000 run_steps=200 order_n=2000 order_steps=20 scan_sizes=2000 scan_steps=20; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 report="$out/report.md"
@@ -106,6 +106,16 @@ for n in $sizes; do
   [ $quick = 1 ] && steps=20
   TAIL=30 step "bench, $n spheres" 600 "$bin/repose" bench --n "$n" --backend vulkan cpu --steps "$steps" \
       --cache "$out/bench-cache"
+done
+# The scans of a rebuild in their block passes over the whole GPU (REPOSE_SCAN_BLOCKS_FROM=1) and in
+# one workgroup, a rebuild every step so that they run in every timed step: where the block passes
+# start to pay (kScanBlocksFrom in host/engine/step_program.h). The same bytes either way.
+for n in $scan_sizes; do
+  for from in 1 4294967295; do
+    TAIL=4 step "bench, $n spheres, a rebuild every step, scans in blocks from $from blocks" 600 \
+        env REPOSE_SCAN_BLOCKS_FROM=$from "$bin/repose" bench --n "$n" --backend vulkan --variant lean,rebuild=1 \
+        --steps "$scan_steps" --cache "$out/bench-cache"
+  done
 done
 # The case's order against cell order on the GPU: the lattice bed (its case order is already
 # spatial) and a random fill settled (cases/bench_bed.toml, 50k spheres, stored as the fill placed them).

@@ -24,6 +24,7 @@ namespace repose::gpu {
 //           ContactsTwice 2C, Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
 //           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
 //           CandidateSlots N*kCandidateSlots, Parts P (the bodies' parts),
+//           ScanBlocks scan_blocks_for(max(N, T+1)) + 1 (the scans' block sums and their total),
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
 //           which costs no descriptor; no kernel uses both names of one buffer),
@@ -76,6 +77,7 @@ namespace repose::gpu {
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
   X(29, Ids, ids, uint, ParticlesTwice, Always, Constant)    /* [i] slot i's global id, [N + g] id g's slot */ \
   X(30, Parts, parts, BodyPart, Parts, Bodies, Constant)     /* the bodies' parts, for the broad phase */ \
+  X(31, ScanBlocks, scan_blocks, uint, ScanBlocks, Always, Scratch)  /* a scan's block sums, scanned (scan.comp) */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
   X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
@@ -98,7 +100,8 @@ REPOSE_CONST kNoBucket = 0xffffffffu;
 #define REPOSE_COUNT_RollingSprings +1u
 #define REPOSE_COUNT_Alias
 REPOSE_BUFFERS(REPOSE_BINDING_CONSTANT)
-// Descriptors: the rows that are not aliases.
+// Descriptors: the rows that are not aliases. 32, lavapipe's limit of storage buffers per stage
+// (host/vk/kernel_set.cpp refuses a device with fewer): a new buffer must be an alias.
 REPOSE_CONST kBindingCount = 0u REPOSE_BUFFERS(REPOSE_BINDING_COUNT);
 #undef REPOSE_BINDING_CONSTANT
 #undef REPOSE_BINDING_COUNT
@@ -120,7 +123,9 @@ REPOSE_CONST kCtlArgsContacts = 20;  // 3 words: groups over the current list (e
 REPOSE_CONST kCtlArgsNewContacts = 23;  // 3 words: the same, only in a step that rebuilds
 REPOSE_CONST kCtlArgsParts = 26;     // 3 words: groups over the bodies' parts (0 when not rebuilding)
 REPOSE_CONST kCtlArgsBodies = 29;    // 3 words: groups over the bodies (0 when not rebuilding)
-REPOSE_CONST kControlWords = 32;
+REPOSE_CONST kCtlArgsScanBuckets = 32;    // 3 words: a scan's blocks over T+1 buckets (0 when not rebuilding)
+REPOSE_CONST kCtlArgsScanParticles = 35;  // 3 words: a scan's blocks over N particles (0 when not rebuilding)
+REPOSE_CONST kControlWords = 38;
 
 // ---- Option bits (SimPush::flags). Defaults (all zero) are EDEM's. ----
 REPOSE_CONST kFlagCoulombSpringOnly = 1u;     // LIGGGHTS: cap the spring, drop damping while sliding
@@ -143,10 +148,15 @@ REPOSE_CONST kFlagBodyBroadPhase = 8192u;     // clumps: parts of bodies culled 
 // scalar contact kernel. The one rule for both (step_program.cpp, contact_lanes.cpp).
 REPOSE_CONST kFlagsNeedFullEntries = kFlagRollingSpring | kFlagSpinningFriction;
 
-// ---- Scan selector (ScanPush::target). ----
+// ---- Scan selector (ScanPush::target) and passes (ScanPush::pass; shaders/scan.comp). ----
 REPOSE_CONST kScanCells = 0;
 REPOSE_CONST kScanRows = 1;
 REPOSE_CONST kScanTransposed = 2;
+REPOSE_CONST kScanBlockSums = 3;     // B_scan_blocks: the block sums, scanned by kScanPassOffsets
+REPOSE_CONST kScanPassWhole = 0;     // one workgroup scans the whole array, a block at a time
+REPOSE_CONST kScanPassSums = 1;      // workgroup b sums block b into B_scan_blocks[b]
+REPOSE_CONST kScanPassOffsets = 2;   // one workgroup scans the block sums; the total lands at [count]
+REPOSE_CONST kScanPassBlocks = 3;    // workgroup b scans block b from its offset B_scan_blocks[b]
 
 REPOSE_CONST kWallPlane = 0;
 REPOSE_CONST kWallCylinder = 1;
@@ -168,7 +178,9 @@ const float kSpinFloor = 1e-20f;
 #endif
 
 REPOSE_CONST kDefaultWorkgroup = 64;
-REPOSE_CONST kScanWorkgroup = 256;      // threads of the single-group scan
+REPOSE_CONST kScanWorkgroup = 256;      // threads of a scan's workgroup
+REPOSE_CONST kScanPerThread = 8;        // entries each of them scans
+REPOSE_CONST kScanBlock = kScanWorkgroup * kScanPerThread;  // entries of a scan's block
 REPOSE_CONST kWallReduceWorkgroup = 256;
 
 // ---- Contact parameters of a material pair: one table, one row per float of PairParams. ----
@@ -281,8 +293,7 @@ struct SimPush {
 struct ScanPush {
   uint target;  // kScanCells, kScanRows, kScanTransposed
   uint count;   // entries to scan (the total lands at [count])
-  uint capacity;
-  uint workgroup;
+  uint pass;    // kScanPassWhole, or kScanPassSums, kScanPassOffsets, kScanPassBlocks in turn
 };
 
 // Vulkan guarantees 65,535 workgroups along x (maxComputeWorkGroupCount[0]); some GPUs allow no
@@ -304,6 +315,12 @@ inline uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? 
 #else
 uint dispatch_rows(uint groups, uint max_x) { return groups == 0u ? 1u : (groups + max_x - 1u) / max_x; }
 uint dispatch_columns(uint groups, uint max_x) { return groups < max_x ? groups : max_x; }
+#endif
+// The blocks of kScanBlock entries that a scan of `count` entries takes, a workgroup each.
+#ifdef __cplusplus
+inline uint scan_blocks_for(uint count) { return (count + kScanBlock - 1u) / kScanBlock; }
+#else
+uint scan_blocks_for(uint count) { return (count + kScanBlock - 1u) / kScanBlock; }
 #endif
 
 #ifdef __cplusplus

@@ -27,6 +27,7 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::Control: return gpu::kControlWords;
     case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;
     case BufferCount::Parts: return l.n_parts;
+    case BufferCount::ScanBlocks: return size_t(gpu::scan_blocks_for(uint32_t(std::max(n, t + 1)))) + 1;
   }
   return 0;
 }

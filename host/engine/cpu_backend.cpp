@@ -95,7 +95,7 @@ void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* time
                           ? uint64_t(buf_.control[d.indirect_word]) * buf_.control[d.indirect_word + 1]
                           : d.groups;
     if (d.kernel == KernelId::Scan) {
-      if (groups > 0) gpu::run_scan(buf_, d.scan);
+      if (groups > 0) gpu::run_scan(buf_, d.scan, pool_);
     } else if (d.kernel == KernelId::WallReduce) {  // a fixed tree per wall, as the shader's
       buf_.push = d.sim;
       gpu::run_wall_reduce(buf_, layout_.n_walls);

@@ -1,6 +1,7 @@
 #include "engine/step_program.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
@@ -108,17 +109,46 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
   return p;
 }
 
+namespace {
+
+// The whole number 1 ... `most` in environment variable `name`, or `fallback` when it is unset.
+uint32_t env_limit(const char* name, uint32_t fallback, uint32_t most) {
+  const char* text = std::getenv(name);
+  if (!text || !*text) return fallback;
+  char* end = nullptr;
+  unsigned long v = std::strtoul(text, &end, 10);
+  if (*end || !std::isdigit(static_cast<unsigned char>(*text)) || v == 0 || v > most)
+    throw std::invalid_argument(std::string(name) + " = '" + text + "': give 1 ... " + std::to_string(most));
+  return static_cast<uint32_t>(v);
+}
+
+}  // namespace
+
 uint32_t max_groups_x() {
-  static const uint32_t limit = [] {
-    const char* text = std::getenv("REPOSE_MAX_GROUPS_X");
-    if (!text || !*text) return gpu::kMaxGroupsX;
-    char* end = nullptr;
-    unsigned long v = std::strtoul(text, &end, 10);
-    if (*end || v == 0 || v > gpu::kMaxGroupsX)
-      throw std::invalid_argument("REPOSE_MAX_GROUPS_X = '" + std::string(text) + "': give 1 ... 65535");
-    return static_cast<uint32_t>(v);
-  }();
+  static const uint32_t limit = env_limit("REPOSE_MAX_GROUPS_X", gpu::kMaxGroupsX, gpu::kMaxGroupsX);
   return limit;
+}
+
+uint32_t scan_blocks_from() {
+  static const uint32_t from = env_limit("REPOSE_SCAN_BLOCKS_FROM", kScanBlocksFrom, 0xffffffffu);
+  return from;
+}
+
+bool scan_in_blocks(uint32_t count) { return gpu::scan_blocks_for(count) >= scan_blocks_from(); }
+
+std::vector<Dispatch> scan_dispatches(uint32_t target, uint32_t count, bool in_blocks) {
+  Dispatch d;
+  d.kernel = KernelId::Scan;
+  d.indirect_word = gpu::kCtlArgsOne;
+  d.scan = {target, count, gpu::kScanPassWhole};
+  if (!in_blocks) return {d};
+  uint32_t blocks_word = target == gpu::kScanCells ? gpu::kCtlArgsScanBuckets : gpu::kCtlArgsScanParticles;
+  std::vector<Dispatch> passes(3, d);
+  passes[0].indirect_word = passes[2].indirect_word = static_cast<int32_t>(blocks_word);
+  passes[0].scan.pass = gpu::kScanPassSums;
+  passes[1].scan.pass = gpu::kScanPassOffsets;
+  passes[2].scan.pass = gpu::kScanPassBlocks;
+  return passes;
 }
 
 namespace {
@@ -143,11 +173,8 @@ struct ProgramBuilder {
     out.push_back(d);
   }
   void scan(uint32_t target, uint32_t count) {
-    Dispatch d;
-    d.kernel = KernelId::Scan;
-    d.indirect_word = gpu::kCtlArgsOne;
-    d.scan = {target, count, push.capacity, push.workgroup};
-    out.push_back(d);
+    std::vector<Dispatch> passes = scan_dispatches(target, count, scan_in_blocks(count));
+    out.insert(out.end(), passes.begin(), passes.end());
   }
   // Rebuilds the contact list when rebuild_args decides so (indirect sizes are 0 otherwise).
   void rebuild(const Layout& l) {

@@ -46,6 +46,24 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
 // The same on both backends, so their indirect arguments agree to the byte.
 uint32_t max_groups_x();
 
+// A scan of this many blocks of gpu::kScanBlock entries or more takes the three block passes
+// over the whole device (shaders/scan.comp); a shorter one stays in one workgroup, whose few
+// blocks should cost less on a GPU than two more dispatches and barriers (reasoned, not yet
+// measured: scripts/gpu-check.sh benches both). lavapipe, which runs a
+// workgroup at a time per CPU thread and pays ~50 us to start each, is faster in one workgroup at
+// every size (docs/engineering.md, "The scan"); it is the tests' device, not a user's.
+inline constexpr uint32_t kScanBlocksFrom = 8;
+// kScanBlocksFrom, or less with the environment variable REPOSE_SCAN_BLOCKS_FROM (tests lower it
+// to 1 to run the block passes in small cases; a GPU's bench compares the two paths with it).
+uint32_t scan_blocks_from();
+// Whether a scan of `count` entries takes the block passes.
+bool scan_in_blocks(uint32_t count);
+// The dispatches of an exclusive scan of `count` entries of `target` (gpu::kScanCells: the T+1
+// bucket counts; kScanRows, kScanTransposed: the N rows) in a rebuild: one workgroup, or the
+// block passes over the groups that rebuild_args writes for that many entries (none when the
+// step does not rebuild).
+std::vector<Dispatch> scan_dispatches(uint32_t target, uint32_t count, bool in_blocks);
+
 // Places every sub-sphere from its body (empty without bodies): run once before the first step.
 std::vector<Dispatch> body_place_program(const Model& m, const Layout& l, const KernelVariant& v);
 // Neighbour list, forces and F(0) without moving anything (kick 0).

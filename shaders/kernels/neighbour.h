@@ -37,6 +37,10 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsOldContacts, groups_for(B_control[kCtlContacts], wg));
     set_groups(kCtlArgsParts, groups_for(PC.n_parts, wg));
     set_groups(kCtlArgsBodies, groups_for(PC.n_bodies, wg));
+    // The block passes of the scans (shaders/scan.comp): of the T+1 bucket counts, and of the
+    // N rows and N transposed rows.
+    set_groups(kCtlArgsScanBuckets, scan_blocks_for(PC.table_size + 1u));
+    set_groups(kCtlArgsScanParticles, scan_blocks_for(PC.n_particles));
   } else {
     B_control[kCtlStepsSinceBuild] = B_control[kCtlStepsSinceBuild] + 1u;
     set_groups(kCtlArgsParticles, 0u);
@@ -46,6 +50,8 @@ void k_rebuild_args(uint unused) {
     set_groups(kCtlArgsNewContacts, 0u);
     set_groups(kCtlArgsParts, 0u);
     set_groups(kCtlArgsBodies, 0u);
+    set_groups(kCtlArgsScanBuckets, 0u);
+    set_groups(kCtlArgsScanParticles, 0u);
   }
 }
 

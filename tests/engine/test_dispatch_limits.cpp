@@ -2,8 +2,9 @@
 // workgroups along x: larger dispatches run in rows along y (gpu::dispatch_rows), and
 // REPOSE_MAX_GROUPS_X lowers that limit so that small cases run the split paths. GPUs round / and
 // sqrt their own way: the kernels correct that (div_rn, sqrt_rn), and REPOSE_ROUNDING=test first
-// puts lavapipe's results up to 2 ULP off so that the correction runs here. Either way a settling
-// box and a clump settle give the cpu backend's state bytes.
+// puts lavapipe's results up to 2 ULP off so that the correction runs here. A large case's scans
+// take their block passes over the whole device; REPOSE_SCAN_BLOCKS_FROM=1 makes small ones do so.
+// Either way a settling box and a clump settle give the cpu backend's state bytes.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -48,9 +49,15 @@ TEST_CASE("dispatches split into rows of workgroups give the same bytes on both 
   CHECK(state_after("settle_box.toml", "cpu", 120, 3, dir) == whole);
   CHECK(state_after("settle_box.toml", "vulkan", 120, 3, dir) == whole);
   CHECK(state_after("settle_box.toml", "vulkan", 120, 1, dir) == whole);
+  // The scans in their block passes (REPOSE_SCAN_BLOCKS_FROM=1): 2 blocks of rows, 5 of buckets,
+  // in rows of 3 and of 1 workgroup.
+  CHECK(state_after("settle_box.toml", "vulkan", 120, 3, dir, "REPOSE_SCAN_BLOCKS_FROM=1 ") == whole);
+  CHECK(state_after("settle_box.toml", "vulkan", 120, 1, dir, "REPOSE_SCAN_BLOCKS_FROM=1 ") == whole);
+  CHECK(state_after("settle_box.toml", "cpu", 120, 0, dir, "REPOSE_SCAN_BLOCKS_FROM=1 ") == whole);
   // Clumps add body kernels and a contact list over sub-spheres; 5 walls go through rows of 2.
   std::string clumps = state_after("cabbage_settle.toml", "cpu", 40, 0, dir);
   CHECK(state_after("cabbage_settle.toml", "vulkan", 40, 2, dir) == clumps);
+  CHECK(state_after("cabbage_settle.toml", "vulkan", 40, 2, dir, "REPOSE_SCAN_BLOCKS_FROM=1 ") == clumps);
 }
 
 TEST_CASE("REPOSE_MAX_GROUPS_X outside 1 ... 65535 is refused by name", "[engine]") {
@@ -60,6 +67,17 @@ TEST_CASE("REPOSE_MAX_GROUPS_X outside 1 ... 65535 is refused by name", "[engine
                                                                           " --overwrite");
   CHECK(r.status != 0);
   CHECK(r.output.find("REPOSE_MAX_GROUPS_X") != std::string::npos);
+}
+
+TEST_CASE("REPOSE_SCAN_BLOCKS_FROM that is not a whole number from 1 is refused by name", "[engine]") {
+  for (const char* bad : {"0", "-1", "8x", "99999999999"}) {
+    auto r = repose::test::run_repose_env(std::string("REPOSE_SCAN_BLOCKS_FROM=") + bad + " ",
+                                          "run " + std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml --steps 1 --quiet --out " +
+                                              (fs::temp_directory_path() / "repose_test_scan_bad").string() + " --overwrite");
+    INFO(bad << ": " << r.output);
+    CHECK(r.status != 0);
+    CHECK(r.output.find("REPOSE_SCAN_BLOCKS_FROM") != std::string::npos);
+  }
 }
 
 TEST_CASE("divisions and square roots put 2 ULP off and corrected give the cpu backend's bytes", "[engine][bitexact]") {

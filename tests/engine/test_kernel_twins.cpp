@@ -5,7 +5,9 @@
 #include <cstring>
 #include <random>
 
+#include "engine/buffer_table.h"
 #include "engine/cpu_backend.h"
+#include "engine/step_program.h"
 #include "engine/vulkan_backend.h"
 #include "engine_test_support.h"
 
@@ -38,17 +40,30 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
       {gpu::kBindTransList, "trans_list", C * u, b.trans_list}, {gpu::kBindIds, "ids", 2 * N * u, b.ids},
       {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
+      {gpu::kBindScanBlocks, "scan_blocks", buffer_elements(kBufferTable[kRowScanBlocks], l) * u, b.scan_blocks},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
   if (l.n_parts) bindings.push_back({gpu::kBindParts, "parts", l.n_parts * sizeof(gpu::BodyPart), b.parts});
   return bindings;
 }
 
+// The program with every scan in its three block passes, as a large case's (a small one's scans
+// take one workgroup: scan_in_blocks).
+std::vector<Dispatch> with_block_scans(const std::vector<Dispatch>& program) {
+  std::vector<Dispatch> out;
+  for (const Dispatch& d : program) {
+    if (d.kernel != KernelId::Scan) out.push_back(d);
+    else
+      for (const Dispatch& pass : scan_dispatches(d.scan.target, d.scan.count, true)) out.push_back(pass);
+  }
+  return out;
+}
+
 // Runs one step of `spec` (after `warmup` steps in batches of `batch`, forcing a rebuild) one
 // dispatch at a time on both backends and requires every buffer to match after every dispatch.
 // The walls must be at rest (the step reads wall slot 0 of the last batch).
 void check_each_dispatch(const CaseSpec& spec, const char* variant_text, uint64_t warmup, uint32_t batch,
-                         const std::string& label) {
+                         const std::string& label, bool block_scans = false) {
   KernelVariant v = KernelVariant::parse(variant_text);
   auto cpu_sim = simulate(spec, "cpu", 2, v, batch);
   auto gpu_sim = simulate(spec, "vulkan", 1, v, batch);
@@ -66,6 +81,7 @@ void check_each_dispatch(const CaseSpec& spec, const char* variant_text, uint64_
 
   std::vector<Binding> bindings = twin_bindings(l, cpu.buffers());
   auto program = step_program(cpu_sim->model(), l, v, 0);
+  if (block_scans) program = with_block_scans(program);
   size_t checked = 0;
   for (const Dispatch& d : program) {
     cpu.execute({d}, nullptr);
@@ -153,6 +169,14 @@ TEST_CASE("every kernel of a step: lavapipe equals the CPU twin after each dispa
       check_each_dispatch(seeded_cloud(n, n, 2.05, 0.0), variant_text, 3, 1, "n = " + std::to_string(n));
     }
   }
+}
+
+// The scans in their block passes (shaders/scan.comp), as a large case runs them: 2,100 spheres
+// scan 2 blocks of rows and 5 of buckets, each pass's block sums compared too.
+TEST_CASE("every kernel of a step with the scans in block passes: lavapipe equals the CPU twin", "[engine][bitexact]") {
+  REQUIRE(gpu::scan_blocks_for(2100) == 2);
+  for (const char* variant_text : {"contact", "rows,lean"})
+    check_each_dispatch(seeded_cloud(2100, 2100, 2.05, 0.0), variant_text, 3, 1, "n = 2100", true);
 }
 
 // Clumps rolling against each other and the walls with EDEM's centre-of-mass lever (the default):
