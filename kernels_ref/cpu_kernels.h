@@ -20,8 +20,8 @@ struct Buffers {
 
 // Runs `invocations` invocations of kernel k (as a dispatch of that many threads would).
 void run_kernel(KernelId k, Buffers& buf, uint64_t invocations, ThreadPool& pool);
-// The single-workgroup scan and the per-wall reduction, in the shaders' exact arithmetic order.
+// The single-workgroup scan and the reduction per named wall, in the shaders' exact arithmetic order.
 void run_scan(Buffers& buf, const ScanPush& push);
-void run_wall_reduce(Buffers& buf, uint n_walls);
+void run_wall_reduce(Buffers& buf);
 
 }  // namespace repose::gpu

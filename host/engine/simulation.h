@@ -23,7 +23,7 @@ struct WallForce {
 };
 
 // What a wall took between two readings: the impulse (the integral of its force over the steps,
-// N s) and the largest force at one step (N; for a mesh, of its most loaded triangle).
+// N s) and the largest force at one step (N; for a mesh, of all its triangles together).
 struct WallImpulse {
   std::string name;
   double jx = 0, jy = 0, jz = 0;
@@ -115,7 +115,7 @@ class Simulation {
   void download();
   bool reorder_due() const;
   void grow(uint32_t needed);
-  void upload_walls(uint32_t steps);
+  void upload_walls(uint64_t first, double offset, uint32_t steps);
   std::vector<Dispatch> batch_program(uint32_t steps) const;
   void add_batch_wall_sums();
   Model model_;
@@ -135,7 +135,7 @@ class Simulation {
   RunProfile profile_;
   std::function<void(Simulation&)> observer_;
   bool summing_walls_ = false;
-  std::vector<double> wall_sum_, wall_peak_;  // per wall row: sum x, y, z (N, steps) and peak^2 (N^2)
+  std::vector<double> wall_sum_, wall_peak_;  // per named wall: sum x, y, z (N, steps) and peak^2 (N^2)
 };
 
 }  // namespace repose

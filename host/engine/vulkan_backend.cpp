@@ -91,7 +91,11 @@ void VulkanBackend::download_state(HostState& s) {
   for_each_kept(s, [&](const BufferSpec& spec, auto& v) { down(b(spec.binding), v, used_elements(spec, layout_, s)); });
 }
 
-void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBindWalls), walls); }
+void VulkanBackend::upload_walls(const std::vector<WallState>& rows, size_t first) {
+  vk::Buffer& dst = b(kBindWalls);
+  size_t offset = std::min(first * sizeof(WallState), dst.size());
+  dst.upload(rows.data(), std::min(rows.size() * sizeof(WallState), dst.size() - offset), offset);
+}
 
 void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
@@ -141,21 +145,21 @@ std::vector<uint32_t> VulkanBackend::read_control() {
 }
 
 std::vector<vec4> VulkanBackend::wall_forces(const SimPush& push) {
-  if (layout_.n_walls == 0) return {};
+  if (layout_.n_wall_groups == 0) return {};
   Dispatch d;
   d.kernel = KernelId::WallReduce;
-  d.groups = layout_.n_walls;
+  d.groups = layout_.n_wall_groups;
   d.sim = push;
   execute({d}, nullptr);
   std::vector<vec4> f;
-  down(b(kBindWallForce), f, layout_.n_walls);
+  down(b(kBindWallForce), f, layout_.n_wall_groups);
   return f;
 }
 
 std::vector<vec4> VulkanBackend::wall_sums() {
   std::vector<vec4> all;
-  down(b(kBindWallForce), all, 3 * size_t(layout_.n_walls));
-  return std::vector<vec4>(all.begin() + layout_.n_walls, all.end());
+  down(b(kBindWallForce), all, 3 * size_t(layout_.n_wall_groups));
+  return std::vector<vec4>(all.begin() + layout_.n_wall_groups, all.end());
 }
 
 std::vector<vec4> VulkanBackend::contact_forces(uint32_t contacts) {
