@@ -17,6 +17,10 @@ namespace {
 // The kernels clamp a cell number to +-2^20 (cell_coord); the grid stays inside that.
 constexpr double kCellLimit = 1048576.0 - 4.0;
 constexpr double kFloatEpsilon = 5.96e-8;  // 2^-24, a float's relative rounding
+// A triangle near more cells than this (a floor or plate of a few triangles, ~1 m^2 at 15 mm
+// cells) is tested by every sphere instead: it costs one test each, where its cells would cost
+// memory and setup time growing with its area.
+constexpr size_t kMostCellsPerTriangle = 4096;
 // Times a cell is halved when its centre alone cannot tell (box_near): the cells a triangle is
 // entered in lie within its reach plus an eighth of a cell's diagonal.
 constexpr int kBoxRefinements = 2;
@@ -89,8 +93,10 @@ int key_axis(uint64_t key, int shift) { return int(int64_t((key >> shift) & 0x1f
 // Appends (cell, w) for each cell of edge h from which a sphere centre may come within `reach`
 // of triangle s (box_near: a centre in the cell as the kernels' float floor assigns it is in the
 // cell but for a rounding inside the reach's slack). The cells of the bounding box are visited in
-// rows along the axis the normal is most nearly along, each row only where its cells may lie
-// within reach of the triangle's plane, and only when its line comes that near the triangle. False when the cells lie beyond those the kernels number.
+// rows along the axis the normal is most nearly along, a row only when its line comes that near
+// the triangle and only where its cells may lie that near the triangle's plane. False, and
+// nothing appended, when the cells lie beyond those the kernels number or are more than
+// kMostCellsPerTriangle.
 bool triangle_cells(const gpu::WallState& s, double reach, double h, uint32_t w, std::vector<CellWall>& out) {
   Triangle t{corner(s.p0), corner(s.p1), corner(s.p2)};
   glm::dvec3 lo = glm::floor((glm::min(t.a, glm::min(t.b, t.c)) - reach) / h) - 1.0;
@@ -104,6 +110,7 @@ bool triangle_cells(const gpu::WallState& s, double reach, double h, uint32_t w,
   int i = (k + 1) % 3, j = (k + 2) % 3;
   Triangle flat = t;  // seen along the rows: a row's cells can meet t only where its line meets this
   flat.a[k] = flat.b[k] = flat.c[k] = 0.0;
+  size_t before = out.size();
   glm::dvec3 cell(0.0);
   for (cell[i] = lo[i]; cell[i] <= hi[i]; ++cell[i])
     for (cell[j] = lo[j]; cell[j] <= hi[j]; ++cell[j]) {
@@ -112,12 +119,16 @@ bool triangle_cells(const gpu::WallState& s, double reach, double h, uint32_t w,
       axis[j] = (cell[j] + 0.5) * h;
       if (flat.distance(axis) >= within) continue;
       // Cell centres with n . (centre - a) within +-`within`, solved for coordinate k.
-      double rest = n[i] * ((cell[i] + 0.5) * h - t.a[i]) + n[j] * ((cell[j] + 0.5) * h - t.a[j]);
+      double rest = n[i] * (axis[i] - t.a[i]) + n[j] * (axis[j] - t.a[j]);
       double k0 = t.a[k] + (-rest - within) / n[k], k1 = t.a[k] + (-rest + within) / n[k];
       double first = std::max(lo[k], std::floor(std::min(k0, k1) / h - 0.5) - 1.0);
       double last = std::min(hi[k], std::floor(std::max(k0, k1) / h - 0.5) + 1.0);
       for (cell[k] = first; cell[k] <= last; ++cell[k])
         if (box_near(t, (cell + 0.5) * h, 0.5 * h, reach, kBoxRefinements)) out.push_back({cell_key(cell), w});
+      if (out.size() - before > kMostCellsPerTriangle) {
+        out.resize(before);
+        return false;
+      }
     }
   return true;
 }
@@ -189,7 +200,7 @@ WallGrid build_wall_grid(const Model& m) {
       continue;
     }
     gpu::WallState s = m.wall_state(w, 0.0);  // a still wall's row at every step
-    if (!triangle_cells(s, triangle_reach(touching, s), h, uint32_t(w), cells)) return {};
+    if (!triangle_cells(s, triangle_reach(touching, s), h, uint32_t(w), cells)) always.push_back(uint32_t(w));
   }
   if (cells.empty()) return {};
   std::sort(cells.begin(), cells.end());
@@ -200,17 +211,15 @@ std::string describe_wall_grid(const Model& m) {
   std::string rows = std::to_string(m.walls.size()) + " wall rows";
   uint32_t t = m.wall_table_size;
   if (m.wall_grid.empty()) return rows + ", no wall grid: every sphere tests every wall";
-  size_t gridded = 0, cells = 0, entries = 0;
-  for (size_t w = 0; w < m.walls.size(); ++w) gridded += wall_in_grid(m, w);
+  size_t always = m.wall_grid[t + 1] - m.wall_grid[t], cells = 0, entries = 0;
   for (uint32_t s = t + 2; s < m.wall_grid[t]; s += 4 + m.wall_grid[s + 3]) {
     ++cells;
     entries += m.wall_grid[s + 3];
   }
   char text[256];
   std::snprintf(text, sizeof text,
-                ": %zu triangles in the wall grid (%zu cells, %.1f triangles per cell, %u buckets), %u tested by every sphere",
-                gridded, cells, double(entries) / double(std::max<size_t>(1, cells)), t,
-                m.wall_grid[t + 1] - m.wall_grid[t]);
+                ": %zu in the wall grid (%zu cells, %.1f triangles per cell, %u buckets), %zu tested by every sphere",
+                m.walls.size() - always, cells, double(entries) / double(std::max<size_t>(1, cells)), t, always);
   return rows + text;
 }
 
