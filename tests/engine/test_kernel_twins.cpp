@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 
+#include "engine/buffer_table.h"
 #include "engine/cpu_backend.h"
 #include "engine/vulkan_backend.h"
 #include "engine_test_support.h"
@@ -37,7 +38,7 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
       {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
       {gpu::kBindTransList, "trans_list", C * u, b.trans_list}, {gpu::kBindIds, "ids", 2 * N * u, b.ids},
-      {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
+      {gpu::kBindWalls, "walls", buffer_elements(kBufferTable[kRowWalls], l) * sizeof(gpu::WallState), b.walls},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});
   if (l.n_parts) bindings.push_back({gpu::kBindParts, "parts", l.n_parts * sizeof(gpu::BodyPart), b.parts});
