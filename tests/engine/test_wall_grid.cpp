@@ -260,3 +260,30 @@ TEST_CASE("wall forces: one sum per named wall in wall_reduce's order, on both b
     CHECK(f[0].fz == Approx(by_rows).margin(1e-5 * magnitudes));
   }
 }
+
+// Clumps with the body-level broad phase, whose parts test only the first 32 walls their spheres
+// may meet (part_walls), poured into a hopper of 48 triangles (walls 2 to 49): the grid and the
+// parts' masks together keep the list, on both backends.
+TEST_CASE("wall grid: clumps with walls per part give the same bytes with it on and off", "[walls][grid]") {
+  CaseSpec pile = clump_pile();
+  pile.walls.push_back(mesh_wall(hopper_mesh(0.15, 0.11, 0.05, 24), {0.06, 0.06, -0.012}, 1, "hopper"));
+  pile.neighbour.body_broad_phase = true;
+  for (const char* backend : {"cpu", "vulkan"}) {
+    INFO(backend);
+    CaseSpec off = pile;
+    off.neighbour.wall_grid = false;
+    auto a = simulate(pile, backend, 2, {}, 25);
+    auto b = simulate(off, backend, 2, {}, 25);
+    REQUIRE(a->model().wall_table_size > 0);
+    REQUIRE((a->model().flags & gpu::kFlagBodyBroadPhase) != 0);
+    a->advance(1500);
+    b->advance(1500);
+    const HostState& s = a->state();
+    auto on_hopper = std::count_if(s.partner.begin(), s.partner.end(), [&](uint32_t p) { return p >= s.pos.size() + 2; });
+    CHECK(on_hopper > 5);
+    std::string which;
+    bool same = same_state(s, b->state(), &which);
+    INFO("first difference in " << which);
+    CHECK(same);
+  }
+}
