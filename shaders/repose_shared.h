@@ -44,7 +44,8 @@ namespace repose::gpu {
 // use. Every order that reaches a float result goes by global id (B_ids), never by slot, so the
 // bytes do not depend on the storage order (docs/engineering.md, particle order).
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
-// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
+// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers, and the
+// table now binds 32: a new buffer must be an alias of one whose life it does not overlap).
 #define REPOSE_BUFFERS(X) \
   X(0, Pos, pos, vec4, Particles, Always, File)               /* xyz position, w radius */ \
   X(1, Vel, vel, vec4, Particles, Always, File)               /* xyz velocity, w 1/mass */ \

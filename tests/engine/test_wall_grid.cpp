@@ -46,12 +46,10 @@ TriangleMesh cube_corner(double side) {
 // under it when `paddle`.
 CaseSpec hopper_rig(int sides, bool paddle, int spheres = 240) {
   CaseBuilder b;
-  int grain = b.material(1000, 5e6, 0.3);
-  int steel = b.material(7800, 8e10, 0.3);
-  b.interaction(grain, grain, 0.5, 0.4, 0.05);
-  b.interaction(grain, steel, 0.6, 0.3, 0.02);
-  b.spec.gravity = {0, 0, -9.81};
-  b.spec.time.rayleigh_fraction = 0.2;
+  b.spec = seeded_cloud(1, 0, 2.0, 0.0);  // its grain and steel, gravity and time step; not its sphere and walls
+  b.spec.spheres.clear();
+  b.spec.walls.clear();
+  const int grain = 0, steel = 1;
   b.spec.walls.push_back(mesh_wall(hopper_mesh(0.05, 0.005, 0.04, sides), {0, 0, 0.05}, steel, "hopper"));
   b.spec.walls.push_back(mesh_wall(cube_corner(0.03), {-0.015, -0.015, 0.0}, steel, "corner"));
   if (paddle) {
