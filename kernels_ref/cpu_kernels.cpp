@@ -95,12 +95,11 @@ void run_scan(Buffers& buf, const ScanPush& push, ThreadPool& pool) {
   }
 }
 
-void run_wall_reduce(Buffers& buf, uint n_walls) {
+void run_wall_reduce(Buffers& buf) {
   constexpr uint W = kWallReduceWorkgroup;
   Kernels k(buf);
   uint limit = buf.control[kCtlContacts];
-  for (uint w = 0; w < n_walls; ++w) {
-    uint partner = buf.push.n_particles + w;
+  for (uint w = 0; w < buf.push.n_wall_groups; ++w) {
     float sx[W], sy[W], sz[W];
     for (uint t = 0; t < W; ++t) {
       vec3 acc(0.0f);
@@ -108,7 +107,7 @@ void run_wall_reduce(Buffers& buf, uint n_walls) {
         uint i = k.slot_of(g);
         uint end = min(buf.row_start[i + 1u], limit);
         for (uint c = min(buf.row_start[i], limit); c < end; ++c)
-          if (buf.partner[c] == partner) acc = acc - k.xyz(buf.contact_force[c]);
+          if (k.partner_in_wall_group(buf.partner[c], w)) acc = acc - k.xyz(buf.contact_force[c]);
       }
       sx[t] = acc.x;
       sy[t] = acc.y;

@@ -21,8 +21,8 @@ struct Buffers {
 // Runs `invocations` invocations of kernel k (as a dispatch of that many threads would).
 void run_kernel(KernelId k, Buffers& buf, uint64_t invocations, ThreadPool& pool);
 // One pass of the scan (shaders/scan.comp; integer sums, so plain loops give its bytes; the
-// block passes over the pool) and the per-wall reduction, in the shader's exact arithmetic order.
+// block passes over the pool) and the reduction per named wall, in the shader's exact arithmetic order.
 void run_scan(Buffers& buf, const ScanPush& push, ThreadPool& pool);
-void run_wall_reduce(Buffers& buf, uint n_walls);
+void run_wall_reduce(Buffers& buf);
 
 }  // namespace repose::gpu

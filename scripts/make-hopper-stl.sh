@@ -6,8 +6,8 @@
 #   bash scripts/make-hopper-stl.sh OUTLET_R OUTLET_Z TOP_R TOP_Z SEGMENTS > hopper.stl
 #   bash scripts/make-hopper-stl.sh 0.25 0.9 0.6 1.3 16 > cases/large_heap/hopper.stl
 #
-# The neighbour search checks every triangle for every sphere at each rebuild
-# (docs/case-format.md, mesh), so a hopper for a million spheres keeps its triangles few.
+# A still mesh's triangles are listed by cell (the wall grid, docs/case-format.md, mesh), so
+# SEGMENTS may be large; `repose mesh hopper` writes the same cone in any unit.
 set -euo pipefail
 if [ $# -ne 5 ]; then
   sed -n '2,7p' "$0" >&2

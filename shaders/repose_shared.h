@@ -22,8 +22,9 @@ namespace repose::gpu {
 //   binding (an alias names its target's), Name (kBindName), name (B_name), element type,
 //   count:  Particles N, ParticlesPlusOne N+1, ParticlesTwice 2N, Contacts C (the list capacity),
 //           ContactsTwice 2C, Transposed C (the used part: trans_start[N]), Buckets T+1, BucketsPlusOne T+2,
-//           Pairs M*M, WallRows steps_per_batch*W, WallSums 3W, Bodies B, Control kControlWords,
-//           CandidateSlots N*kCandidateSlots, Parts P (the bodies' parts),
+//           Pairs M*M, WallRows W + steps_per_batch*(the walls that move), WallSums 3 x the named
+//           walls, Bodies B, Control kControlWords, CandidateSlots N*kCandidateSlots, Parts P (the
+//           bodies' parts), WallGrid (the wall grid's words, kernels/neighbour.h),
 //           ScanBlocks scan_blocks_for(max(N, T+1)) + 1 (the scans' block sums and their total),
 //   need:   Always, FullEntries (not with lean entries), Bodies (clumps), RollingSprings, or
 //           Alias (another view of its binding's memory: a second declaration at that binding,
@@ -32,7 +33,7 @@ namespace repose::gpu {
 //           state files hold it after the File rows, in table order, for restarts), File (kept,
 //           and written to state files in table order), Constant (uploaded once; the parts'
 //           rows also hold what each rebuild finds, BodyPart),
-//           Walls (uploaded every batch).
+//           Walls (every wall's row once, the moving walls' rows every batch: walls.h wall_at).
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
 // contact_force and torque_i (the contact kernel) are rewritten after that in the same step;
@@ -44,7 +45,8 @@ namespace repose::gpu {
 // use. Every order that reaches a float result goes by global id (B_ids), never by slot, so the
 // bytes do not depend on the storage order (docs/engineering.md, particle order).
 // The rolling springs hold contact c's EPSD spring at [c] and, during a rebuild, the old list's
-// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers).
+// at [capacity + c] (one binding, not two: the per-stage limit on lavapipe is 32 buffers, and the
+// table now binds 32: a new buffer must be an alias of one whose life it does not overlap).
 #define REPOSE_BUFFERS(X) \
   X(0, Pos, pos, vec4, Particles, Always, File)               /* xyz position, w radius */ \
   X(1, Vel, vel, vec4, Particles, Always, File)               /* xyz velocity, w 1/mass */ \
@@ -54,7 +56,7 @@ namespace repose::gpu {
   X(5, Control, control, uint, Control, Always, State)        /* kCtl* words */ \
   X(6, Material, material, uint, Particles, Always, Constant) \
   X(7, Pairs, pairs, PairParams, Pairs, Always, Constant)     /* per material pair */ \
-  X(8, Walls, walls, WallState, WallRows, Always, Walls)      /* every wall at every step of a batch */ \
+  X(8, Walls, walls, WallState, WallRows, Always, Walls)      /* every wall, then the moving ones at each step of a batch */ \
   X(9, PosAtBuild, pos_at_build, vec4, Particles, Always, State)  /* position at the list's build */ \
   X(10, CellOf, cell_of, uint, Particles, Always, Scratch)    /* hash bucket of each particle */ \
   X(11, CellStart, cell_start, uint, BucketsPlusOne, Always, Scratch)  /* counts, scanned to starts */ \
@@ -71,14 +73,15 @@ namespace repose::gpu {
   X(22, TransStart, trans_start, uint, ParticlesPlusOne, Always, State)  /* contacts as the partner (CSR) */ \
   X(23, TransFill, trans_fill, uint, Particles, Always, Scratch)  \
   X(24, TransList, trans_list, uint, Transposed, Always, State)  /* contact indices, by the owner's global id per row */ \
-  X(25, WallForce, wall_force, vec4, WallSums, Always, Scratch)  /* force on each wall, its sum, its peak */ \
+  X(25, WallForce, wall_force, vec4, WallSums, Always, Scratch)  /* force on each named wall, its sum, its peak */ \
   X(26, Bodies, bodies, Body, Bodies, Bodies, File)           /* rigid bodies (clumps) */ \
   X(27, Subs, subs, SubSphere, Particles, Bodies, Constant)   /* each particle's body and offset */ \
   X(28, RollingSpring, rolling_spring, vec4, ContactsTwice, RollingSprings, File)  /* EPSD springs */ \
   X(29, Ids, ids, uint, ParticlesTwice, Always, Constant)    /* [i] slot i's global id, [N + g] id g's slot */ \
   X(30, Parts, parts, BodyPart, Parts, Bodies, Constant)     /* the bodies' parts, for the broad phase */ \
-  X(31, ScanBlocks, scan_blocks, uint, ScanBlocks, Always, Scratch)  /* a scan's block sums, scanned (scan.comp) */ \
+  X(31, WallGrid, wall_grid, uint, WallGrid, Always, Constant)  /* walls by grid cell (kernels/neighbour.h walk_walls) */ \
   X(24, OldPartner, old_partner, uint, Contacts, Alias, Scratch)  /* the old list's partners */ \
+  X(21, ScanBlocks, scan_blocks, uint, ScanBlocks, Alias, Scratch)  /* a scan's block sums (scan.comp): torque_j is dead during a rebuild */ \
   X(19, OldHistory, old_history, vec4, Contacts, Alias, Scratch)  /* the old list's histories */ \
   X(20, Candidates, candidates, uint, CandidateSlots, Alias, Scratch)  /* what contact_count found */ \
   X(10, Touches, touches, uint, Particles, Alias, Scratch)   /* touching contacts per body (spinning friction) */
@@ -219,10 +222,11 @@ struct WallState {
   vec4 vel;    // xyz translational velocity, w cylinder height
   vec4 omega;  // xyz angular velocity about `centre`
   vec4 centre; // xyz a point on the rotation axis
-  uvec4 info;  // x type, y material, z mesh id (triangles), w unused
+  uvec4 info;  // x type, y material, z mesh id (triangles), w the named wall it belongs to (wall_reduce)
   vec4 p2;     // rectangle: unit in-plane axis u, w half extent along u;  triangle: vertex c
   vec4 p3;     // rectangle: unit axis v, w half extent along v;  triangle: unit normal
-  uvec4 topo;  // triangle: the mesh's vertex ids of a, b, c (shared corners, walls.h); w unused
+  uvec4 topo;  // triangle: the mesh's vertex ids of a, b, c (shared corners, walls.h); w 0 for a
+               // wall that never moves, else 1 + its place among the moving walls (walls.h wall_at)
 };
 
 // A rigid body (a clump of sub-spheres; with kFlagBodies a lone sphere is a one-sphere body).
@@ -288,6 +292,9 @@ struct SimPush {
   uint max_groups_x;  // workgroups per dispatch row: more go into rows along y (dispatch_rows)
   uint wall_sums;     // wall_reduce: 0 the force only; 1 also its sum and peak; 2 those anew
   uint n_parts;       // the bodies' parts (BodyPart rows; 0 without kFlagBodies)
+  uint n_moving_walls;   // walls with a prescribed motion: a row each per step of the batch (wall_at)
+  uint wall_table_size;  // buckets of the wall grid (neighbour.h walk_walls); 0: every sphere tests every wall
+  uint n_wall_groups;    // named walls (a mesh's triangles are one): wall_reduce's sums
 };
 
 struct ScanPush {

@@ -1,8 +1,9 @@
 #version 450
-// Force on each wall: one workgroup per wall sums -F over the contacts with that wall, each
-// thread over every 256th particle's row (by global id, not by storage or list slot, so the sum
-// depends on neither the storage order nor what else the list holds), then a fixed tree. The
-// CPU twin repeats the same order.
+// Force on each named wall (a mesh's triangles together, a box's faces each: WallState.info.w):
+// one workgroup per named wall sums -F over the contacts with its walls, each thread over every
+// 256th particle's row (by global id, not by storage or list slot, so the sum depends on neither
+// the storage order nor what else the list holds), then a fixed tree. The CPU twin repeats the
+// same order. Its cost is the named walls times the list, not the triangles times the particles.
 #include "kernels/glsl_prelude.glsl"
 #include "kernels/common.h"
 
@@ -11,19 +12,18 @@ shared float sum_y[kWallReduceWorkgroup];
 shared float sum_z[kWallReduceWorkgroup];
 
 void main() {
-  // One workgroup per wall, in rows of workgroups when there are many walls (dispatch_rows);
-  // a whole group past the last wall leaves together, before any barrier.
+  // One workgroup per named wall, in rows of workgroups when there are many (dispatch_rows);
+  // a whole group past the last one leaves together, before any barrier.
   uint w = gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;
-  if (w >= PC.n_walls) return;
+  if (w >= PC.n_wall_groups) return;
   uint t = gl_LocalInvocationID.x;
-  uint partner = PC.n_particles + w;
   uint limit = B_control[kCtlContacts];
   precise vec3 acc = vec3(0.0f);
   for (uint g = t; g < PC.n_particles; g += kWallReduceWorkgroup) {
     uint i = slot_of(g);
     uint end = min(B_row_start[i + 1u], limit);
     for (uint c = min(B_row_start[i], limit); c < end; ++c)
-      if (B_partner[c] == partner) acc = acc - xyz(B_contact_force[c]);
+      if (partner_in_wall_group(B_partner[c], w)) acc = acc - xyz(B_contact_force[c]);
   }
   sum_x[t] = acc.x;
   sum_y[t] = acc.y;

@@ -115,8 +115,9 @@ void CaseReader::read_contact() {
 void CaseReader::read_neighbour() {
   auto s = table("neighbour");
   if (!s) return;
-  s->allow_only({"skin", "rebuild_interval", "body_broad_phase"}, "[neighbour]");
+  s->allow_only({"skin", "rebuild_interval", "body_broad_phase", "wall_grid"}, "[neighbour]");
   if (auto on = s->boolean("body_broad_phase")) spec_.neighbour.body_broad_phase = *on;
+  if (auto on = s->boolean("wall_grid")) spec_.neighbour.wall_grid = *on;
   if (auto skin = s->number("skin")) spec_.neighbour.skin = non_negative(*s, "skin", *skin);
   if (auto interval = s->integer("rebuild_interval")) {
     if (*interval < 0 || *interval > 1000000) s->fail("rebuild_interval", "must be 0 (automatic) or a number of steps");

@@ -210,6 +210,7 @@ struct NeighbourSpec {
   double skin = -1;          // m; < 0: 0.1 x the smallest diameter
   int rebuild_interval = 0;  // steps between list rebuilds; 0: automatic
   std::optional<bool> body_broad_phase;  // clumps culled by bounding spheres; unset: where it pays
+  std::optional<bool> wall_grid;  // still mesh triangles by grid cell (engine/wall_grid.h); unset: where it pays
 };
 
 struct OutputSpec {

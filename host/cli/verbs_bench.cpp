@@ -16,6 +16,7 @@
 #include "engine/kernel_traffic.h"
 #include "engine/memory_need.h"
 #include "engine/model.h"
+#include "engine/wall_grid.h"
 #include "engine/simulation.h"
 #include "io/state_file.h"
 #include "util/memory_info.h"
@@ -190,6 +191,7 @@ void print_bench_subject(const std::string& case_path, const Model& model, doubl
                 settle, n, model.dt, 1e3 * model.skin, energy, steps);
   std::printf("setup: case %s (%s), model %s\n", case_seconds.c_str(),
               own_case ? "read, fills placed" : "the bed's spheres on a jittered lattice", model_seconds.c_str());
+  if (!model.walls.empty()) std::printf("walls: %s\n", describe_wall_grid(model).c_str());
   // cpu s: processor time of the timed steps (all threads; lavapipe's threads included), the
   // figure to compare on a shared machine.
   std::printf("%-8s %-20s %14s %14s %10s %9s %10s %10s %9s %8s\n", "backend", "variant", "particle-st/s", "contacts/s",

@@ -23,6 +23,9 @@ inline constexpr const char* kLibraryBackend = "cpu";
 struct Layout {
   uint32_t n_particles = 0;
   uint32_t n_walls = 0;
+  uint32_t n_moving_walls = 0;  // walls with a prescribed motion (a row each per step of a batch)
+  uint32_t n_wall_groups = 0;   // named walls (wall_reduce's sums)
+  uint32_t wall_grid_words = 0; // the wall grid (Model::wall_grid; 0: none)
   uint32_t n_materials = 0;
   uint32_t table_size = 0;
   uint32_t capacity = 0;     // contact list entries
@@ -89,15 +92,16 @@ class Backend {
   uint64_t state_downloads() const { return state_downloads_; }
   // The positions alone (pos, 16 B per particle, in the device's slots): what an escape check reads.
   virtual void download_positions(std::vector<gpu::vec4>& pos) = 0;
-  // layout.batch_steps * n_walls states, step-major.
-  virtual void upload_walls(const std::vector<gpu::WallState>& walls) = 0;
+  // Wall rows from row `first` (walls.h wall_at): every wall's (first 0), or the moving walls'
+  // at each step of a batch, step-major (first n_walls).
+  virtual void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) = 0;
   // Runs the dispatches in order, each seeing the previous one's writes, and waits.
   // With `times`, adds each kernel's duration (for `repose bench`).
   virtual void execute(const std::vector<Dispatch>& program, KernelTimes* times = nullptr) = 0;
   virtual std::vector<uint32_t> read_control() = 0;
-  // Force on each wall from the current contact forces.
+  // Force on each named wall from the current contact forces.
   virtual std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) = 0;
-  // The wall_reduce sums (store_wall_force): per wall its running force sum, then its peak.
+  // The wall_reduce sums (store_wall_force): per named wall its running force sum, then its peak.
   virtual std::vector<gpu::vec4> wall_sums() = 0;
   // The last step's force on the owner of each of the list's first `contacts` entries.
   virtual std::vector<gpu::vec4> contact_forces(uint32_t contacts) = 0;

@@ -21,13 +21,14 @@ size_t buffer_elements(const BufferSpec& b, const Layout& l) {
     case BufferCount::Buckets: return t + 1;
     case BufferCount::BucketsPlusOne: return t + 2;
     case BufferCount::Pairs: return size_t(l.n_materials) * l.n_materials;
-    case BufferCount::WallRows: return size_t(l.batch_steps) * l.n_walls;
-    case BufferCount::WallSums: return 3 * size_t(l.n_walls);
+    case BufferCount::WallRows: return l.n_walls + size_t(l.batch_steps) * l.n_moving_walls;
+    case BufferCount::WallSums: return 3 * size_t(l.n_wall_groups);
     case BufferCount::Bodies: return l.n_bodies;
     case BufferCount::Control: return gpu::kControlWords;
     case BufferCount::CandidateSlots: return n * gpu::kCandidateSlots;
     case BufferCount::Parts: return l.n_parts;
     case BufferCount::ScanBlocks: return size_t(gpu::scan_blocks_for(uint32_t(std::max(n, t + 1)))) + 1;
+    case BufferCount::WallGrid: return l.wall_grid_words;
   }
   return 0;
 }

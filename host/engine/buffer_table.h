@@ -12,7 +12,7 @@ namespace repose {
 
 enum class BufferCount {
   Particles, ParticlesPlusOne, ParticlesTwice, Contacts, ContactsTwice, Transposed, Buckets, BucketsPlusOne, Pairs, WallRows,
-  WallSums, Bodies, Control, CandidateSlots, Parts, ScanBlocks
+  WallSums, Bodies, Control, CandidateSlots, Parts, ScanBlocks, WallGrid
 };
 enum class BufferNeed { Always, FullEntries, Bodies, RollingSprings, Alias };
 enum class BufferKeep { Scratch, State, File, Constant, Walls };

@@ -85,7 +85,11 @@ void CpuBackend::read_state(HostState& s) {
   });
 }
 
-void CpuBackend::upload_walls(const std::vector<gpu::WallState>& walls) { put(gpu::kBindWalls, walls); }
+void CpuBackend::upload_walls(const std::vector<gpu::WallState>& rows, size_t first) {
+  const Binding& block = storage_[gpu::kBindWalls];
+  size_t offset = std::min(first * sizeof(gpu::WallState), block.size());
+  std::memcpy(block.data() + offset, rows.data(), std::min(rows.size() * sizeof(gpu::WallState), block.size() - offset));
+}
 
 void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   for (const Dispatch& d : program) {
@@ -98,7 +102,7 @@ void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* time
       if (groups > 0) gpu::run_scan(buf_, d.scan, pool_);
     } else if (d.kernel == KernelId::WallReduce) {  // a fixed tree per wall, as the shader's
       buf_.push = d.sim;
-      gpu::run_wall_reduce(buf_, layout_.n_walls);
+      gpu::run_wall_reduce(buf_);
     } else {
       buf_.push = d.sim;
       gpu::run_kernel(d.kernel, buf_, uint64_t(groups) * d.sim.workgroup, pool_);
@@ -115,12 +119,13 @@ std::vector<uint32_t> CpuBackend::read_control() {
 
 std::vector<gpu::vec4> CpuBackend::wall_forces(const gpu::SimPush& push) {
   buf_.push = push;
-  gpu::run_wall_reduce(buf_, layout_.n_walls);
-  return std::vector<gpu::vec4>(buf_.wall_force, buf_.wall_force + layout_.n_walls);
+  gpu::run_wall_reduce(buf_);
+  return std::vector<gpu::vec4>(buf_.wall_force, buf_.wall_force + layout_.n_wall_groups);
 }
 
 std::vector<gpu::vec4> CpuBackend::wall_sums() {
-  return std::vector<gpu::vec4>(buf_.wall_force + layout_.n_walls, buf_.wall_force + 3 * layout_.n_walls);
+  size_t n = layout_.n_wall_groups;
+  return std::vector<gpu::vec4>(buf_.wall_force + n, buf_.wall_force + 3 * n);
 }
 
 std::vector<gpu::vec4> CpuBackend::contact_forces(uint32_t contacts) {

@@ -39,8 +39,15 @@ EscapeCheck::EscapeCheck(const Model& model) : model_(model) {
 }
 
 std::optional<Escape> EscapeCheck::find(const std::vector<gpu::vec4>& pos, double t) const {
+  // Planes and cylinders only: a mesh's 20,000 triangles would cost 20,000 tests per particle.
   std::vector<gpu::WallState> walls;
-  for (size_t w = 0; w < model_.walls.size(); ++w) walls.push_back(model_.wall_state(w, t));
+  std::vector<size_t> index;
+  for (size_t w = 0; w < model_.walls.size(); ++w) {
+    uint32_t kind = model_.walls[w].kind;
+    if (kind != gpu::kWallPlane && kind != gpu::kWallCylinder) continue;
+    walls.push_back(model_.wall_state(w, t));
+    index.push_back(w);
+  }
   for (uint32_t i = 0; i < pos.size(); ++i) {
     const auto& p = pos[i];
     double d = std::sqrt((p.x - centre_[0]) * (p.x - centre_[0]) + (p.y - centre_[1]) * (p.y - centre_[1]) +
@@ -58,7 +65,7 @@ std::optional<Escape> EscapeCheck::find(const std::vector<gpu::vec4>& pos, doubl
         double radial = std::sqrt(std::max(0.0, rx * rx + ry * ry + rz * rz - along * along));
         behind = radial - ws.p1.w;
       }
-      if (behind > 2 * p.w) return Escape{i, metres(behind) + " behind the wall '" + model_.walls[w].name + "'"};
+      if (behind > 2 * p.w) return Escape{i, metres(behind) + " behind the wall '" + model_.walls[index[w]].name + "'"};
     }
   }
   return std::nullopt;

@@ -48,13 +48,13 @@ size_t order_bytes(const Layout& l) {
 
 // The host's copies: Simulation's state, the positions alone (what `repose run`'s escape check
 // downloads between readings of the state), the particle order, the constants while they are
-// uploaded, the Model's arrays, a batch of wall rows.
+// uploaded, the Model's arrays, the wall rows (every wall's, then a batch of the moving ones').
 size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) {
   size_t n = m.n_particles;
   size_t model = n * (3 * sizeof(gpu::vec4) + sizeof(uint32_t)) + m.subs.size() * sizeof(gpu::SubSphere) +
                  m.bodies.size() * sizeof(gpu::Body) + m.pairs.size() * sizeof(gpu::PairParams) +
-                 m.walls.size() * sizeof(ModelWall);
-  size_t walls = size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState);
+                 m.walls.size() * sizeof(ModelWall) + m.wall_grid.size() * sizeof(uint32_t);
+  size_t walls = (l.n_walls + size_t(l.batch_steps) * l.n_moving_walls) * sizeof(gpu::WallState);
   size_t frame = frames ? size_t(kFrameBytesPerParticle * double(n)) : 0;
   size_t positions = n * sizeof(gpu::vec4);
   return rows_bytes(l, kept) + positions + (reordered ? order_bytes(l) : 0) + rows_bytes(l, constant) + model + walls +

@@ -8,6 +8,7 @@
 
 #include "case/body_pose.h"
 #include "case/time_step.h"
+#include "engine/wall_grid.h"
 #include "geometry/clump.h"
 #include "geometry/projected_area.h"
 #include "util/math.h"
@@ -258,11 +259,15 @@ gpu::WallState Model::wall_state(size_t w, double t) const {
   s.vel = v4(moving ? m.velocity : Vec3d{0, 0, 0}, mw.height);
   s.omega = v4(moving ? mul(axis, m.angular_rate) : Vec3d{0, 0, 0}, 0);
   s.centre = v4(centre, 0);
-  s.info = gpu::uvec4(mw.kind, mw.material, mw.mesh_id, 0u);
+  s.info = gpu::uvec4(mw.kind, mw.material, mw.mesh_id, mw.group);
   s.p2 = v4(triangle ? point(mw.p2) : direction(mw.p2), mw.half_u);
   s.p3 = v4(direction(mw.p3), mw.half_v);
-  s.topo = gpu::uvec4(mw.vertex_ids[0], mw.vertex_ids[1], mw.vertex_ids[2], 0u);
+  s.topo = gpu::uvec4(mw.vertex_ids[0], mw.vertex_ids[1], mw.vertex_ids[2], mw.moving_row);
   return s;
+}
+
+bool has_motion(const WallMotion& m) {
+  return m.velocity[0] != 0 || m.velocity[1] != 0 || m.velocity[2] != 0 || m.angular_rate != 0;
 }
 
 std::vector<size_t> Model::wall_groups() const {
@@ -458,6 +463,19 @@ void choose_neighbour_search(const CaseSpec& spec, Model& m) {
   }
 }
 
+// Each wall's named wall and its row among the moving ones (gpu::WallState info.w and topo.w).
+void index_walls(Model& m) {
+  std::vector<size_t> group = m.wall_groups();
+  for (size_t w = 0; w < m.walls.size(); ++w) {
+    ModelWall& mw = m.walls[w];
+    mw.group = static_cast<uint32_t>(group[w]);
+    if (!has_motion(mw.motion)) continue;
+    m.moving_walls.push_back(static_cast<uint32_t>(w));
+    mw.moving_row = static_cast<uint32_t>(m.moving_walls.size());
+  }
+  m.n_wall_groups = static_cast<uint32_t>(m.wall_group_names().size());
+}
+
 }  // namespace
 
 Model build_model(const CaseSpec& spec) {
@@ -482,6 +500,8 @@ Model build_model(const CaseSpec& spec) {
   m.integrator = spec.integrator;
   set_contact_flags(spec, m);
   choose_neighbour_search(spec, m);
+  index_walls(m);
+  if (spec.neighbour.wall_grid.value_or(wall_grid_pays(m))) set_wall_grid(m);
   return m;
 }
 

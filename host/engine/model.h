@@ -25,7 +25,13 @@ struct ModelWall {
   WallMotion motion;
   std::string name;        // the case's wall name, with a face suffix for boxes
   int spec_index = 0;      // which [[wall]] it came from
+  uint32_t group = 0;      // its named wall: wall_group_names()[group]
+  uint32_t moving_row = 0; // 0 without motion, else 1 + its place among the moving walls (walls.h wall_at)
 };
+
+// True when the motion moves its wall at some time (translation or rotation): such a wall has a
+// row per step of a batch; any other wall's row never changes.
+bool has_motion(const WallMotion& m);
 
 struct Model {
   std::string case_path;
@@ -41,6 +47,12 @@ struct Model {
   std::vector<gpu::SubSphere> subs;
   std::vector<gpu::BodyPart> parts;        // each body's parts, in body order (body_parts)
   std::vector<ModelWall> walls;
+  std::vector<uint32_t> moving_walls;      // the walls with a motion, ascending (ModelWall::moving_row)
+  uint32_t n_wall_groups = 0;              // named walls (wall_group_names)
+  // The wall grid (engine/wall_grid.h): gpu::WallGrid's words and its buckets; empty and 0 when
+  // every sphere tests every wall.
+  std::vector<uint32_t> wall_grid;
+  uint32_t wall_table_size = 0;
   double dt = 0;
   double rayleigh_time = 0;
   double end_time = 0;

@@ -194,6 +194,7 @@ ConstantData stored_constants(const Model& m, const ParticleOrder& order) {
   c.pairs = m.pairs;
   c.subs = stored(m.subs);
   c.parts = m.parts;
+  c.wall_grid = m.wall_grid;
   c.ids = order.table();
   return c;
 }

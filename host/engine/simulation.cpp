@@ -50,10 +50,8 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
 
   // Velocity Verlet needs F(0) before its first half kick.
   if (model_.integrator == Integrator::VelocityVerlet) {
-    std::vector<gpu::WallState> w0;
-    for (size_t w = 0; w < model_.walls.size(); ++w) w0.push_back(model_.wall_state(w, 0.0));
     for (int attempt = 0;; ++attempt) {
-      backend_->upload_walls(w0);  // again after a retry's allocate(), which zeroes every buffer
+      upload_walls(0, 0.0, 1);  // at t = 0; again after a retry's allocate(), which zeroes every buffer
       backend_->execute(initial_forces_program(model_, layout_, variant_, 0));
       auto ctl = backend_->read_control();
       if (!ctl[gpu::kCtlOverflow]) break;
@@ -70,6 +68,11 @@ void Simulation::allocate(uint32_t capacity) {
   layout_.capacity = capacity;
   backend_->allocate(layout_, stored_constants(model_, order_));
   upload();
+  // Every wall's row (walls.h wall_at): a wall without motion keeps it for the whole run.
+  std::vector<gpu::WallState> rows;
+  rows.reserve(model_.walls.size());
+  for (size_t w = 0; w < model_.walls.size(); ++w) rows.push_back(model_.wall_state(w, 0.0));
+  if (!rows.empty()) backend_->upload_walls(rows, 0);
 }
 
 // In cell order the state moves into its slots in place (no second copy of it) and stays there
@@ -146,7 +149,7 @@ void Simulation::replay_unread(std::vector<uint32_t> batches) {
   uint64_t first = step_;
   for (uint32_t k : batches) first -= k;
   for (uint32_t k : batches) {
-    upload_walls(first, k);
+    upload_walls(first, wall_time_offset(), k);
     backend_->execute(batch_program(first, k), profiling_ ? &profile_.kernels : nullptr);
     first += k;
   }
@@ -155,18 +158,17 @@ void Simulation::replay_unread(std::vector<uint32_t> batches) {
   if (control_[gpu::kCtlOverflow]) throw std::logic_error("a batch run again on a larger contact list overflowed it");
 }
 
-// Walls of `steps` steps from step `first`: velocity Verlet evaluates forces at the end of a
-// step, symplectic Euler at its start.
-void Simulation::upload_walls(uint64_t first, uint32_t steps) {
-  if (model_.walls.empty()) return;
-  double offset = model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0;
-  std::vector<gpu::WallState> w;
-  w.reserve(size_t(steps) * model_.walls.size());
+// The moving walls' rows for `steps` steps from step `first`, each at (first + s + offset) dt
+// (the still walls' rows stay as allocate() put them).
+void Simulation::upload_walls(uint64_t first, double offset, uint32_t steps) {
+  if (model_.moving_walls.empty()) return;
+  std::vector<gpu::WallState> rows;
+  rows.reserve(size_t(steps) * model_.moving_walls.size());
   for (uint32_t s = 0; s < steps; ++s) {
     double t = (double(first + s) + offset) * model_.dt;
-    for (size_t k = 0; k < model_.walls.size(); ++k) w.push_back(model_.wall_state(k, t));
+    for (uint32_t w : model_.moving_walls) rows.push_back(model_.wall_state(w, t));
   }
-  backend_->upload_walls(w);
+  backend_->upload_walls(rows, model_.walls.size());
 }
 
 namespace {
@@ -175,11 +177,9 @@ namespace {
 // (velocity Verlet evaluates a step's walls at its end).
 bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
   double t0 = double(first) * m.dt, t1 = double(first + steps + 1) * m.dt;
-  for (const ModelWall& w : m.walls) {
-    const WallMotion& motion = w.motion;
-    bool moves = motion.velocity[0] != 0 || motion.velocity[1] != 0 || motion.velocity[2] != 0 ||
-                 motion.angular_rate != 0;
-    if (moves && motion.start_time < t1 && motion.stop_time > t0) return true;
+  for (uint32_t w : m.moving_walls) {
+    const WallMotion& motion = m.walls[w].motion;
+    if (motion.start_time < t1 && motion.stop_time > t0) return true;
   }
   return false;
 }
@@ -194,10 +194,10 @@ std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) 
     auto one = step_program(model_, layout_, variant_, s, still);
     program.insert(program.end(), one.begin(), one.end());
     if (summing_walls_) {
-      // After the step's forces: each wall's, summed over the batch from its first step.
+      // After the step's forces: each named wall's, summed over the batch from its first step.
       Dispatch d;
       d.kernel = KernelId::WallReduce;
-      d.groups = layout_.n_walls;
+      d.groups = layout_.n_wall_groups;
       d.sim = base_push(model_, layout_, variant_);
       d.sim.wall_sums = s == 0 ? 2u : 1u;
       program.push_back(d);
@@ -209,15 +209,15 @@ std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) 
 void Simulation::sum_wall_forces() {
   if (model_.walls.empty()) return;
   summing_walls_ = true;
-  wall_sum_.assign(3 * model_.walls.size(), 0.0);
-  wall_peak_.assign(model_.walls.size(), 0.0);
+  wall_sum_.assign(3 * size_t(model_.n_wall_groups), 0.0);
+  wall_peak_.assign(model_.n_wall_groups, 0.0);
 }
 
 // A batch's sums (each batch starts them anew, so a batch redone after an overflow counts once),
 // added in batch order in double.
 void Simulation::add_batch_wall_sums() {
   std::vector<gpu::vec4> sums = backend_->wall_sums();
-  size_t n = model_.walls.size();
+  size_t n = model_.n_wall_groups;
   for (size_t w = 0; w < n; ++w) {
     wall_sum_[3 * w] += sums[w].x;
     wall_sum_[3 * w + 1] += sums[w].y;
@@ -230,9 +230,8 @@ std::vector<WallImpulse> Simulation::take_wall_impulses() {
   std::vector<WallImpulse> out;
   for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0, 0});
   if (!summing_walls_) return out;
-  auto group = model_.wall_groups();
-  for (size_t w = 0; w < group.size(); ++w) {
-    WallImpulse& g = out[group[w]];
+  for (size_t w = 0; w < out.size(); ++w) {
+    WallImpulse& g = out[w];
     g.jx += wall_sum_[3 * w] * model_.dt;
     g.jy += wall_sum_[3 * w + 1] * model_.dt;
     g.jz += wall_sum_[3 * w + 2] * model_.dt;
@@ -253,7 +252,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
       reordered_at_ = rebuilds();
     }
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
-    upload_walls(step_, k);
+    upload_walls(step_, wall_time_offset(), k);
     backend_->execute(batch_program(step_, k), profiling_ ? &profile_.kernels : nullptr);
     auto ctl = backend_->read_control();  // a few words: the state stays until someone reads it
     if (ctl[gpu::kCtlOverflow]) {
@@ -354,15 +353,13 @@ EnergySummary kinetic_energy(const HostState& state) {
 
 std::vector<WallForce> Simulation::wall_forces() {
   gpu::SimPush push = base_push(model_, layout_, variant_);
-  auto f = backend_->wall_forces(push);
-  // One entry per named wall: a mesh's triangles are summed in wall order (fixed, so repeatable).
+  auto f = backend_->wall_forces(push);  // one per named wall, a mesh's triangles in one sum
   std::vector<WallForce> out;
   for (const auto& name : model_.wall_group_names()) out.push_back({name, 0, 0, 0});
-  auto group = model_.wall_groups();
-  for (size_t w = 0; w < f.size(); ++w) {
-    out[group[w]].fx += f[w].x;
-    out[group[w]].fy += f[w].y;
-    out[group[w]].fz += f[w].z;
+  for (size_t w = 0; w < f.size() && w < out.size(); ++w) {
+    out[w].fx += f[w].x;
+    out[w].fy += f[w].y;
+    out[w].fz += f[w].z;
   }
   return out;
 }

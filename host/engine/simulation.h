@@ -24,7 +24,7 @@ struct WallForce {
 };
 
 // What a wall took between two readings: the impulse (the integral of its force over the steps,
-// N s) and the largest force at one step (N; for a mesh, of its most loaded triangle).
+// N s) and the largest force at one step (N; for a mesh, of all its triangles together).
 struct WallImpulse {
   std::string name;
   double jx = 0, jy = 0, jz = 0;
@@ -118,7 +118,10 @@ class Simulation {
   bool reorder_due() const;
   void grow(uint32_t needed);
   void replay_unread(std::vector<uint32_t> batches);
-  void upload_walls(uint64_t first, uint32_t steps);
+  void upload_walls(uint64_t first, double offset, uint32_t steps);
+  // Where in a step the walls' rows are taken: velocity Verlet evaluates forces at its end (1),
+  // symplectic Euler at its start (0).
+  double wall_time_offset() const { return model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0; }
   std::vector<Dispatch> batch_program(uint64_t first, uint32_t steps) const;
   void add_batch_wall_sums();
   Model model_;
@@ -148,7 +151,7 @@ class Simulation {
   RunProfile profile_;
   std::function<void(Simulation&)> observer_;
   bool summing_walls_ = false;
-  std::vector<double> wall_sum_, wall_peak_;  // per wall row: sum x, y, z (N, steps) and peak^2 (N^2)
+  std::vector<double> wall_sum_, wall_peak_;  // per named wall: sum x, y, z (N, steps) and peak^2 (N^2)
 };
 
 }  // namespace repose

@@ -65,6 +65,9 @@ Layout model_layout(const Model& m, const KernelVariant& v, uint32_t batch_steps
   Layout l;
   l.n_particles = m.n_particles;
   l.n_walls = static_cast<uint32_t>(m.walls.size());
+  l.n_moving_walls = static_cast<uint32_t>(m.moving_walls.size());
+  l.n_wall_groups = m.n_wall_groups;
+  l.wall_grid_words = static_cast<uint32_t>(m.wall_grid.size());
   l.n_materials = m.n_materials;
   l.table_size = m.table_size;
   l.batch_steps = std::max<uint32_t>(1, batch_steps);
@@ -80,6 +83,9 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
   gpu::SimPush p{};
   p.n_particles = l.n_particles;
   p.n_walls = l.n_walls;
+  p.n_moving_walls = l.n_moving_walls;
+  p.n_wall_groups = l.n_wall_groups;
+  p.wall_table_size = l.wall_grid_words ? m.wall_table_size : 0u;
   p.capacity = l.capacity;
   p.table_size = l.table_size;
   p.n_materials = l.n_materials;

@@ -93,7 +93,11 @@ void VulkanBackend::read_state(HostState& s) {
 
 void VulkanBackend::download_positions(std::vector<vec4>& pos) { down(b(kBindPos), pos, layout_.n_particles); }
 
-void VulkanBackend::upload_walls(const std::vector<WallState>& walls) { up(b(kBindWalls), walls); }
+void VulkanBackend::upload_walls(const std::vector<WallState>& rows, size_t first) {
+  vk::Buffer& dst = b(kBindWalls);
+  size_t offset = std::min(first * sizeof(WallState), dst.size());
+  dst.upload(rows.data(), std::min(rows.size() * sizeof(WallState), dst.size() - offset), offset);
+}
 
 void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
@@ -143,21 +147,21 @@ std::vector<uint32_t> VulkanBackend::read_control() {
 }
 
 std::vector<vec4> VulkanBackend::wall_forces(const SimPush& push) {
-  if (layout_.n_walls == 0) return {};
+  if (layout_.n_wall_groups == 0) return {};
   Dispatch d;
   d.kernel = KernelId::WallReduce;
-  d.groups = layout_.n_walls;
+  d.groups = layout_.n_wall_groups;
   d.sim = push;
   execute({d}, nullptr);
   std::vector<vec4> f;
-  down(b(kBindWallForce), f, layout_.n_walls);
+  down(b(kBindWallForce), f, layout_.n_wall_groups);
   return f;
 }
 
 std::vector<vec4> VulkanBackend::wall_sums() {
   std::vector<vec4> all;
-  down(b(kBindWallForce), all, 3 * size_t(layout_.n_walls));
-  return std::vector<vec4>(all.begin() + layout_.n_walls, all.end());
+  down(b(kBindWallForce), all, 3 * size_t(layout_.n_wall_groups));
+  return std::vector<vec4>(all.begin() + layout_.n_wall_groups, all.end());
 }
 
 std::vector<vec4> VulkanBackend::contact_forces(uint32_t contacts) {

@@ -31,13 +31,19 @@ uint slot_of(uint g) { return B_ids[PC.n_particles + g]; }
 // A partner's place in a row's order: its global id, or after every particle N + w for wall w.
 uint partner_key(uint p) { return p < PC.n_particles ? global_id(p) : p; }
 
-// The force f on wall w this step (wall_reduce). With PC.wall_sums also, after the walls' forces,
+// True when list partner p is a wall of named wall `group` (WallState.info.w; every row of a
+// wall holds the same).
+bool partner_in_wall_group(uint p, uint group) {
+  return p >= PC.n_particles && B_walls[p - PC.n_particles].info.w == group;
+}
+
+// The force f on named wall w this step (wall_reduce). With PC.wall_sums also, after the walls' forces,
 // its running sum (times dt: the impulse) and the largest force since the sums began (xyz, w its
 // squared length); 2 begins them anew with this step.
 void store_wall_force(uint w, vec3 f) {
   B_wall_force[w] = vec4(f.x, f.y, f.z, 0.0f);
   if (PC.wall_sums == 0u) return;
-  uint n = PC.n_walls;
+  uint n = PC.n_wall_groups;
   bool fresh = PC.wall_sums == 2u;
   vec3 before = fresh ? vec3(0.0f) : xyz(B_wall_force[n + w]);
   precise vec3 sum = before + f;

@@ -84,7 +84,7 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   vec4 vi = B_vel[i];
   vec3 xi = xyz(pi);
   float rad_i = pi.w;
-  WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
+  WallState ws = wall_at(p - PC.n_particles);
   s.mj = ws.info.y;
   s.wj = vec3(0.0f);
   s.w_other = xyz(ws.omega);

@@ -85,7 +85,7 @@ vec3 stored_contact_normal(uint c) {
     precise float dist = length3(d);
     n = vec3(div_rn(d.x, dist), div_rn(d.y, dist), div_rn(d.z, dist));
   } else {
-    WallState ws = B_walls[PC.wall_slot * PC.n_walls + (p - PC.n_particles)];
+    WallState ws = wall_at(p - PC.n_particles);
     float overlap;
     uint feature;
     wall_contact_feature(ws, xyz(pi), pi.w, 0.0f, n, overlap, feature);

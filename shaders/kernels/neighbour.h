@@ -156,7 +156,7 @@ void k_part_near(uint b) {
     vec4 cp = B_parts[p].world;
     uint walls = 0u;
     for (uint w = 0u; w < min(PC.n_walls, 32u); ++w)
-      if (part_may_meet_wall(B_walls[PC.wall_slot * PC.n_walls + w], xyz(cp), cp.w, PC.skin)) walls = walls | (1u << w);
+      if (part_may_meet_wall(wall_at(w), xyz(cp), cp.w, PC.skin)) walls = walls | (1u << w);
     B_parts[p].info.w = walls;
   }
   vec3 cb = xyz(B_bodies[b].pos);
@@ -347,6 +347,56 @@ uint walk_cells(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, 
   return k;
 }
 
+// Wall w as the k-th candidate of sphere i when it comes within the skin of touching as
+// wall_contact sees it (and i's part may meet it: part_walls); returns the candidates so far.
+uint wall_candidate(uint i, vec4 pi, uint w, uint near_walls, bool fill, uint base, uint k, uint old_begin,
+                    uint old_end) {
+  if (w < 32u && (near_walls & (1u << w)) == 0u) return k;  // out of reach of i's part
+  vec3 n;
+  float overlap;
+  if (!wall_contact(wall_at(w), xyz(pi), pi.w, PC.skin, n, overlap)) return k;
+  emit_candidate(fill, base, k, i, PC.n_particles + w, old_begin, old_end);
+  return k + 1u;
+}
+
+// The wall grid (docs/engineering.md, "The wall grid"; host/engine/wall_grid.h): the host lists
+// each still triangle under every cell of the particle grid from which a small sphere's centre
+// can come within the skin of touching it (with a slack for the roundings); the other walls
+// (planes, cylinders, rectangles, moving walls) are on a list every sphere tests. B_wall_grid
+// holds, for T = PC.wall_table_size: [0, T) the starts of the buckets of cell_hash, [T] the start
+// of that list and [T + 1] its end; a bucket holds its cells one after the other, each as
+// (x, y, z, count, its walls ascending). Candidates are written in rows sorted by partner, so
+// the order in which a walk finds them changes no byte, and a wall the grid leaves out is one
+// wall_contact rejects: the list is the one every wall tested gives. Spheres above
+// PC.large_radius, beyond the grid's reach, test every wall, as every sphere does without a grid
+// (T = 0).
+uint walk_walls(uint i, vec4 pi, ivec3 ci, bool large, bool fill, uint base, uint k, uint old_begin, uint old_end) {
+  uint near_walls = part_walls(i);
+  uint t = PC.wall_table_size;
+  if (t == 0u || large) {
+    for (uint w = 0u; w < PC.n_walls; ++w) k = wall_candidate(i, pi, w, near_walls, fill, base, k, old_begin, old_end);
+    return k;
+  }
+  uint end = B_wall_grid[t + 1u];
+  for (uint s = B_wall_grid[t]; s < end; ++s)
+    k = wall_candidate(i, pi, B_wall_grid[s], near_walls, fill, base, k, old_begin, old_end);
+  uint h = cell_hash(ci.x, ci.y, ci.z, t);
+  end = B_wall_grid[h + 1u];
+  uint s = B_wall_grid[h];
+  while (s < end) {  // the bucket's cells: i's own, if listed, and others of the same hash
+    uint count = B_wall_grid[s + 3u];
+    uint first = s + 4u;
+    s = first + count;
+    if (int(B_wall_grid[first - 4u]) != ci.x || int(B_wall_grid[first - 3u]) != ci.y ||
+        int(B_wall_grid[first - 2u]) != ci.z)
+      continue;
+    for (uint e = first; e < s; ++e)
+      k = wall_candidate(i, pi, B_wall_grid[e], near_walls, fill, base, k, old_begin, old_end);
+    return k;
+  }
+  return k;
+}
+
 // Walks the 27 cells around i in a fixed order (small particles only), then the large bucket,
 // then the walls. With `fill`, writes partners, owners and carried histories from `base`;
 // returns the number of candidates.
@@ -390,18 +440,8 @@ uint walk_neighbours(uint i, bool fill, uint base) {
     emit_candidate(fill, base, k, i, j, old_begin, old_end);
     k = k + 1u;
   }
-  uint n_walls = i_fixed ? 0u : PC.n_walls;  // a wall cannot push a fixed particle either
-  uint near_walls = part_walls(i);
-  for (uint w = 0u; w < n_walls; ++w) {
-    if (w < 32u && (near_walls & (1u << w)) == 0u) continue;  // out of reach of i's part
-    WallState ws = B_walls[PC.wall_slot * PC.n_walls + w];
-    vec3 n;
-    float overlap;
-    if (!wall_contact(ws, xyz(pi), pi.w, PC.skin, n, overlap)) continue;
-    emit_candidate(fill, base, k, i, PC.n_particles + w, old_begin, old_end);
-    k = k + 1u;
-  }
-  return k;
+  if (i_fixed) return k;  // a wall cannot push a fixed particle either
+  return walk_walls(i, pi, ci, large, fill, base, k, old_begin, old_end);
 }
 
 // Counts contacts per owner into row_start (scanned in place next) and resets the transposed

@@ -3,6 +3,16 @@
 #ifndef REPOSE_KERNELS_WALLS_H
 #define REPOSE_KERNELS_WALLS_H
 
+// Wall w's state at this step. The first n_walls rows of B_walls hold every wall as it stands
+// (uploaded once: a wall without motion never changes); a wall with a prescribed motion
+// (topo.w = 1 + its place among them) has a row per step of the batch after those, uploaded with
+// each batch, so a 20,000-triangle mesh is not sent again for every step a gate slides.
+WallState wall_at(uint w) {
+  uint moving = B_walls[w].topo.w;
+  if (moving == 0u) return B_walls[w];
+  return B_walls[PC.n_walls + PC.wall_slot * PC.n_moving_walls + (moving - 1u)];
+}
+
 // Closest point to p on triangle (a, b, c) and its feature (kFeatureFace/Edge/Vertex): Ericson,
 // Real-Time Collision Detection 5.1.5, the float twin of host/geometry/closest_point.cpp.
 vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
@@ -154,7 +164,7 @@ bool mesh_contact_shadowed(uint i, uint c, WallState ws, uint w, vec3 x, float r
     uint p2 = B_partner[c2];
     if (c2 == c || p2 < PC.n_particles) continue;
     uint w2 = p2 - PC.n_particles;
-    WallState other = B_walls[PC.wall_slot * PC.n_walls + w2];
+    WallState other = wall_at(w2);
     if (other.info.x != kWallTriangle || other.info.z != ws.info.z) continue;
     if (!shares_vertex(ws.topo, other.topo)) continue;
     vec3 n2;

@@ -39,7 +39,7 @@ std::vector<Binding> twin_bindings(const Layout& l, const gpu::Buffers& b) {
       {gpu::kBindHistory, "history", C * v4, b.history}, {gpu::kBindContactForce, "contact_force", C * v4, b.contact_force},
       {gpu::kBindTorqueI, "torque_i", C * v4, b.torque_i}, {gpu::kBindTransStart, "trans_start", (N + 1) * u, b.trans_start},
       {gpu::kBindTransList, "trans_list", C * u, b.trans_list}, {gpu::kBindIds, "ids", 2 * N * u, b.ids},
-      {gpu::kBindWalls, "walls", size_t(l.batch_steps) * l.n_walls * sizeof(gpu::WallState), b.walls},
+      {gpu::kBindWalls, "walls", buffer_elements(kBufferTable[kRowWalls], l) * sizeof(gpu::WallState), b.walls},
       {gpu::kBindScanBlocks, "scan_blocks", buffer_elements(kBufferTable[kRowScanBlocks], l) * u, b.scan_blocks},
   };
   if (l.n_bodies) bindings.push_back({gpu::kBindBodies, "bodies", l.n_bodies * sizeof(gpu::Body), b.bodies});

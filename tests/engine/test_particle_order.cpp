@@ -12,6 +12,7 @@
 
 #include "engine/particle_order.h"
 #include "engine_test_support.h"
+#include "state_file_support.h"
 #include "io/state_file.h"
 
 using namespace repose;
@@ -28,15 +29,6 @@ ParticleOrder scrambled(uint32_t n, uint64_t seed) {
 
 std::string temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("repose_test_" + std::to_string(::getpid()) + "_" + name)).string();
-}
-
-std::string state_file_bytes(const Simulation& sim, const std::string& name) {
-  std::string path = temp_path(name);
-  write_state_file(path, sim.state(), sim.step(), sim.time());
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), {});
-  std::remove(path.c_str());
-  return bytes;
 }
 
 bool same_wall_forces(Simulation& a, Simulation& b) {
