@@ -47,7 +47,10 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
   // Room above the heap for the legend, a little beside it; a heap taller than wide (what stays in
   // a drained box) is drawn in a picture as wide as the chart's 1400 x 1000, so its title fits.
   const double margin = 0.03 * (u1 - u0);
-  const double top = z1 + 0.3 * (z1 - z0);
+  // A heap far wider than tall (grains that ran out into a low mound) keeps its equal scale, so
+  // its slopes look as steep as they are, under room enough for readable z ticks and the legend:
+  // the picture at least a quarter as tall as wide.
+  const double top = std::max(z1 + 0.3 * (z1 - z0), z0 + 0.25 * ((u1 - u0) + 2 * margin));
   const double widen = std::max(0.0, 0.5 * (1.4 * (top - z0) - (u1 - u0)) - margin);
   Chart chart = Chart::equal_scale(1400, 1000, u0 - margin - widen, u1 + margin + widen, z0, top);
   // The silhouette, then its top outline, the floor, the fitted lines and the points they used.

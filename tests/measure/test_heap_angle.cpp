@@ -228,6 +228,21 @@ TEST_CASE("heap.png: the title states the headline angle, the legend only what i
   }
 }
 
+TEST_CASE("heap.png of a low, wide mound: equal scales, the picture a quarter as tall as wide, legend clear", "[heap]") {
+  // A 5 cm mound sloping at 5 degrees: 1.1 m wide. At equal scales alone its plot was ~1/20 as
+  // tall as wide: the z ticks ran into each other and the legend covered the subtitle.
+  const HeapAngle mound = measure_heap_angle(wedge_shell(0.05, 5.0, 5.0, 0.004, 0.1), {});
+  const ChartRecord r = heap_picture(mound, front_view_caption(mound), "repose_test_heap_mound.png");
+  REQUIRE(r.x_ticks.size() >= 2);
+  REQUIRE(r.y_ticks.size() >= 2);
+  const double x_span = std::stod(r.x_ticks.back()) - std::stod(r.x_ticks.front());
+  const double z_span = std::stod(r.y_ticks.back()) - std::stod(r.y_ticks.front());
+  INFO("x ticks " << r.x_ticks.front() << " .. " << r.x_ticks.back() << ", z ticks " << r.y_ticks.front() << " .. "
+                  << r.y_ticks.back());
+  CHECK(z_span >= 0.15 * x_span);  // ticks span most of each axis: the picture is not a strip
+  CHECK_FALSE(r.legend_covers_data);
+}
+
 TEST_CASE("line fit recovers a known line and refuses degenerate input", "[heap]") {
   const LineFit f = fit_line({1, 2, 3, 4}, {3, 5, 7, 9});
   CHECK(f.slope == Approx(2.0));
