@@ -37,7 +37,8 @@ namespace repose::gpu {
 // Aliases: old_partner and old_history live only from save_old_contacts to contact_fill of a
 // rebuild, candidates from contact_count to contact_fill; trans_list (transpose_fill),
 // contact_force and torque_i (the contact kernel) are rewritten after that in the same step;
-// touches lives from clear_touches to the contact kernel of a step, cell_of only from
+// scan_blocks (on torque_j's binding) only within one scan of a rebuild, before the contact kernel
+// rewrites torque_j; touches lives from clear_touches to the contact kernel of a step, cell_of only from
 // bucket_count to bucket_scatter of a rebuild before it, cell_fill only in its bucket_scatter
 // before.
 // Particles sit in storage slots in any order (host/engine/particle_order.h: cell order, for
