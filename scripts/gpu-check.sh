@@ -5,21 +5,25 @@
 # lazy download tests on the GPU, a run in the case's order against the cpu backend's cell
 # order, and `repose bench` in both orders), `repose bench` at 1e5, 1e6 and 1e7 spheres on the
 # GPU beside the cpu backend on every core, and the scan's block passes against one workgroup.
-# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--quick]
+# the large heap (cases/large_heap: a million grains poured and their angle measured) on the GPU.
+# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
 #   --out:    where report.md and the raw logs go (default out/gpu-check).
+#   --only:   run only the steps whose title matches REGEX (grep -E, any case), e.g. --only 'heap|1000000 spheres'
+#             where a session's device time is short; the report lists the steps left out.
 #   --quick:  a check of this script itself on any Vulkan device (lavapipe through VK_DRIVER_FILES):
 #             the twin tests left out, 2,000-sphere beds, short runs and benches.
 # Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
 set -u
 cd "$(dirname "$0")/.."
-bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --bundle) bundle=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
+    --only) only=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
   esac
@@ -52,9 +56,16 @@ if [ -z "${VK_DRIVER_FILES:-}" ]; then
 fi
 
 say() { printf '%s\n' "$*" | tee -a "$report"; }
-# step TITLE SECONDS COMMAND...: runs it with a limit, keeps its log, puts its tail in the report.
+# step TITLE SECONDS COMMAND...: runs it with a limit, keeps its log, puts its tail in the report;
+# SECONDS "always": 60 s, and never left out by --only.
 step() {
   local title=$1 limit=$2; shift 2
+  # The devices are always listed; --only picks among the rest.
+  if [ -n "$only" ] && [ "$limit" != always ] && ! printf '%s' "$title" | grep -qiE -- "$only"; then
+    say "- left out (--only): $title"
+    return 0
+  fi
+  [ "$limit" = always ] && limit=60
   local log="$out/$(echo "$title" | tr -c 'A-Za-z0-9_\n' '_' | tr -s _).log"
   local t0=$(date +%s)
   timeout --signal=TERM --kill-after=10 "$limit" "$@" >"$log" 2>&1
@@ -74,9 +85,9 @@ say ""
 say "- version: $(git describe --always --dirty 2>/dev/null || echo unknown); binaries: $bin"
 say "- host: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(free -g | awk '/Mem:/{print $2}') GiB"
 say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}"
-step "nvidia-smi" 30 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
-[ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" 60 "$bin/vulkaninfo" --summary
-step "repose devices" 60 "$bin/repose" devices
+step "nvidia-smi" always nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
+[ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" always "$bin/vulkaninfo" --summary
+step "repose devices" always "$bin/repose" devices
 if [ $quick = 0 ]; then
   # Each kernel alone from the twin's buffers first: the table of kernels whose own arithmetic differs.
   TAIL=80 step "each kernel alone on the GPU" 300 "$bin/test_engine" "each kernel alone*" -d yes
@@ -124,5 +135,17 @@ TAIL=40 step "bench, $order_n spheres, the case's order and cell order" 600 "$bi
 TAIL=40 step "bench, a random fill of 50k spheres, the case's order and cell order" 600 "$bin/repose" bench \
     --case cases/bench_bed.toml --backend vulkan --variant lean,reorder=0 --variant lean,reorder=20 \
     --steps "$order_steps" --cache "$out/bench-cache"
+# The large heap on the GPU: the README gives the cpu backend's angle, time and steps for the same
+# case, and a GPU that keeps the cpu backend's bytes gives the same angle to the last digit.
+# --quick: a 2,000-grain pour's first steps, which checks the case and the step only.
+if [ $quick = 1 ]; then
+  step "the large heap (cases/large_heap), 2000 grains, 100 steps" 300 "$bin/repose" run \
+      cases/large_heap/large_heap.toml --set fill.0.count=2000 --backend vulkan --steps 100 --quiet \
+      --overwrite --out "$out/large_heap"
+else
+  TAIL=60 step "the large heap (cases/large_heap), a million grains poured and measured" 540 "$bin/repose" \
+      experiment repose cases/large_heap/large_heap.toml --backend vulkan --profile --overwrite \
+      --out "$out/large_heap"
+fi
 say ""
 say "Logs: $out"
