@@ -14,6 +14,7 @@
 #include "util/number_text.h"
 #include "engine/backend_factory.h"
 #include "engine/model.h"
+#include "experiments/experiment_checkpoint.h"
 #include "experiments/registry.h"
 #include "io/output_dir.h"
 #include "io/provenance.h"
@@ -56,7 +57,7 @@ nlohmann::ordered_json experiment_provenance(const CaseSpec& spec, const std::ve
 
 // The verb's command line as parsed; the two options whose presence matters are kept to ask.
 struct ExperimentArgs {
-  std::string type, case_path, backend = kUserBackend, out_dir;
+  std::string type, case_path, backend = kUserBackend, out_dir, restart;
   unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
@@ -82,6 +83,10 @@ void add_experiment_options(CLI::App& app, ExperimentArgs& a) {
   app.add_option("--out", a.out_dir, "output folder, new or empty (default out/experiment/CASE_NAME)")
       ->check(non_empty_path());
   app.add_flag("--overwrite", a.overwrite, "delete what --out holds before the experiment");
+  app.add_option("--restart", a.restart,
+                 "repose: continue from DIR/checkpoint.state, which a stopped experiment (Ctrl-C, SIGTERM) or "
+                 "[output] checkpoint_interval wrote, in its folder DIR: the result of a run that never stopped")
+      ->check(CLI::ExistingFile);
   app.add_flag("--quiet", a.quiet, "no progress output");
   app.add_flag("--profile", a.profile, "repose: time every kernel and print where each phase's time went");
   app.add_flag("--wall-impulses", a.wall_impulses,
@@ -105,6 +110,12 @@ int check_experiment_fits(const ExperimentArgs& a, const CaseSpec& spec, const E
                  spec.experiment.type.c_str(), a.type.c_str());
     return 2;
   }
+  if (!a.restart.empty() && !experiment->resumable()) {
+    std::vector<std::string> with;
+    for (const Experiment* e : experiments())
+      if (e->resumable()) with.push_back(e->description());
+    return usage_error("--restart applies to " + listed(with) + ", not to " + experiment->description());
+  }
   if (a.replicates > 1 && !experiment->takes_replicates()) {
     std::vector<std::string> with;
     for (const Experiment* e : experiments())
@@ -125,6 +136,8 @@ ExperimentRun experiment_run_for(const ExperimentArgs& a, const CaseSpec& spec, 
   run.progress = !a.quiet;
   run.replicates = a.replicates;
   run.wall_impulses = a.wall_impulses;
+  run.checkpoint_dir = a.out_dir;
+  run.restart = a.restart;
   if (a.frames_option->count() || (spec.output.interval > 0 && spec.output.vtk)) {
     run.frames.dir = a.out_dir;
     run.frames.name = spec.name;
@@ -147,6 +160,7 @@ int run_and_write_outcome(const Experiment& experiment, const CaseSpec& spec, co
     ExperimentOutcome outcome = experiment.run(spec, run);
     outcome.json = with_status(outcome);
     outcome.json["provenance"] = experiment_provenance(spec, a.sets, run);
+    if (!a.restart.empty()) outcome.json["provenance"]["restarted_from"] = a.restart;
     for (const std::string& line : write_outcome(outcome, a.type + ".json", out_dir))
       std::printf("%s\n", line.c_str());
     if (run.frames.wanted())
@@ -157,6 +171,9 @@ int run_and_write_outcome(const Experiment& experiment, const CaseSpec& spec, co
       std::fprintf(stderr, "%s\n", outcome.problem.c_str());
       return 1;
     }
+  } catch (const ExperimentStopped& e) {  // the checkpoint is written; no result yet
+    std::fprintf(stderr, "%s\n", e.what());
+    return 128 + e.signal;
   } catch (const std::runtime_error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     ExperimentOutcome failed;
@@ -193,17 +210,39 @@ int run_experiment(int argc, char** argv) {
   CaseSpec& spec = *loaded;
   const Experiment* experiment = experiment_for(spec);
   if (int code = check_experiment_fits(a, spec, experiment)) return code;
-  // Its own default folder: `repose run` of the same case writes out/CASE_NAME.
-  if (a.out_dir.empty()) a.out_dir = "out/experiment/" + spec.name;
+  if (!a.restart.empty()) {
+    try {
+      check_experiment_restart(spec, a.restart, experiment->id());
+    } catch (const BadInput& e) {
+      std::fprintf(stderr, "repose experiment: %s\n", e.what());
+      return 2;
+    }
+  }
+  // Its own default folder: `repose run` of the same case writes out/CASE_NAME; a restart
+  // continues in the folder of its checkpoint.
+  namespace fs = std::filesystem;
+  const fs::path checkpoint_home = fs::path(a.restart).parent_path().empty() ? fs::path(".") : fs::path(a.restart).parent_path();
+  if (a.out_dir.empty()) a.out_dir = a.restart.empty() ? "out/experiment/" + spec.name : checkpoint_home.string();
+  const ExperimentRun run = experiment_run_for(a, spec, resolve_backend(a.backend, a.device));
+  if (!a.restart.empty() && run.frames.wanted())
+    return usage_error("--restart continues an experiment without VTK frames, and this one writes them (--frames or "
+                       "the case's [output] interval)");
   std::optional<OutputFolder> folder;  // ours alone until the experiment ends
   try {
     folder.emplace(a.out_dir);
-    folder->make_ready(a.overwrite, {a.case_path});
+    if (a.restart.empty()) {
+      folder->make_ready(a.overwrite, {a.case_path});
+    } else if (a.overwrite || !fs::equivalent(checkpoint_home, a.out_dir)) {
+      throw OutputError("--restart continues in the folder of its checkpoint (" + a.restart +
+                        "), kept as it is: --out that folder (or leave --out out), without --overwrite");
+    } else {
+      folder->remove_leftovers();  // a killed experiment's half-written temporaries
+    }
   } catch (const OutputError& e) {
     std::fprintf(stderr, "repose experiment: %s\n", e.what());
     return 2;
   }
-  const ExperimentRun run = experiment_run_for(a, spec, resolve_backend(a.backend, a.device));
+
   return run_and_write_outcome(*experiment, spec, run, a);
 }
 

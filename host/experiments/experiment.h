@@ -142,6 +142,10 @@ class Experiment {
   virtual bool stochastic(const CaseSpec&) const { return false; }
   // Whether `repose experiment --replicates N` applies (its run() honours ExperimentRun::replicates).
   virtual bool takes_replicates() const { return false; }
+  // Whether its runs stop and go on (experiments/experiment_checkpoint.h: checkpoints every
+  // [output] checkpoint_interval and on SIGINT/SIGTERM, `repose experiment --restart`): its run()
+  // honours ExperimentRunOptions::checkpoint_dir and restart.
+  virtual bool resumable() const { return false; }
   // The measures `wanted` of one model; `strict` false: a model far from the data (met while
   // searching) gives the values that move the search away instead of an error.
   virtual DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,

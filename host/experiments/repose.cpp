@@ -14,6 +14,7 @@
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
 #include "experiments/heap_fill.h"
+#include "experiments/experiment_checkpoint.h"
 #include "measure/bed_height.h"
 #include "measure/heap_json.h"
 #include "measure/heap_png.h"
@@ -96,6 +97,26 @@ struct HeapEta {
   }
 };
 
+// What run_until_settled has gathered by a sample, as its checkpoints keep it (experiment_checkpoint.h).
+OrderedJson repose_progress(const ReposeResult& r, bool bed_measured, bool clear_before) {
+  OrderedJson energy = OrderedJson::array(), phases = OrderedJson::array();
+  for (const auto& [t, e] : r.energy) energy.push_back({t, e});
+  for (const auto& [name, p] : r.phases) phases.push_back({name, profile_json(p)});
+  return {{"bed_measured", bed_measured}, {"bed_height_m", r.bed_height}, {"clear_before", clear_before},
+          {"energy", energy},             {"wall_forces", wall_series_json(r.wall_forces)},
+          {"phases", phases}};
+}
+
+void load_repose_progress(const OrderedJson& j, ReposeResult& r, bool& bed_measured, bool& clear_before) {
+  bed_measured = j.at("bed_measured").get<bool>();
+  r.bed_height = j.at("bed_height_m").get<double>();
+  clear_before = j.at("clear_before").get<bool>();
+  for (const auto& e : j.at("energy")) r.energy.push_back({e.at(0).get<double>(), e.at(1).get<double>()});
+  r.wall_forces = wall_series_from_json(j.at("wall_forces"));
+  r.phases.clear();
+  for (const auto& p : j.at("phases")) r.phases.push_back({p.at(0).get<std::string>(), profile_from_json(p.at(1))});
+}
+
 // Fill, lift and run-out, sampled every 0.05 s, until the lift is over (or the lifted wall clear
 // of the heap twice running) and no particle is faster than settle_energy; the bed height when
 // the lift starts, energies, wall forces and the time per phase go into r. Not settled by
@@ -104,13 +125,16 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
                        double lift_end, bool measure_unsettled, Simulation& sim, ReposeResult& r) {
   const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   uint64_t sample_steps = steps_in(0.05, r.dt);
-  Progress progress(spec.name + " repose", uint64_t(spec.experiment.max_time / r.dt) + 1, r.dt, options.progress);
   HeapEta eta;
   // The lifted wall's entry among the named walls (its force tells when it is clear of the heap).
   auto names = sim.model().wall_group_names();
   size_t lift_group = size_t(std::find(names.begin(), names.end(), lift.name) - names.begin());
   bool clear_before = false, bed_measured = false;
   r.phases = {{"fill", {}}, {"lift", {}}, {"run-out", {}}};
+  ExperimentCheckpoints checkpoints(options, spec, "repose");
+  if (auto saved = checkpoints.restore(sim)) load_repose_progress(*saved, r, bed_measured, clear_before);
+  Progress progress(spec.name + " repose", uint64_t(spec.experiment.max_time / r.dt) + 1, r.dt, options.progress,
+                    sim.step());
   while (true) {
     auto sample_start = std::chrono::steady_clock::now();
     size_t phase = sim.time() < lift.motion.start_time - 1e-9 ? 0 : sim.time() < lift_end - 1e-9 ? 1 : 2;
@@ -138,6 +162,7 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
       r.settled = !out_of_time || (lift_over && e < ex.settle_energy);
       break;
     }
+    checkpoints.after_sample(sim, [&] { return repose_progress(r, bed_measured, clear_before); });
   }
   progress.finish();
   if (!r.settled) {

@@ -112,6 +112,7 @@ class ReposeExperiment : public Experiment {
   void replicate(CaseSpec& spec, int r) const override;
   void reseed(CaseSpec& spec, uint64_t seed) const override;
   bool stochastic(const CaseSpec&) const override { return true; }
+  bool resumable() const override { return true; }
   DiagnosticOutcome simulate_for_diagnosis(CaseSpec spec, const std::vector<std::string>& wanted,
                                            bool strict) const override;
   std::string implausible(const MeasureInfo& m, double value, const CaseSpec& spec) const override;

@@ -15,6 +15,11 @@ struct ExperimentRunOptions {
   bool profile = false;   // time every kernel (results carry per-phase profiles either way)
   FrameRequest frames;    // VTK frames as the experiment goes (`repose experiment --frames`)
   bool wall_impulses = false;  // wall_forces.csv: each wall's peak and impulse between samples
+  // A resumable experiment (Experiment::resumable(), experiments/experiment_checkpoint.h) writes
+  // its checkpoints into checkpoint_dir (empty: none, and signals are not its business) and
+  // continues from the checkpoint state `restart` (empty: from the start).
+  std::string checkpoint_dir;
+  std::string restart;
 };
 
 }  // namespace repose

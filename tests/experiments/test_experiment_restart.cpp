@@ -1,0 +1,137 @@
+// `repose experiment repose` stops on SIGINT/SIGTERM with a checkpoint, and `--restart` continues
+// it to the files of an experiment that never stopped; a checkpoint that does not belong is
+// refused (experiments/experiment_checkpoint.h).
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
+#include <thread>
+
+#include "../cli_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBucket = std::string(REPOSE_SOURCE_DIR) + "/cases/experiments/repose_bucket_spheres.toml";
+// The bucket rig (454 spheres) with a fast gate, as test_repose.cpp runs it, a checkpoint every 0.1 s.
+const std::vector<std::string> kSets = {"--set", "wall.gate.motion.start=1.0", "--set", "wall.gate.motion.stop=2.8",
+                                        "--set", "wall.gate.motion.velocity=[0.0,0.0,0.25]", "--set",
+                                        "experiment.lift_end=2.8", "--set", "experiment.max_time=10", "--set",
+                                        "output.checkpoint_interval=0.1"};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string joined(const std::vector<std::string>& words) {
+  std::string s;
+  for (const auto& w : words) s += " " + w;
+  return s;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("repose_test_experiment_restart_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The experiment in `out`, stopped by `signal` once `checkpoints` checkpoints have been written
+// (each replaces checkpoint.json, whose "step" tells them apart); returns its exit status.
+int stopped_experiment(const fs::path& out, const fs::path& log, int signal, int checkpoints) {
+  std::vector<std::string> args = {"experiment", "repose", kBucket, "--backend", "cpu", "--threads", "1", "--quiet",
+                                   "--out", out.string()};
+  args.insert(args.end(), kSets.begin(), kSets.end());
+  pid_t pid = repose::test::spawn_repose(args, log.string());
+  uint64_t last = 0;
+  for (int seen = 0, k = 0; seen < checkpoints && k < 6000; ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    auto j = nlohmann::json::parse(slurp(out / "checkpoint.json"), nullptr, false);
+    if (j.is_object() && j.value("step", uint64_t(0)) > last) {
+      last = j["step"];
+      ++seen;
+    }
+  }
+  kill(pid, signal);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("repose experiment: stopped by a signal and restarted, the same result files as a whole run",
+          "[experiments][cli][restart]") {
+  fs::path dir = fresh_dir("whole");
+  auto whole = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --out " +
+                                        (dir / "whole").string() + joined(kSets));
+  INFO(whole.output);
+  REQUIRE(whole.status == 0);
+  // Stopped in the fill (the first checkpoint, 0.1 s; the bed is measured at 1 s) and in the lift.
+  for (auto [signal, checkpoints] : {std::pair{SIGINT, 1}, std::pair{SIGTERM, 15}}) {
+    fs::path out = dir / ("cut" + std::to_string(signal));
+    int code = stopped_experiment(out, dir / "log", signal, checkpoints);
+    INFO(slurp(dir / "log"));
+    REQUIRE(code == 128 + signal);
+    CHECK(slurp(dir / "log").find("continue with --restart") != std::string::npos);
+    CHECK(!fs::exists(out / "repose.json"));  // no result until the experiment ends
+    auto rest = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
+                                         joined(kSets) + " --restart " + (out / "checkpoint.state").string());
+    INFO(rest.output);
+    REQUIRE(rest.status == 0);
+    for (const char* file : {"energy.csv", "heap.csv", "wall_forces.csv", "heap.png"}) {
+      INFO(file);
+      CHECK(slurp(dir / "whole" / file) == slurp(out / file));
+    }
+    auto a = nlohmann::json::parse(slurp(dir / "whole" / "repose.json"));
+    auto b = nlohmann::json::parse(slurp(out / "repose.json"));
+    CHECK(b["provenance"]["restarted_from"] == (out / "checkpoint.state").string());
+    for (auto* j : {&a, &b}) {  // what may differ: the wall-clock times and where it restarted from
+      j->erase("provenance");
+      for (auto& phase : (*j)["phases"]) phase.erase("wall_s");
+    }
+    CHECK(a.dump() == b.dump());
+  }
+}
+
+TEST_CASE("repose experiment --restart refuses what does not belong, with exit code 2 and nothing written",
+          "[experiments][cli][restart]") {
+  fs::path dir = fresh_dir("refused");
+  fs::path out = dir / "cut";
+  REQUIRE(stopped_experiment(out, dir / "log", SIGINT, 1) == 128 + SIGINT);
+  const std::string state = (out / "checkpoint.state").string();
+  auto restart = [&](const std::string& extra) {
+    return repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
+                                    joined(kSets) + " --restart " + state + extra);
+  };
+  auto other_case = restart(" --set simulation.seed=9");
+  CHECK(other_case.status == 2);
+  CHECK(other_case.output.find("not of this case") != std::string::npos);
+  auto elsewhere = restart(" --out " + (dir / "elsewhere").string());
+  CHECK(elsewhere.status == 2);
+  CHECK(elsewhere.output.find("folder of its checkpoint") != std::string::npos);
+  auto overwrite = restart(" --overwrite");
+  CHECK(overwrite.status == 2);
+  auto drop = repose::test::run_repose("experiment drop " + std::string(REPOSE_SOURCE_DIR) +
+                                       "/cases/drop_sphere.toml --quiet --restart " + state);
+  CHECK(drop.status == 2);
+  CHECK(drop.output.find("--restart applies to repose") != std::string::npos);
+  // The progress and the state of different steps (a stop between their two writes).
+  auto j = nlohmann::json::parse(slurp(out / "checkpoint.json"));
+  j["step"] = j["step"].get<uint64_t>() + 1;
+  std::ofstream(out / "checkpoint.json") << j.dump();
+  auto mismatched = restart("");
+  CHECK(mismatched.status == 2);
+  CHECK(mismatched.output.find("not written together") != std::string::npos);
+  fs::remove(out / "checkpoint.json");
+  auto missing = restart("");
+  CHECK(missing.status == 2);
+  CHECK(missing.output.find("checkpoint.json") != std::string::npos);
+  CHECK(!fs::exists(out / "repose.json"));
+}
