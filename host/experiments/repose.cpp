@@ -88,7 +88,9 @@ struct HeapEta {
     if (phase == 1 && ex.end_when_clear) {
       wall_force.add(t, force);
       double clear = wall_force.reaches(0.0);
-      if (clear > 0) end = std::min(end, clear);
+      // A trend that put the clearing in the past while the wall still touches grains (a gate
+      // slid aside under a stream that still brushes it) says nothing: the lift's end holds.
+      if (clear > t) end = std::min(end, clear);
     }
     progress.expect_end_time(end, phase == 0 ? printf_text("(filling to %g s, then the lift: at most to %g s%s)",
                                                            lift.motion.start_time, lift_end,
