@@ -189,6 +189,28 @@ int run_and_write_outcome(const Experiment& experiment, const CaseSpec& spec, co
   return 0;
 }
 
+// The output folder, claimed and readied: emptied for a new experiment (with --overwrite), kept
+// as it is for a restart, which must continue in its checkpoint's folder. False after the
+// message when it cannot be used.
+bool claim_output_folder(std::optional<OutputFolder>& folder, const ExperimentArgs& a,
+                         const std::filesystem::path& checkpoint_home) {
+  try {
+    folder.emplace(a.out_dir);
+    if (a.restart.empty()) {
+      folder->make_ready(a.overwrite, {a.case_path});
+    } else if (a.overwrite || !std::filesystem::equivalent(checkpoint_home, a.out_dir)) {
+      throw OutputError("--restart continues in the folder of its checkpoint (" + a.restart +
+                        "), kept as it is: --out that folder (or leave --out out), without --overwrite");
+    } else {
+      folder->remove_leftovers();  // a killed experiment's half-written temporaries
+    }
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "repose experiment: %s\n", e.what());
+    return false;
+  }
+  return true;
+}
+
 int run_experiment(int argc, char** argv) {
   std::string descriptions;
   for (const Experiment* e : experiments()) descriptions += (descriptions.empty() ? "" : ", ") + e->description();
@@ -228,21 +250,7 @@ int run_experiment(int argc, char** argv) {
     return usage_error("--restart continues an experiment without VTK frames, and this one writes them (--frames or "
                        "the case's [output] interval)");
   std::optional<OutputFolder> folder;  // ours alone until the experiment ends
-  try {
-    folder.emplace(a.out_dir);
-    if (a.restart.empty()) {
-      folder->make_ready(a.overwrite, {a.case_path});
-    } else if (a.overwrite || !fs::equivalent(checkpoint_home, a.out_dir)) {
-      throw OutputError("--restart continues in the folder of its checkpoint (" + a.restart +
-                        "), kept as it is: --out that folder (or leave --out out), without --overwrite");
-    } else {
-      folder->remove_leftovers();  // a killed experiment's half-written temporaries
-    }
-  } catch (const OutputError& e) {
-    std::fprintf(stderr, "repose experiment: %s\n", e.what());
-    return 2;
-  }
-
+  if (!claim_output_folder(folder, a, checkpoint_home)) return 2;
   return run_and_write_outcome(*experiment, spec, run, a);
 }
 
