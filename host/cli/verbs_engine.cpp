@@ -76,7 +76,8 @@ int run_case(int argc, char** argv) {
   app.add_option("--set", o.overrides, "override a case key: KEY=VALUE (repeatable)");
   app.add_option("--variant", o.variant,
                  "kernel variant: contact|rows, lean|full, wg=N, rebuild=N, reorder=N (cell order every N rebuilds, "
-                 "0: the case's; default 20); same bytes (default: vulkan contact,lean; cpu contact)");
+                 "0: the case's; default every 20 unless that takes over a tenth of the time); same bytes (default: "
+                 "vulkan contact,lean; cpu contact)");
   app.add_flag("--quiet", o.quiet, "no progress output");
   app.add_flag("--wall-impulses", o.wall_impulses,
                "wall_forces.csv also gives each wall's largest force and its impulse between frames (the walls' "

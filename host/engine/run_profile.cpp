@@ -12,6 +12,8 @@ void RunProfile::add(const RunProfile& o) {
   steps += o.steps;
   rebuilds += o.rebuilds;
   contact_steps += o.contact_steps;
+  reorders += o.reorders;
+  reorder_seconds += o.reorder_seconds;
 }
 
 double RunProfile::kernel_seconds() const {
@@ -38,7 +40,7 @@ std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>
     out += ' ';
     out += s;
   }
-  out += " host\n";
+  out += " reorder host\n";
   for (const auto& [label, p] : rows) {
     double steps = std::max<double>(1, double(p.steps));
     std::snprintf(line, sizeof line, "%-12s %9llu %8.3g %9.3g %8.4g %9.3g %9.0f                ", label.c_str(),
@@ -57,7 +59,8 @@ std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>
       std::snprintf(line, sizeof line, " %*.3f", int(std::strlen(s)), 1e3 * t / steps);
       out += line;
     }
-    std::snprintf(line, sizeof line, " %4.3f\n", 1e3 * std::max(0.0, p.wall_seconds - p.kernel_seconds()) / steps);
+    double host = p.wall_seconds - p.kernel_seconds() - p.reorder_seconds;
+    std::snprintf(line, sizeof line, " %7.3f %4.3f\n", 1e3 * p.reorder_seconds / steps, 1e3 * std::max(0.0, host) / steps);
     out += line;
   }
   return out;

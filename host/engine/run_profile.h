@@ -17,6 +17,8 @@ struct RunProfile {
   uint64_t steps = 0;
   uint64_t rebuilds = 0;
   double contact_steps = 0;  // contacts summed over steps (each batch counts its last list)
+  uint64_t reorders = 0;       // cell orderings on the host (download, sort, upload) and their time
+  double reorder_seconds = 0;
   void add(const RunProfile& other);
   double kernel_seconds() const;
 };
@@ -27,7 +29,8 @@ const char* kernel_stage(const std::string& kernel);
 inline constexpr const char* kKernelStages[] = {"neighbours", "contacts", "particles", "bodies", "other"};
 
 // A table with one row per (label, profile): steps, simulated and wall seconds, steps/s,
-// rebuilds per 1000 steps, mean contacts, and milliseconds per step in each stage and on the host.
+// rebuilds per 1000 steps, mean contacts, and milliseconds per step in each stage, in reorders and
+// on the host otherwise.
 std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>>& rows, double dt);
 
 // The kernels of one profile, slowest first: milliseconds per step and share of the kernel time.

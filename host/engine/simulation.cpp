@@ -22,7 +22,8 @@ uint32_t restored_capacity(const Model& m, const HostState& s) {
 
 Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVariant variant,
                        uint32_t max_batch_steps, uint32_t first_capacity)
-    : model_(std::move(model)), backend_(std::move(backend)), variant_(variant) {
+    : model_(std::move(model)), backend_(std::move(backend)), variant_(variant),
+      reorder_(variant.reorder, variant.reorder_capped) {
   layout_ = model_layout(model_, variant_, max_batch_steps);
   // Cell order from the start (one sort), so the first batch need not store the particles anew.
   order_ = variant_.reorder ? cell_order(model_.pos, model_.bodies, model_.cell)
@@ -61,7 +62,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
     download();  // once: a retry of the first batch starts from here
     control_ = state_.control;
   }
-  if (variant_.reorder) reordered_at_ = rebuilds();
+  if (variant_.reorder) reorder_.reordered(rebuilds(), 0.0);
 }
 
 void Simulation::allocate(uint32_t capacity) {
@@ -124,12 +125,6 @@ void Simulation::store_in_order(ParticleOrder order) {
   // restart's are zero, a running simulation's are not, and both give the same bytes).
   backend_->upload_constants(stored_constants(model_, order_));
   upload();
-}
-
-// Cell order before the first batch, and again every variant_.reorder rebuilds.
-bool Simulation::reorder_due() const {
-  if (variant_.reorder == 0) return false;
-  return reordered_at_ < 0 || int64_t(rebuilds()) >= reordered_at_ + int64_t(variant_.reorder);
 }
 
 // A list for `needed` contacts and some to spare, uploading state_ again. After an overflow
@@ -247,10 +242,14 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   auto since = [](auto t0) { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   while (step_ < target) {
     auto t0 = std::chrono::steady_clock::now();
-    if (reorder_due()) {
+    if (reorder_.due(rebuilds())) {
       store_in_order(cell_order(state().pos, state().bodies, model_.cell));
-      reordered_at_ = rebuilds();
+      double seconds = since(t0);
+      reorder_.reordered(rebuilds(), seconds);
+      profile_.reorders += 1;
+      profile_.reorder_seconds += seconds;
     }
+    auto batch_start = std::chrono::steady_clock::now();
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
     upload_walls(step_, wall_time_offset(), k);
     backend_->execute(batch_program(step_, k), profiling_ ? &profile_.kernels : nullptr);
@@ -275,6 +274,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     profile_.rebuilds += rebuilds() - rebuilds_before;
     profile_.contact_steps += double(contacts()) * k;
     profile_.wall_seconds += since(t0);
+    reorder_.stepped(since(batch_start));
     if (on_batch) on_batch(*this);
     if (observer_) observer_(*this);
   }
@@ -315,7 +315,7 @@ void Simulation::restore(const HostState& s, uint64_t step) {
     refuse("the state holds no neighbour-list bookkeeping (written by an older version)");
   state_ = s;
   state_in_slots_ = false;
-  reordered_at_ = -1;  // cell order by the restored positions before the first batch
+  reorder_.restart();  // cell order by the restored positions before the first batch
   // Dispatch sizes over the current list follow this run's workgroup size (the kernels return
   // early past the contact count, so only coverage matters).
   uint32_t contacts = state_.control[gpu::kCtlContacts];

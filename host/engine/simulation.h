@@ -13,6 +13,7 @@
 #include "engine/backend.h"
 #include "engine/model.h"
 #include "engine/particle_order.h"
+#include "engine/reorder_schedule.h"
 #include "engine/run_profile.h"
 #include "engine/step_program.h"
 
@@ -115,7 +116,6 @@ class Simulation {
   void allocate(uint32_t capacity);
   void upload();
   void download() const;
-  bool reorder_due() const;
   void grow(uint32_t needed);
   void replay_unread(std::vector<uint32_t> batches);
   void upload_walls(uint64_t first, double offset, uint32_t steps);
@@ -144,7 +144,7 @@ class Simulation {
   mutable bool positions_current_ = false;
   ParticleOrder order_;
   bool stored_by_id_ = true;          // order_ is the identity
-  int64_t reordered_at_ = -1;         // rebuild count at the last cell ordering (-1: none yet)
+  ReorderSchedule reorder_;
   uint64_t step_ = 0;
   uint32_t retries_ = 0;
   bool profiling_ = false;

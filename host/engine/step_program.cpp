@@ -13,7 +13,7 @@ std::string KernelVariant::name() const {
   s += "-wg" + std::to_string(workgroup);
   if (rebuild_interval) s += "-every" + std::to_string(rebuild_interval);
   if (lean) s += "-lean";
-  if (reorder != kDefaultReorder) s += "-reorder" + std::to_string(reorder);
+  if (reorder != kDefaultReorder || !reorder_capped) s += "-reorder" + std::to_string(reorder);
   return s;
 }
 
@@ -41,7 +41,10 @@ KernelVariant KernelVariant::parse(const std::string& text) {
     else if (item == "full") v.lean = false;
     else if (item.rfind("wg=", 0) == 0) v.workgroup = whole(item, 3);
     else if (item.rfind("rebuild=", 0) == 0) v.rebuild_interval = whole(item, 8);
-    else if (item.rfind("reorder=", 0) == 0) v.reorder = whole(item, 8);
+    else if (item.rfind("reorder=", 0) == 0) {
+      v.reorder = whole(item, 8);
+      v.reorder_capped = false;
+    }
     else throw std::invalid_argument("unknown variant item '" + item +
                                      "' (contact, rows, lean, full, wg=N, rebuild=N, reorder=N)");
   }

@@ -21,6 +21,9 @@ struct KernelVariant {
   // again after this many list rebuilds; 0: in the case's order. Same bytes either way.
   uint32_t reorder = kDefaultReorder;
   static constexpr uint32_t kDefaultReorder = 20;
+  // Unless named (reorder=N: exactly every N rebuilds), a reorder also waits until it would take
+  // at most a tenth of the run's wall time (host/engine/reorder_schedule.h).
+  bool reorder_capped = true;
   std::string name() const;
   // "rows,lean,wg=128,rebuild=20,reorder=10" -> variant; throws std::invalid_argument on anything else.
   static KernelVariant parse(const std::string& text);

@@ -128,6 +128,8 @@ OrderedJson profile_json(const RunProfile& p) {
           {"steps", p.steps},
           {"rebuilds", p.rebuilds},
           {"contact_steps", p.contact_steps},
+          {"reorders", p.reorders},
+          {"reorder_seconds", p.reorder_seconds},
           {"kernels", kernels}};
 }
 
@@ -137,6 +139,8 @@ RunProfile profile_from_json(const OrderedJson& j) {
   p.steps = j.at("steps").get<uint64_t>();
   p.rebuilds = j.at("rebuilds").get<uint64_t>();
   p.contact_steps = j.at("contact_steps").get<double>();
+  p.reorders = j.value("reorders", uint64_t(0));  // absent before they were timed
+  p.reorder_seconds = j.value("reorder_seconds", 0.0);
   for (const auto& [name, seconds] : j.at("kernels").items()) p.kernels[name] = seconds.get<double>();
   return p;
 }

@@ -58,6 +58,10 @@ void check_orders(const CaseSpec& spec, uint64_t steps, const std::string& backe
   auto cells = simulate(spec, backend, threads, KernelVariant::parse("reorder=1"), 50);
   cells->advance(steps);
   CHECK_FALSE(cells->particle_order().is_identity());
+  RunProfile profile = cells->take_profile();  // the reorders after the first, counted and timed
+  CHECK(profile.reorders >= 1);
+  CHECK(profile.reorders <= profile.rebuilds);
+  CHECK(profile.reorder_seconds > 0);
 
   std::string reference_file = state_file_bytes(*reference, "order_reference.state");
   for (Simulation* sim : {shuffled.get(), cells.get()}) {
