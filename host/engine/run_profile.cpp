@@ -72,11 +72,16 @@ std::string format_kernel_times(const RunProfile& p) {
   std::sort(sorted.rbegin(), sorted.rend());
   double total = std::max(1e-30, p.kernel_seconds()), steps = std::max<double>(1, double(p.steps));
   std::string out;
-  char item[96];
+  char item[128];
   for (const auto& [t, k] : sorted) {
     if (t / total < 0.005) continue;
     std::snprintf(item, sizeof item, "%s%s %.3f ms (%.0f%%)", out.empty() ? "" : ", ", k.c_str(), 1e3 * t / steps,
                   100 * t / total);
+    out += item;
+  }
+  if (p.reorders) {  // host work, not in the kernels' shares
+    std::snprintf(item, sizeof item, "; %llu reorders on the host, %.1f ms each", (unsigned long long)p.reorders,
+                  1e3 * p.reorder_seconds / double(p.reorders));
     out += item;
   }
   return out;
