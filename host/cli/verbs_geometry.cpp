@@ -2,7 +2,9 @@
 // meshes and the angle-of-repose measurement (host/geometry, host/measure) from the command
 // line. Input errors name the file, line and column; main() prints them and exits non-zero.
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -22,6 +24,7 @@
 #include "geometry/templates.h"
 #include "measure/bed_height.h"
 #include "measure/heap_angle.h"
+#include "measure/heap_grains.h"
 #include "measure/heap_json.h"
 #include "measure/heap_profile.h"
 #include "measure/heap_views.h"
@@ -241,6 +244,7 @@ struct HeapAngleRun {
   HeapAngle m;
   HeapProfile profile;
   std::optional<double> bed;  // a sphere CSV's bed height
+  size_t apart = 0;           // with --resting-only: the spheres left out
   std::optional<HeapViewsAngle> around;
   std::optional<AxisymmetricHeapAngle> axisymmetric;
 };
@@ -253,6 +257,7 @@ void print_heap_text(const HeapAngleRun& r) {
   else
     std::printf("heap %s: %zu spheres, camera along %s, pixel %.4g mm (%d x %d px), floor z = %.6g m\n", r.file.c_str(),
                 r.spheres.size(), r.view.c_str(), m.image.pixel * 1e3, m.image.width, m.image.height, m.floor_z);
+  if (r.apart) std::printf("left out     %zu spheres apart from the heap (not resting on the floor)\n", r.apart);
   const char* horizontal = r.photo ? "u" : r.options.view == ViewAxis::Y ? "x" : "y";
   std::printf("height       %.6g m, crest at %s = %.6g m, %zu hole pixels filled, fit band %g-%g of the height\n",
               m.heap_height, horizontal, m.crest, m.holes_filled, r.options.band_low, r.options.band_high);
@@ -286,6 +291,7 @@ Json heap_angle_json(const HeapAngleRun& r) {
   Json j;
   j["file"] = r.file;
   j["spheres"] = r.spheres.size();
+  j["spheres_apart"] = r.apart;
   j["photograph"] = r.photo;
   j["view"] = r.view;
   j["pixel"] = m.image.pixel;
@@ -358,7 +364,7 @@ void print_heap_scatter(const std::vector<std::string>& files, const HeapReading
 struct HeapAngleRequest {
   std::vector<std::string> files;
   std::string view = "y", png, json, side = "both";
-  bool axisymmetric = false, light_heap = false, data_rows = false;
+  bool axisymmetric = false, light_heap = false, data_rows = false, resting_only = false;
   int views = 1, threshold = 128;
   double turn = 2.0;
   HeapAngleOptions options;
@@ -388,6 +394,9 @@ void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
   app.add_option("--png", q.png, "write the picture: silhouette, boundary, fitted lines");
   app.add_option("--json", q.json, "write the results as JSON to this file");
   app.add_flag("--axisymmetric", q.axisymmetric, "also fit the surface in angular sectors (cylinder-lift heaps)");
+  app.add_flag("--resting-only", q.resting_only,
+               "CSV: measure only the spheres resting on the floor, directly or through touching spheres (not those "
+               "left on a hopper or a gate above the heap; `repose experiment repose` measures so)");
   app.add_option("--views", q.views, "also photograph from N directions over half a turn about the heap axis; mean and sd of all slopes")
       ->check(CLI::Range(1, 180));
   app.add_option("--pixel", q.options.pixel, "pixel size, m (default: heap extent / 1600); a PNG needs it (from a scale in the photo)")
@@ -407,6 +416,20 @@ void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
 }
 
 // Reads the heap q.files[0] (a sphere CSV or a PNG silhouette) and measures what was asked.
+// --resting-only: the spheres resting on the floor (given, or the lowest sphere bottom) kept;
+// returns how many were left out.
+size_t keep_resting(std::vector<Sphere>& spheres, std::optional<double> floor_z) {
+  double floor = std::numeric_limits<double>::infinity();
+  for (const Sphere& s : spheres) floor = std::min(floor, s.centre.z - s.radius);
+  std::vector<bool> resting = resting_on_floor(spheres, floor_z.value_or(floor));
+  std::vector<Sphere> kept;
+  for (size_t i = 0; i < spheres.size(); ++i)
+    if (resting[i]) kept.push_back(spheres[i]);
+  size_t apart = spheres.size() - kept.size();
+  spheres = std::move(kept);
+  return apart;
+}
+
 HeapAngleRun measure_request(HeapAngleRequest& q) {
   const std::string& file = q.files.front();
   HeapAngleRun r;
@@ -419,6 +442,7 @@ HeapAngleRun measure_request(HeapAngleRequest& q) {
   if (q.options.visible_from && (q.views > 1 || q.axisymmetric))
     throw std::runtime_error("--visible-from hides part of the front view only: not with --views or --axisymmetric");
   if (!r.photo) r.spheres = read_sphere_csv(file);
+  if (!r.photo && q.resting_only) r.apart = keep_resting(r.spheres, q.floor_z);
   const HeapAngleOptions& options = q.options;
   q.axi.floor_z = q.floor_z;
   q.axi.band_low = options.band_low;

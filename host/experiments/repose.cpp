@@ -16,6 +16,7 @@
 #include "experiments/heap_fill.h"
 #include "experiments/experiment_checkpoint.h"
 #include "measure/bed_height.h"
+#include "measure/heap_grains.h"
 #include "measure/heap_json.h"
 #include "measure/heap_png.h"
 #include "util/atomic_file.h"
@@ -176,14 +177,29 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
 }
 
 // The heap's particles: those whose bottom is not below the heap floor (those that fell off a
-// plate or out of a bucket are not in the picture). Returns the floor used.
+// plate or out of a bucket are not in the picture) and that rest on it, directly or through
+// others (those left on a hopper or a gate above the heap are not either:
+// measure/heap_grains.h). Returns the floor used.
 double collect_heap(const CaseSpec& spec, const HostState& state, ReposeResult& r) {
   double lowest = std::numeric_limits<double>::infinity();
   for (const auto& p : state.pos) lowest = std::min(lowest, double(p.z) - p.w);
   double floor_z = settings_of<ReposeSettings>(spec.experiment).heap_floor_z.value_or(lowest);
-  for (const auto& p : state.pos)
-    if (double(p.z) - p.w >= floor_z - 0.5 * p.w) r.spheres.push_back({{p.x, p.y, p.z}, p.w});
+  std::vector<uint32_t> body_of(state.bodies.empty() ? 0 : state.pos.size());  // clumps rest as a whole
+  for (uint32_t b = 0; b < state.bodies.size(); ++b)
+    for (uint32_t k = 0; k < state.bodies[b].spheres.y; ++k) body_of[state.bodies[b].spheres.x + k] = b;
+  std::vector<Sphere> above;
+  std::vector<uint32_t> above_bodies;
+  for (size_t i = 0; i < state.pos.size(); ++i) {
+    const auto& p = state.pos[i];
+    if (double(p.z) - p.w < floor_z - 0.5 * p.w) continue;
+    above.push_back({{p.x, p.y, p.z}, p.w});
+    if (!body_of.empty()) above_bodies.push_back(body_of[i]);
+  }
+  std::vector<bool> resting = resting_on_floor(above, floor_z, above_bodies);
+  for (size_t i = 0; i < above.size(); ++i)
+    if (resting[i]) r.spheres.push_back(above[i]);
   r.particles_measured = r.spheres.size();
+  r.particles_apart = above.size() - r.spheres.size();
   if (r.spheres.empty()) throw std::runtime_error(spec.path + ": no particle is left above the heap floor");
   return floor_z;
 }
@@ -345,6 +361,7 @@ OrderedJson repose_json(const CaseSpec& spec, const ReposeResult& r) {
   j["right_profile"] = profile_json(r.profile.right);
   j["floor_z"] = r.heap.floor_z;
   j["particles_measured"] = r.particles_measured;
+  j["particles_apart"] = r.particles_apart;
   j["settle_time"] = r.settle_time;
   j["largest_kinetic_energy"] = r.kinetic_energy;
   if (r.views) j["views"] = views_json(*r.views);
@@ -401,6 +418,10 @@ std::vector<std::string> repose_lines(const CaseSpec& spec, const ReposeResult& 
   for (const auto& [side, p] : {std::pair{"left", &r.profile.left}, std::pair{"right", &r.profile.right}})
     lines.push_back(printf_text("  %s side: run-out %.3g m, convexity %s", side, p->runout,
                                 p->valid ? printf_text("%+.3f", p->convexity).c_str() : ("none (" + p->problem + ")").c_str()));
+  if (r.particles_apart)
+    lines.push_back(printf_text("  %zu particles above the floor but apart from the heap (left on walls above it) "
+                                "are not measured",
+                                r.particles_apart));
   lines.push_back(printf_text("  bed before the lift: %.4g m high", r.bed_height));
   if (r.views) lines.push_back("  views around the heap (the angle): " + describe_views(*r.views));
   if (r.heap_3d) lines.push_back("  3D sector fit: " + describe_sector_fit(*r.heap_3d));

@@ -53,7 +53,8 @@ struct ReposeResult {
                                   // (only when the caller allows it, see run_repose)
   bool sloped = true;             // false: no measurable slope (require_slope off; angle 0)
   std::string problem;            // then: why, in words
-  size_t particles_measured = 0;  // above the heap floor
+  size_t particles_measured = 0;  // above the heap floor, resting on it
+  size_t particles_apart = 0;     // above the floor, apart from the heap (on a hopper, a gate)
   std::vector<std::pair<double, double>> energy;  // (t, largest kinetic energy of a particle)
   std::vector<Sphere> spheres;    // the settled heap
   WallForceSeries wall_forces;
