@@ -2,9 +2,7 @@
 // meshes and the angle-of-repose measurement (host/geometry, host/measure) from the command
 // line. Input errors name the file, line and column; main() prints them and exits non-zero.
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -416,20 +414,6 @@ void add_heap_angle_options(CLI::App& app, HeapAngleRequest& q) {
 }
 
 // Reads the heap q.files[0] (a sphere CSV or a PNG silhouette) and measures what was asked.
-// --resting-only: the spheres resting on the floor (given, or the lowest sphere bottom) kept;
-// returns how many were left out.
-size_t keep_resting(std::vector<Sphere>& spheres, std::optional<double> floor_z) {
-  double floor = std::numeric_limits<double>::infinity();
-  for (const Sphere& s : spheres) floor = std::min(floor, s.centre.z - s.radius);
-  std::vector<bool> resting = resting_on_floor(spheres, floor_z.value_or(floor));
-  std::vector<Sphere> kept;
-  for (size_t i = 0; i < spheres.size(); ++i)
-    if (resting[i]) kept.push_back(spheres[i]);
-  size_t apart = spheres.size() - kept.size();
-  spheres = std::move(kept);
-  return apart;
-}
-
 HeapAngleRun measure_request(HeapAngleRequest& q) {
   const std::string& file = q.files.front();
   HeapAngleRun r;
@@ -442,7 +426,7 @@ HeapAngleRun measure_request(HeapAngleRequest& q) {
   if (q.options.visible_from && (q.views > 1 || q.axisymmetric))
     throw std::runtime_error("--visible-from hides part of the front view only: not with --views or --axisymmetric");
   if (!r.photo) r.spheres = read_sphere_csv(file);
-  if (!r.photo && q.resting_only) r.apart = keep_resting(r.spheres, q.floor_z);
+  if (!r.photo && q.resting_only) r.apart = keep_resting(r.spheres, q.floor_z.value_or(lowest_bottom(r.spheres)));
   const HeapAngleOptions& options = q.options;
   q.axi.floor_z = q.floor_z;
   q.axi.band_low = options.band_low;

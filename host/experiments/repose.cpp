@@ -195,11 +195,9 @@ double collect_heap(const CaseSpec& spec, const HostState& state, ReposeResult& 
     above.push_back({{p.x, p.y, p.z}, p.w});
     if (!body_of.empty()) above_bodies.push_back(body_of[i]);
   }
-  std::vector<bool> resting = resting_on_floor(above, floor_z, above_bodies);
-  for (size_t i = 0; i < above.size(); ++i)
-    if (resting[i]) r.spheres.push_back(above[i]);
+  r.particles_apart = keep_resting(above, floor_z, above_bodies);
+  r.spheres = std::move(above);
   r.particles_measured = r.spheres.size();
-  r.particles_apart = above.size() - r.spheres.size();
   if (r.spheres.empty()) throw std::runtime_error(spec.path + ": no particle is left above the heap floor");
   return floor_z;
 }

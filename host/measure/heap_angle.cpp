@@ -23,11 +23,6 @@ void check_band(double low, double high) {
     throw std::invalid_argument("height band must satisfy 0 <= low < high <= 1");
 }
 
-double lowest_bottom(const std::vector<Sphere>& spheres) {
-  double z = HUGE_VAL;
-  for (const Sphere& s : spheres) z = std::min(z, s.centre.z - s.radius);
-  return z;
-}
 
 // A face steeper than any slope (kSmallestSpan) fitted as x against z, which stays well posed:
 // the angle from the floor, 90 degrees for a vertical face, more where it overhangs.
@@ -80,6 +75,12 @@ SlopeFit fit_slope(const std::vector<double>& x, const std::vector<double>& z, b
 }
 
 }  // namespace
+
+double lowest_bottom(const std::vector<Sphere>& spheres) {
+  double z = HUGE_VAL;
+  for (const Sphere& s : spheres) z = std::min(z, s.centre.z - s.radius);
+  return z;
+}
 
 HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options) {
   if (spheres.empty()) throw std::invalid_argument("heap angle: no spheres");

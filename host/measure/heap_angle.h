@@ -53,6 +53,9 @@ struct HeapAngle {
 // inconsistent options.
 HeapAngle measure_heap_angle(const std::vector<Sphere>& spheres, const HeapAngleOptions& options = {});
 
+// The lowest sphere bottom, z (m): a heap's floor when none is given.
+double lowest_bottom(const std::vector<Sphere>& spheres);
+
 // The same measurement of a silhouette already in pixels (a thresholded photograph,
 // read_silhouette_png): hole filling, top profile, crest, slope fits. floor_z in the image's
 // coordinates (m); options' view, pixel and floor are not used. Throws std::invalid_argument for an

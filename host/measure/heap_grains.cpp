@@ -87,4 +87,14 @@ std::vector<bool> resting_on_floor(const std::vector<Sphere>& spheres, double fl
   return resting;
 }
 
+size_t keep_resting(std::vector<Sphere>& spheres, double floor_z, const std::vector<uint32_t>& bodies) {
+  std::vector<bool> resting = resting_on_floor(spheres, floor_z, bodies);
+  size_t kept = 0;
+  for (size_t i = 0; i < spheres.size(); ++i)
+    if (resting[i]) spheres[kept++] = spheres[i];
+  size_t apart = spheres.size() - kept;
+  spheres.resize(kept);
+  return apart;
+}
+
 }  // namespace repose

@@ -5,6 +5,7 @@
 // the heap's outline (the million-grain heap's 122 such grains turned its 16 deg slopes into
 // 42 deg).
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -24,5 +25,8 @@ inline constexpr double kFloorGap = 0.25;
 // the spheres.
 std::vector<bool> resting_on_floor(const std::vector<Sphere>& spheres, double floor_z,
                                    const std::vector<uint32_t>& bodies = {});
+
+// The same, applied: keeps the resting spheres (in their order) and returns how many it left out.
+size_t keep_resting(std::vector<Sphere>& spheres, double floor_z, const std::vector<uint32_t>& bodies = {});
 
 }  // namespace repose
