@@ -207,7 +207,7 @@ struct TimeSpec {
 };
 
 struct NeighbourSpec {
-  double skin = -1;          // m; < 0: 0.1 x the smallest diameter
+  double skin = -1;          // m; < 0: half the smallest radius (twice it with clumps: model.cpp)
   int rebuild_interval = 0;  // steps between list rebuilds; 0: automatic
   std::optional<bool> body_broad_phase;  // clumps culled by bounding spheres; unset: where it pays
   std::optional<bool> wall_grid;  // still mesh triangles by grid cell (engine/wall_grid.h); unset: where it pays

@@ -273,7 +273,7 @@ TEST_CASE("every shipped case loads") {
     CHECK(resolve_dt(spec) <= rayleigh_time(spec));
     loaded.insert(entry.path().filename().string());
   }
-  for (const char* name : {"settle_box.toml", "drop_sphere.toml", "bench_bed.toml", "cylinder_settle.toml"})
+  for (const char* name : {"settle_box.toml", "drop_sphere.toml", "bench_bed.toml", "bench_liggghts_bed.toml", "cylinder_settle.toml"})
     CHECK(loaded.count(name) == 1);
 }
 
@@ -301,6 +301,16 @@ TEST_CASE("the shipped cases say what the issue asks for") {
   CHECK(bench.spheres.size() == 50000);
   CHECK(bench.spheres[0].radius == 0.005);
   CHECK(bench.time.rayleigh_fraction == 0.2);
+
+  // The LIGGGHTS benchmark bed: what the side-by-side comparison asks to be the same on both sides.
+  CaseSpec peer = load_case(dir + "bench_liggghts_bed.toml");
+  CHECK(peer.spheres.size() == 50000);
+  CHECK(peer.neighbour.skin == 0.001);
+  CHECK(peer.contact.coulomb_cap == CoulombCap::SpringOnly);
+  CHECK(peer.contact.rolling_omega == RollingOmega::Relative);
+  CHECK(peer.materials.size() == 1);
+  CHECK(peer.walls[0].box_max[0] == 0.4472);
+  CHECK(peer.time.rayleigh_fraction == 0.2);
 
   CaseSpec cylinder = load_case(dir + "cylinder_settle.toml");
   CHECK(cylinder.walls.size() == 2);
