@@ -2,8 +2,9 @@
 // at run time for the machine: SSE4, AVX2, AVX-512). Each lane does the IEEE operations of
 // process_contact (shaders/kernels/contacts.h, contact_law.h) in the same order, so the bytes are
 // those of the scalar twin and of lavapipe; tests/engine/test_contact_lanes.cpp checks that for
-// every option the lanes take. Contacts the lanes do not take (walls, the tail of a range) and
-// options they do not cover (rolling springs, spinning friction) run the scalar kernel.
+// every option the lanes take. A wall contact's geometry is the scalar kernel's, its law runs in
+// lanes with other wall contacts; the tail of a range and options the lanes do not cover (rolling
+// springs, spinning friction) run the scalar kernel.
 #pragma once
 #include <cstdint>
 #include <vector>

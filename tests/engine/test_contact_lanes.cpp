@@ -15,9 +15,11 @@ using namespace repose::gpu;
 namespace {
 
 // Random particles, bodies, material pairs and contacts: touching and not, coincident centres,
-// zero and non-zero spins and histories, pairs with each extension off and on, a plane wall
-// (the floor z = 5 mm) as the partner of a few contacts, some in runs of lanes, some alone, and
-// runs of lanes whose pairs are all apart (the lanes then store zeros without the law).
+// zero and non-zero spins and histories, pairs with each extension off and on, two plane walls
+// (the floor z = 5 mm; a tilted lid sliding and turning, of another material) as the partners of
+// some contacts, in runs of lanes and alone (the lanes run the law of a batch of wall contacts
+// together, and of the last few at the end), and runs of lanes whose pairs are all apart (the
+// lanes then store zeros without the law).
 struct Scene {
   std::vector<vec4> pos, vel, omega, history;
   std::vector<uint> material, partner, owner;
@@ -67,11 +69,20 @@ struct Scene {
     floor.p0 = vec4(0.0f, 0.0f, 0.005f, 0.0f);
     floor.p1 = vec4(0.0f, 0.0f, 1.0f, 0.0f);
     walls.push_back(floor);
+    WallState lid{};  // tilted, sliding and turning, of another material: its contacts' v_rel and pairs
+    lid.info = uvec4(kWallPlane, 1u % materials, 0u, 0u);
+    lid.p0 = vec4(0.015f, 0.015f, 0.02f, 0.0f);
+    lid.p1 = vec4(0.6f, 0.0f, -0.8f, 0.0f);
+    lid.vel = vec4(0.1f, -0.2f, 0.05f, 0.0f);
+    lid.omega = vec4(1.0f, 2.0f, -3.0f, 0.0f);
+    lid.centre = vec4(0.01f, 0.01f, 0.01f, 0.0f);
+    walls.push_back(lid);
     for (uint c = 0; c < n_contacts; ++c) {
       uint i = pick(n_particles), j = pick(n_particles);
       if (j == i) j = (i + 1u) % n_particles;
       if (c % 97u == 0u) i = 0u, j = 1u;
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
+      if (c % 31u == 0u || (c >= 400u && c < 420u)) j = n_particles + 1u;  // the lid
       if (c >= 304u && c < 336u) i = 2u, j = 3u;
       owner.push_back(i);
       partner.push_back(j);
@@ -103,7 +114,7 @@ Outputs run(const Scene& s, uint flags, bool lanes) {
   k.B_subs = const_cast<SubSphere*>(s.subs.data());
   k.B_bodies = const_cast<Body*>(s.bodies.data());
   k.B_walls = const_cast<WallState*>(s.walls.data());
-  k.PC.n_walls = 1;
+  k.PC.n_walls = uint(s.walls.size());
   k.B_history = o.history.data();
   k.B_contact_force = o.force.data();
   k.B_torque_i = o.torque_i.data();
@@ -158,6 +169,13 @@ TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every opt
   for (const vec4& f : o.force) touching_contacts += f.x != 0.0f;
   CHECK(touching_contacts > 100);
   CHECK(touching_contacts < int(o.force.size()) - 100);
+  // ... and the wall contacts fill more than one batch of lanes, each wall some of them.
+  int on_wall[2] = {0, 0};
+  for (size_t c = 0; c < o.force.size(); ++c)
+    if (many.partner[c] >= many.pos.size() && o.force[c].x != 0.0f) ++on_wall[many.partner[c] - many.pos.size()];
+  CHECK(on_wall[0] >= 5);
+  CHECK(on_wall[1] >= 5);
+  CHECK(on_wall[0] + on_wall[1] > 16);
 }
 
 TEST_CASE("contact lanes leave rolling springs and spinning friction to the scalar kernel", "[engine]") {
