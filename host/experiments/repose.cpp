@@ -340,6 +340,8 @@ HeapPictureCaption heap_caption(const CaseSpec& spec, const ReposeResult& r) {
     std::snprintf(where, sizeof where, " beyond %s = %.3g m", ex.view == "x" ? "y" : "x", *ex.visible_from);
     caption.measured_as += where;
   }
+  if (!r.settled)
+    caption.warning = printf_text("not settled at %.3g s", r.settle_time);  // repose.json says more
   return caption;
 }
 

@@ -100,7 +100,7 @@ void write_heap_angle_png(const std::string& path, const HeapAngle& m, const std
     std::snprintf(title, sizeof title, "Angle of repose %.2f deg (%s)", caption.angle_deg, caption.measured_as.c_str());
   else
     std::snprintf(title, sizeof title, "Angle of repose: no slope measured");
-  chart.title(title);
+  chart.title(caption.warning.empty() ? std::string(title) : std::string(title) + ", " + caption.warning);
   char subtitle[240];
   std::snprintf(subtitle, sizeof subtitle, "%s; heap %.3g m high%s", view_words(m, caption).c_str(), m.heap_height,
                 points ? "; orange: the outline points fitted (the band of the height)" : "");

@@ -14,6 +14,7 @@ struct HeapPictureCaption {
   double angle_deg = 0.0;   // NaN: no angle measured
   std::string measured_as;  // e.g. "the right slope", "the mean of 16 views' slopes"
   bool left = true, right = true;  // the slopes that count: only these are drawn (when valid)
+  std::string warning;  // ends the title when not empty: "not settled at 12 s"
 };
 
 // The caption of a plain front-view measurement: its two slopes' mean, both drawn.

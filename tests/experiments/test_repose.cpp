@@ -96,3 +96,32 @@ TEST_CASE("repose: the console, repose.json and heap.png state the same headline
     std::filesystem::remove_all(dir);
   }
 }
+
+// A heap still moving at max_time is measured as it stands (status not settled); its picture
+// says so in the title, where a reader of the picture alone looks.
+TEST_CASE("repose: heap.png of a heap measured unsettled says so in its title", "[experiments][repose]") {
+  Chart::keep_records();
+  const std::string path = std::string(REPOSE_SOURCE_DIR) + "/cases/diagnosis/slot_heap.toml";
+  const CaseSpec spec = load_case(path, {{"experiment.max_time", "0.6"}});  // the gate lifts at 0.55 s
+  ExperimentRun measure_as_it_stands;
+  measure_as_it_stands.strict = false;  // as `repose experiment` runs it
+  ExperimentOutcome o = repose_experiment().run(spec, measure_as_it_stands);
+  REQUIRE(o.status == OutcomeStatus::NotSettled);
+  const auto dir = std::filesystem::temp_directory_path() / "repose_test_unsettled_title";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  write_outcome(o, "repose.json", dir.string());
+  const ChartRecord picture = Chart::recorded((dir / "heap.png").string());
+  const double t = o.json["settle_time"].get<double>();
+  INFO("title: " << picture.title);
+  CHECK(t >= 0.6);
+  CHECK(picture.title.find(printf_text(", not settled at %.3g s", t)) != std::string::npos);
+  std::filesystem::remove_all(dir);
+
+  std::filesystem::create_directories(dir);
+  ExperimentOutcome settled = repose_experiment().run(load_case(path), {});
+  REQUIRE(settled.status == OutcomeStatus::Measured);
+  write_outcome(settled, "repose.json", dir.string());
+  CHECK(Chart::recorded((dir / "heap.png").string()).title.find("not settled") == std::string::npos);
+  std::filesystem::remove_all(dir);
+}
