@@ -52,7 +52,9 @@ nlohmann::ordered_json experiment_provenance(const CaseSpec& spec, const std::ve
   Provenance p = provenance_of(spec, sets);
   p.backend = run.backend;
   p.device = make_backend(run.backend, run.device, run.threads, gpu::kDefaultWorkgroup)->describe();
-  return provenance_json(p);
+  nlohmann::ordered_json j = provenance_json(p);
+  j["max_time"] = spec.experiment.max_time;  // the case's, or --max-time's
+  return j;
 }
 
 // The verb's command line as parsed; the two options whose presence matters are kept to ask.
@@ -61,11 +63,12 @@ struct ExperimentArgs {
   unsigned threads = 0;
   int device = -1;
   std::vector<std::string> sets;
-  double height = 0, frames = 0;
+  double height = 0, frames = 0, max_time = 0;
   bool quiet = false, overwrite = false, profile = false, wall_impulses = false;
   int replicates = 1;
   CLI::Option* height_option = nullptr;
   CLI::Option* frames_option = nullptr;
+  CLI::Option* max_time_option = nullptr;
 };
 
 void add_experiment_options(CLI::App& app, ExperimentArgs& a) {
@@ -87,6 +90,11 @@ void add_experiment_options(CLI::App& app, ExperimentArgs& a) {
                  "repose: continue from DIR/checkpoint.state, which a stopped experiment (Ctrl-C, SIGTERM) or "
                  "[output] checkpoint_interval wrote, in its folder DIR: the result of a run that never stopped")
       ->check(CLI::ExistingFile);
+  a.max_time_option =
+      app.add_option("--max-time", a.max_time,
+                     "give up by this simulated time (s) instead of the case's [experiment] max_time; not part of "
+                     "the case's identity, so a --restart can go on past the time a heap had not settled by")
+          ->check(finite_positive());
   app.add_flag("--quiet", a.quiet, "no progress output");
   app.add_flag("--profile", a.profile, "repose: time every kernel and print where each phase's time went");
   app.add_flag("--wall-impulses", a.wall_impulses,
@@ -230,6 +238,9 @@ int run_experiment(int argc, char** argv) {
   auto loaded = load_case_or_report(a.case_path, a.sets, extra);
   if (!loaded) return 2;
   CaseSpec& spec = *loaded;
+  // When to give up says nothing of the physics: set after loading, outside the case's identity
+  // (as `repose run --time`), so a checkpoint of the same case continues under it.
+  if (a.max_time_option->count()) spec.experiment.max_time = a.max_time;
   const Experiment* experiment = experiment_for(spec);
   if (int code = check_experiment_fits(a, spec, experiment)) return code;
   if (!a.restart.empty()) {

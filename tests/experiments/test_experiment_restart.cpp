@@ -96,6 +96,42 @@ TEST_CASE("repose experiment: stopped by a signal and restarted, the same result
   }
 }
 
+// A heap still moving at its max_time is measured as it stood (exit 1); --max-time, outside the
+// case's identity, lets its last checkpoint go on to the result of a run given more time.
+TEST_CASE("repose experiment --max-time: a heap not settled by then goes on from its checkpoint to the result of a "
+          "run with more time", "[experiments][cli][restart]") {
+  fs::path dir = fresh_dir("longer");
+  auto whole = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --out " +
+                                        (dir / "whole").string() + joined(kSets));
+  INFO(whole.output);
+  REQUIRE(whole.status == 0);
+  fs::path out = dir / "short";
+  auto cut = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --out " +
+                                      out.string() + joined(kSets) + " --max-time 3");
+  INFO(cut.output);
+  REQUIRE(cut.status == 1);
+  auto measured_early = nlohmann::json::parse(slurp(out / "repose.json"));
+  CHECK(measured_early["status"] == "failed");
+  CHECK(measured_early["reason"].get<std::string>().find("had not settled") != std::string::npos);
+  CHECK(measured_early["provenance"]["max_time"] == 3.0);
+  auto rest = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
+                                       joined(kSets) + " --restart " + (out / "checkpoint.state").string());
+  INFO(rest.output);
+  REQUIRE(rest.status == 0);
+  for (const char* file : {"energy.csv", "heap.csv", "wall_forces.csv", "heap.png"}) {
+    INFO(file);
+    CHECK(slurp(dir / "whole" / file) == slurp(out / file));
+  }
+  auto a = nlohmann::json::parse(slurp(dir / "whole" / "repose.json"));
+  auto b = nlohmann::json::parse(slurp(out / "repose.json"));
+  CHECK(b["provenance"]["max_time"] == 10.0);
+  for (auto* j : {&a, &b}) {
+    j->erase("provenance");
+    for (auto& phase : (*j)["phases"]) phase.erase("wall_s");
+  }
+  CHECK(a.dump() == b.dump());
+}
+
 TEST_CASE("repose experiment --restart refuses what does not belong, with exit code 2 and nothing written",
           "[experiments][cli][restart]") {
   fs::path dir = fresh_dir("refused");
