@@ -60,6 +60,29 @@ int stopped_experiment(const fs::path& out, const fs::path& log, int signal, dou
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
+// The restart of the experiment whose checkpoint is in `out`: its result files are those of the
+// unbroken run in `whole`, byte for byte, and repose.json the same but for its provenance and
+// wall-clock times. Returns the restart's repose.json.
+nlohmann::json restarted_as_whole(const fs::path& out, const fs::path& whole) {
+  auto rest = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
+                                       joined(kSets) + " --restart " + (out / "checkpoint.state").string());
+  INFO(rest.output);
+  REQUIRE(rest.status == 0);
+  for (const char* file : {"energy.csv", "heap.csv", "wall_forces.csv", "heap.png"}) {
+    INFO(file);
+    CHECK(slurp(whole / file) == slurp(out / file));
+  }
+  auto a = nlohmann::json::parse(slurp(whole / "repose.json"));
+  auto b = nlohmann::json::parse(slurp(out / "repose.json"));
+  const nlohmann::json restarted = b;
+  for (auto* j : {&a, &b}) {  // what may differ: the wall-clock times and where it restarted from
+    j->erase("provenance");
+    for (auto& phase : (*j)["phases"]) phase.erase("wall_s");
+  }
+  CHECK(a.dump() == b.dump());
+  return restarted;
+}
+
 }  // namespace
 
 TEST_CASE("repose experiment: stopped by a signal and restarted, the same result files as a whole run",
@@ -77,22 +100,8 @@ TEST_CASE("repose experiment: stopped by a signal and restarted, the same result
     REQUIRE(code == 128 + signal);
     CHECK(slurp(dir / "log").find("continue with --restart") != std::string::npos);
     CHECK(!fs::exists(out / "repose.json"));  // no result until the experiment ends
-    auto rest = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
-                                         joined(kSets) + " --restart " + (out / "checkpoint.state").string());
-    INFO(rest.output);
-    REQUIRE(rest.status == 0);
-    for (const char* file : {"energy.csv", "heap.csv", "wall_forces.csv", "heap.png"}) {
-      INFO(file);
-      CHECK(slurp(dir / "whole" / file) == slurp(out / file));
-    }
-    auto a = nlohmann::json::parse(slurp(dir / "whole" / "repose.json"));
-    auto b = nlohmann::json::parse(slurp(out / "repose.json"));
-    CHECK(b["provenance"]["restarted_from"] == (out / "checkpoint.state").string());
-    for (auto* j : {&a, &b}) {  // what may differ: the wall-clock times and where it restarted from
-      j->erase("provenance");
-      for (auto& phase : (*j)["phases"]) phase.erase("wall_s");
-    }
-    CHECK(a.dump() == b.dump());
+    nlohmann::json restarted = restarted_as_whole(out, dir / "whole");
+    CHECK(restarted["provenance"]["restarted_from"] == (out / "checkpoint.state").string());
   }
 }
 
@@ -114,22 +123,7 @@ TEST_CASE("repose experiment --max-time: a heap not settled by then goes on from
   CHECK(measured_early["status"] == "failed");
   CHECK(measured_early["reason"].get<std::string>().find("had not settled") != std::string::npos);
   CHECK(measured_early["provenance"]["max_time"] == 3.0);
-  auto rest = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet" +
-                                       joined(kSets) + " --restart " + (out / "checkpoint.state").string());
-  INFO(rest.output);
-  REQUIRE(rest.status == 0);
-  for (const char* file : {"energy.csv", "heap.csv", "wall_forces.csv", "heap.png"}) {
-    INFO(file);
-    CHECK(slurp(dir / "whole" / file) == slurp(out / file));
-  }
-  auto a = nlohmann::json::parse(slurp(dir / "whole" / "repose.json"));
-  auto b = nlohmann::json::parse(slurp(out / "repose.json"));
-  CHECK(b["provenance"]["max_time"] == 10.0);
-  for (auto* j : {&a, &b}) {
-    j->erase("provenance");
-    for (auto& phase : (*j)["phases"]) phase.erase("wall_s");
-  }
-  CHECK(a.dump() == b.dump());
+  CHECK(restarted_as_whole(out, dir / "whole")["provenance"]["max_time"] == 10.0);  // the case's
 }
 
 TEST_CASE("repose experiment --restart refuses what does not belong, with exit code 2 and nothing written",
