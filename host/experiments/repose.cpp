@@ -64,7 +64,7 @@ double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
     throw std::runtime_error(spec.path + ": [experiment] lift_end is needed: the wall '" + lift.name +
                              "' moves without a stop time");
   if (lift_end >= spec.experiment.max_time)
-    throw std::runtime_error(spec.path + ": [experiment] max_time must exceed the end of the lift (" +
+    throw std::runtime_error(spec.path + ": [experiment] max_time (or --max-time) must exceed the end of the lift (" +
                              std::to_string(lift_end) + " s)");
   return lift_end;
 }
