@@ -8,7 +8,7 @@
 
 #include "case/body_pose.h"
 #include "case/case_error.h"
-#include "case/sphere_grid.h"
+#include "geometry/sphere_grid.h"
 #include "util/morton.h"
 
 namespace repose {

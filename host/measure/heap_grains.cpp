@@ -1,55 +1,35 @@
 #include "measure/heap_grains.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <unordered_map>
 
+#include "geometry/sphere_grid.h"
+
 namespace repose {
 
 namespace {
-
-// Spheres binned in cubes at least as wide as the farthest touch, so that a sphere's touching
-// spheres lie in its cube and the 26 around it.
-class SphereGrid {
- public:
-  explicit SphereGrid(const std::vector<Sphere>& spheres) {
-    double largest = 0;
-    for (const Sphere& s : spheres) largest = std::max(largest, s.radius);
-    cube_ = std::max(1e-12, (2.0 + kTouchGap) * largest);
-    for (uint32_t i = 0; i < spheres.size(); ++i) cells_[key(cell_of(spheres[i].centre))].push_back(i);
-  }
-  template <class Visit>
-  void around(const glm::dvec3& centre, Visit&& visit) const {
-    Cell c = cell_of(centre);
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx) {
-          auto found = cells_.find(key({c[0] + dx, c[1] + dy, c[2] + dz}));
-          if (found != cells_.end())
-            for (uint32_t j : found->second) visit(j);
-        }
-  }
-
- private:
-  using Cell = std::array<int64_t, 3>;
-  Cell cell_of(const glm::dvec3& p) const {
-    return {int64_t(std::floor(p.x / cube_)), int64_t(std::floor(p.y / cube_)), int64_t(std::floor(p.z / cube_))};
-  }
-  static uint64_t key(const Cell& c) {  // 21 bits a coordinate: +-10^6 cubes
-    auto bits = [](int64_t v) { return uint64_t(v + (int64_t(1) << 20)) & ((uint64_t(1) << 21) - 1); };
-    return bits(c[0]) | bits(c[1]) << 21 | bits(c[2]) << 42;
-  }
-  double cube_ = 1;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
-};
 
 bool touching(const Sphere& a, const Sphere& b) {
   glm::dvec3 d = a.centre - b.centre;
   double reach = a.radius + b.radius + kTouchGap * std::min(a.radius, b.radius);
   return d.x * d.x + d.y * d.y + d.z * d.z <= reach * reach;
+}
+
+// The spheres in a grid of cells about a diameter wide (geometry/sphere_grid.h), ids in order.
+SphereGrid grid_of(const std::vector<Sphere>& spheres) {
+  Vec3d lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  double radii = 0;
+  for (const Sphere& s : spheres) {
+    const double c[3] = {s.centre.x, s.centre.y, s.centre.z};
+    for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], c[a]), hi[a] = std::max(hi[a], c[a]);
+    radii += s.radius;
+  }
+  SphereGrid grid(std::max(1e-12, 2.0 * radii / double(std::max<size_t>(spheres.size(), 1))), lo, hi, spheres.size());
+  for (const Sphere& s : spheres) grid.insert({s.centre.x, s.centre.y, s.centre.z}, s.radius);
+  return grid;
 }
 
 }  // namespace
@@ -76,13 +56,17 @@ std::vector<bool> resting_on_floor(const std::vector<Sphere>& spheres, double fl
   };
   for (uint32_t i = 0; i < spheres.size(); ++i)
     if (spheres[i].centre.z - spheres[i].radius <= floor_z + kFloorGap * spheres[i].radius) rest(i);
-  SphereGrid grid(spheres);
+  SphereGrid grid = grid_of(spheres);
   while (!reached.empty()) {
     uint32_t i = reached.back();
     reached.pop_back();
-    grid.around(spheres[i].centre, [&](uint32_t j) {
-      if (!resting[j] && touching(spheres[i], spheres[j])) rest(j);
-    });
+    const Sphere& s = spheres[i];
+    // A sphere touching i has a point within (1 + kTouchGap) r_i of i's centre.
+    grid.visit_near({s.centre.x, s.centre.y, s.centre.z}, (1.0 + kTouchGap) * s.radius,
+                    [&](int j, double, double, double, double) {
+                      if (!resting[size_t(j)] && touching(s, spheres[size_t(j)])) rest(uint32_t(j));
+                      return false;
+                    });
   }
   return resting;
 }

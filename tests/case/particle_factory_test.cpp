@@ -9,7 +9,7 @@
 #include "case/case_error.h"
 #include "case/case_loader.h"
 #include "case/particle_factory.h"
-#include "case/sphere_grid.h"
+#include "geometry/sphere_grid.h"
 
 using namespace repose;
 

@@ -1,5 +1,6 @@
-// A grid of spheres for overlap queries while particles are being placed (a random fill tries
-// ten or more places per sphere, so this is where a million-sphere fill spends its time).
+// A grid of spheres for neighbour queries: overlaps while particles are being placed (a random
+// fill tries ten or more places per sphere, so this is where a million-sphere fill spends its
+// time), and the touching grains of a heap (measure/heap_grains.h).
 // The cells are one dense array over a box, the region being filled: a cell is found by
 // arithmetic. A sphere no wider than a cell is entered once, in the cell of its centre; a
 // larger one (a cabbage's core among its veins) in every cell its bounding box touches. A query
@@ -10,7 +11,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "case/case_spec.h"
+#include "util/math.h"
 
 namespace repose {
 
@@ -29,6 +30,23 @@ class SphereGrid {
   // less than the sum of the radii: touching is allowed), or -1. Cells are visited in memory
   // order (z, then y, then x), a cell's spheres newest first.
   int find_overlap(const Vec3d& centre, double radius) const;
+
+  // Calls visit(id, x, y, z, radius) for the spheres stored in the cells within reach plus half a
+  // cell of `centre` (every sphere up to half a cell wide whose centre is within reach of it, and
+  // every larger one that can reach that far, possibly more than once), in find_overlap's order,
+  // until visit returns true; returns whether it did.
+  template <class Visit>
+  bool visit_near(const Vec3d& centre, double reach, Visit&& visit) const {
+    CellRange range = cells_of(centre, reach + small_radius_);
+    for (int64_t z = range.lo[2]; z <= range.hi[2]; ++z)
+      for (int64_t y = range.lo[1]; y <= range.hi[1]; ++y)
+        for (int64_t x = range.lo[0]; x <= range.hi[0]; ++x)
+          for (int e = heads_[cell_index(x, y, z)]; e >= 0; e = entries_[size_t(e)].next) {
+            const Entry& other = entries_[size_t(e)];
+            if (visit(other.sphere, other.x, other.y, other.z, other.radius)) return true;
+          }
+    return false;
+  }
 
   size_t size() const { return size_t(count_); }
 

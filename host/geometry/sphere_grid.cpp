@@ -1,4 +1,4 @@
-#include "case/sphere_grid.h"
+#include "geometry/sphere_grid.h"
 
 #include <algorithm>
 #include <cmath>
@@ -50,20 +50,15 @@ void SphereGrid::insert(const Vec3d& centre, double radius) {
 }
 
 int SphereGrid::find_overlap(const Vec3d& centre, double radius) const {
-  CellRange range = cells_of(centre, radius + small_radius_);
-  for (int64_t z = range.lo[2]; z <= range.hi[2]; ++z)
-    for (int64_t y = range.lo[1]; y <= range.hi[1]; ++y)
-      for (int64_t x = range.lo[0]; x <= range.hi[0]; ++x)
-        for (int e = heads_[cell_index(x, y, z)]; e >= 0;) {
-          const Entry& other = entries_[size_t(e)];
-          double dx = centre[0] - other.x;
-          double dy = centre[1] - other.y;
-          double dz = centre[2] - other.z;
-          double reach = radius + other.radius;
-          if (dx * dx + dy * dy + dz * dz < reach * reach) return other.sphere;
-          e = other.next;
-        }
-  return -1;
+  int found = -1;
+  visit_near(centre, radius, [&](int sphere, double x, double y, double z, double r) {
+    double dx = centre[0] - x, dy = centre[1] - y, dz = centre[2] - z;
+    double reach = radius + r;
+    if (!(dx * dx + dy * dy + dz * dz < reach * reach)) return false;
+    found = sphere;
+    return true;
+  });
+  return found;
 }
 
 }  // namespace repose
