@@ -157,6 +157,7 @@ void CaseReader::read_experiment() {
   allowed.insert(allowed.end(), reader->keys.begin(), reader->keys.end());
   s->allow_only(allowed, "[experiment] of type '" + type + "'");
   ex.where = s->where();
+  ex.max_time_where = s->where("max_time");
   if (auto t = s->number("max_time")) ex.max_time = positive(*s, "max_time", *t);
   ex.settings = reader->read(*s);
   for (const std::string& key : reader->wall_keys)

@@ -235,6 +235,7 @@ struct ExperimentSpec {
   // changed in place (edit_settings<T> replaces it by a changed copy).
   std::shared_ptr<const ExperimentSettings> settings;
   SourceRef where;
+  SourceRef max_time_where;  // max_time's line (the table's when the default), or --max-time
 };
 
 // Extension air_drag: quadratic drag 0.5 rho C_d A v^2 on every sphere (A = pi r^2) and clump

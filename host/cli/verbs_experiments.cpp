@@ -240,16 +240,18 @@ int run_experiment(int argc, char** argv) {
   CaseSpec& spec = *loaded;
   // When to give up says nothing of the physics: set after loading, outside the case's identity
   // (as `repose run --time`), so a checkpoint of the same case continues under it.
-  if (a.max_time_option->count()) spec.experiment.max_time = a.max_time;
+  if (a.max_time_option->count()) {
+    spec.experiment.max_time = a.max_time;
+    spec.experiment.max_time_where = {spec.path, "--max-time", 0};
+  }
   const Experiment* experiment = experiment_for(spec);
   if (int code = check_experiment_fits(a, spec, experiment)) return code;
-  if (!a.restart.empty()) {
-    try {
-      check_experiment_restart(spec, a.restart, experiment->id());
-    } catch (const BadInput& e) {
-      std::fprintf(stderr, "repose experiment: %s\n", e.what());
-      return 2;
-    }
+  try {
+    experiment->check_case(spec);
+    if (!a.restart.empty()) check_experiment_restart(spec, a.restart, experiment->id());
+  } catch (const BadInput& e) {
+    std::fprintf(stderr, "repose experiment: %s\n", e.what());
+    return 2;
   }
   // Its own default folder: `repose run` of the same case writes out/CASE_NAME; a restart
   // continues in the folder of its checkpoint.

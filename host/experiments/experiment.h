@@ -123,6 +123,9 @@ class Experiment {
   // A strict run throws std::runtime_error naming the case where the rig cannot take a reading.
   virtual std::vector<std::string> responses() const = 0;
   virtual ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const = 0;
+  // What a case must hold that no key alone says (a repose rig's max_time after its lift), checked
+  // with the command line's settings applied and before anything is written: throws CaseError.
+  virtual void check_case(const CaseSpec&) const {}
 
   // --- The diagnosis (nullptr: diagnose does not simulate it).
   virtual const DiagnosisRole* diagnosis() const { return nullptr; }

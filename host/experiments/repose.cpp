@@ -10,6 +10,7 @@
 
 #include "engine/backend_factory.h"
 #include "engine/model.h"
+#include "case/case_error.h"
 #include "case/particle_factory.h"
 #include "engine/simulation.h"
 #include "experiments/body_frame.h"
@@ -61,11 +62,11 @@ double lift_end_of(const CaseSpec& spec, const WallSpec& lift) {
   const ReposeSettings& ex = settings_of<ReposeSettings>(spec.experiment);
   double lift_end = ex.lift_end > 0 ? ex.lift_end : lift.motion.stop_time;
   if (!(lift_end < 1e29))
-    throw std::runtime_error(spec.path + ": [experiment] lift_end is needed: the wall '" + lift.name +
-                             "' moves without a stop time");
+    throw CaseError(lift.where, "the wall '" + lift.name + "' moves without a stop time: give [experiment] lift_end");
   if (lift_end >= spec.experiment.max_time)
-    throw std::runtime_error(spec.path + ": [experiment] max_time (or --max-time) must exceed the end of the lift (" +
-                             std::to_string(lift_end) + " s)");
+    throw CaseError(spec.experiment.max_time_where, format_number(spec.experiment.max_time) +
+                                                        " s must exceed the end of the lift (" +
+                                                        format_number(lift_end) + " s)");
   return lift_end;
 }
 
@@ -456,6 +457,12 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
   if (run.profile)
     for (const std::string& line : profile_lines(run.backend, *r)) o.lines.push_back(line);
   return o;
+}
+
+void ReposeExperiment::check_case(const CaseSpec& spec) const {
+  const std::string& name = settings_of<ReposeSettings>(spec.experiment).lift_wall;
+  for (const WallSpec& wall : spec.walls)  // find_wall's choice; without one, run() says so
+    if (name.empty() || wall.name == name) return void(lift_end_of(spec, wall));
 }
 
 const DiagnosisRole* ReposeExperiment::diagnosis() const {

@@ -106,6 +106,7 @@ class ReposeExperiment : public Experiment {
   std::shared_ptr<const ExperimentSettings> read_keys(const Section& s) const override { return read_repose_keys(s); }
   std::vector<std::string> responses() const override;
   ExperimentOutcome run(const CaseSpec& spec, const ExperimentRun& run) const override;
+  void check_case(const CaseSpec& spec) const override;
   const DiagnosisRole* diagnosis() const override;
   Interaction& tested_contact(CaseSpec& spec) const override;
   std::string diagnosis_problem(const CaseSpec& spec) const override;

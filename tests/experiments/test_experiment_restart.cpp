@@ -126,6 +126,24 @@ TEST_CASE("repose experiment --max-time: a heap not settled by then goes on from
   CHECK(restarted_as_whole(out, dir / "whole")["provenance"]["max_time"] == 10.0);  // the case's
 }
 
+// Too little time for the lift is the user's to fix: exit 2, the flag or key named, no result.
+TEST_CASE("repose experiment: a max_time before the lift ends is bad input, with the flag or key named",
+          "[experiments][cli]") {
+  fs::path dir = fresh_dir("short_max_time");
+  auto flag = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --out " +
+                                       (dir / "flag").string() + joined(kSets) + " --max-time 2.5");
+  INFO(flag.output);
+  CHECK(flag.status == 2);
+  CHECK(flag.output.find("--max-time: 2.5 s must exceed the end of the lift (2.8 s)") != std::string::npos);
+  CHECK(!fs::exists(dir / "flag"));  // checked before the folder is claimed
+  auto key = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --out " +
+                                      (dir / "key").string() + joined(kSets) + " --set experiment.max_time=2");
+  INFO(key.output);
+  CHECK(key.status == 2);
+  CHECK(key.output.find("max_time: 2 s must exceed the end of the lift (2.8 s)") != std::string::npos);
+  CHECK(!fs::exists(dir / "key"));
+}
+
 TEST_CASE("repose experiment --restart refuses what does not belong, with exit code 2 and nothing written",
           "[experiments][cli][restart]") {
   fs::path dir = fresh_dir("refused");
