@@ -5,6 +5,7 @@
 
 #include "body_lanes.h"
 #include "contact_lanes.h"
+#include "kick_lanes.h"
 #include "twin_kernels.h"
 
 namespace repose::gpu {
@@ -36,6 +37,8 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
   if (id == KernelId::BodyPlace && body_lanes_enabled()) return run_lanes<body_place_lanes>(k, invocations, pool);
   if (id == KernelId::BodyGatherKick && body_lanes_enabled())
     return run_lanes<body_gather_kick_lanes>(k, invocations, pool);
+  if (id == KernelId::KickDrift && kick_lanes_enabled()) return run_lanes<kick_drift_lanes>(k, invocations, pool);
+  if (id == KernelId::GatherKick && kick_lanes_enabled()) return run_lanes<gather_kick_lanes>(k, invocations, pool);
   uint limit = buf.control[kCtlContacts];
   if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);

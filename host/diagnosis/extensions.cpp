@@ -28,7 +28,7 @@ const std::vector<ModelExtension>& model_extensions() {
        .apply = [](CaseSpec& s, const std::vector<double>& p) { tested_contact(s).viscoelastic_time = p.at(0); }},
       {.id = "air_drag",
        .description = "quadratic air drag 0.5 rho C_d A v^2 on the body (A its projected area, rho = 1.2 kg/m^3)",
-       .physics = "air_drag_acceleration() in shaders/kernels/integrate.h",
+       .physics = "air_drag_acceleration() in shaders/kernels/kick.h",
        .case_keys = "[air_drag] drag_coefficient, air_density = 1.2",
        .parameters = {{"drag_coefficient", "1", 1e-3, 2.0, true}},  // 2: a flat plate broadside, the bluffest body
        .revealed_by = {"rebound_height", "restitution", "height", "roll_distance"},

@@ -16,7 +16,7 @@ namespace repose {
 struct ModelExtension {
   std::string id;           // "air_drag"
   std::string description;  // one line for reports
-  std::string physics;      // where its physics lives: "air_drag_acceleration() in shaders/kernels/integrate.h"
+  std::string physics;      // where its physics lives: "air_drag_acceleration() in shaders/kernels/kick.h"
   std::string case_keys;    // the case keys `apply` sets: "[air_drag] drag_coefficient, air_density"
   std::vector<FreeParameter> parameters;
   // Which measures can reveal it (names of experiments' MeasureInfo); empty: none of the

@@ -4,14 +4,7 @@
 #ifndef REPOSE_KERNELS_INTEGRATE_H
 #define REPOSE_KERNELS_INTEGRATE_H
 
-// Extension air_drag (docs/diagnosis.md): quadratic drag -(0.5 rho C_d A) |v| v / m, with
-// drag_area = 0.5 rho C_d A for the body (a sphere: PC.air_drag r^2) and inv_mass = 1/m. Clump
-// bodies call it with their own projected area.
-vec3 air_drag_acceleration(vec3 v, float drag_area, float inv_mass) {
-  precise float speed = length3(v);
-  precise float k = -((drag_area * inv_mass) * speed);
-  return scale3(v, k);
-}
+#include "kernels/kick.h"
 
 // v += kick dt (F/m + g [+ drag]); w += kick dt T/I; then, with kFlagDrift, x += dt v and the skin check.
 void kick_and_drift(uint i, vec3 force, vec3 torque) {
@@ -19,19 +12,19 @@ void kick_and_drift(uint i, vec3 force, vec3 torque) {
   if (v4.w == 0.0f) return;  // fixed (neighbour.h): never moves
   vec4 w4 = B_omega[i];
   precise float h = PC.kick * PC.dt;
-  precise vec3 accel = scale3(force, v4.w) + vec3(PC.gx, PC.gy, PC.gz);
-  if (PC.air_drag > 0.0f) {
+  bool drag = PC.air_drag > 0.0f;
+  precise float drag_area = 0.0f;
+  if (drag) {
     float r = B_pos[i].w;
-    precise float drag_area = PC.air_drag * (r * r);
-    accel = accel + air_drag_acceleration(xyz(v4), drag_area, v4.w);
+    drag_area = PC.air_drag * (r * r);
   }
-  precise vec3 v = xyz(v4) + scale3(accel, h);
-  precise vec3 w = xyz(w4) + scale3(torque, h * w4.w);
+  vec3 v = kicked_velocity(xyz(v4), force, v4.w, vec3(PC.gx, PC.gy, PC.gz), h, drag, drag_area);
+  vec3 w = kicked_spin(xyz(w4), torque, w4.w, h);
   B_vel[i] = vec4(v, v4.w);
   B_omega[i] = vec4(w, w4.w);
   if ((PC.flags & kFlagDrift) != 0u) {
     vec4 p4 = B_pos[i];
-    precise vec3 x = xyz(p4) + scale3(v, PC.dt);
+    vec3 x = drifted(xyz(p4), v, PC.dt);
     B_pos[i] = vec4(x, p4.w);
     precise vec3 moved = x - xyz(B_pos_at_build[i]);
     if (dot3(moved, moved) > PC.half_skin_sq) atomicOr(B_control[kCtlNeedRebuild], 1u);
@@ -44,26 +37,35 @@ void k_kick_drift(uint i) {
   kick_and_drift(i, xyz(B_force[i]), xyz(B_torque[i]));
 }
 
-// Sum each particle's contact forces in a fixed order (its own row, then the contacts in which it
-// is the partner, by contact index), store them, and finish the step.
-void k_gather_kick(uint i) {
-  if (i >= PC.n_particles) return;
+// Sums particle i's contact forces in a fixed order (its own row, then the contacts in which it
+// is the partner, by contact index) and stores them; f and t are the sums.
+void gather_contact_sums(uint i, OUT(vec3) f, OUT(vec3) t) {
   uint limit = B_control[kCtlContacts];
-  precise vec3 f = vec3(0.0f);
-  precise vec3 t = vec3(0.0f);
+  precise vec3 fs = vec3(0.0f);
+  precise vec3 ts = vec3(0.0f);
   uint end = min(B_row_start[i + 1u], limit);
   for (uint c = min(B_row_start[i], limit); c < end; ++c) {
-    f = f + xyz(B_contact_force[c]);
-    t = t + xyz(B_torque_i[c]);
+    fs = fs + xyz(B_contact_force[c]);
+    ts = ts + xyz(B_torque_i[c]);
   }
   uint tend = B_trans_start[i + 1u];
   for (uint k = B_trans_start[i]; k < tend; ++k) {
     uint c = B_trans_list[k];
-    f = f - xyz(B_contact_force[c]);
-    t = t + xyz(B_torque_j[c]);
+    fs = fs - xyz(B_contact_force[c]);
+    ts = ts + xyz(B_torque_j[c]);
   }
-  B_force[i] = vec4(f, 0.0f);
-  B_torque[i] = vec4(t, 0.0f);
+  B_force[i] = vec4(fs, 0.0f);
+  B_torque[i] = vec4(ts, 0.0f);
+  f = fs;
+  t = ts;
+}
+
+// Each particle's contact forces summed and stored, then the step finished.
+void k_gather_kick(uint i) {
+  if (i >= PC.n_particles) return;
+  vec3 f;
+  vec3 t;
+  gather_contact_sums(i, f, t);
   if (PC.kick > 0.0f) kick_and_drift(i, f, t);
 }
 

@@ -1,0 +1,118 @@
+// kick_drift in SIMD lanes (kick_lanes.h): the lanes' dialect (lane_dialect.h) on
+// shaders/kernels/kick.h. What is left here is memory: each particle's rows in and out, fixed
+// particles (inverse mass 0) left as they are, and the skin check. Compiled once per SIMD target
+// by Highway's foreach_target; -ffp-contract=off keeps every Mul and Add a separate rounding.
+#include "kick_lanes.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+
+#include "twin_kernels.h"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "kick_lanes.cpp"
+#include <hwy/foreach_target.h>  // re-includes this file once per target
+#include <hwy/highway.h>
+
+#include "lane_dialect.h"  // once per target, as this file
+
+HWY_BEFORE_NAMESPACE();
+namespace repose::gpu::HWY_NAMESPACE {
+
+// The kick's text in lanes: its functions as members.
+struct LaneKick {
+#include "kernels/vector3.h"
+#include "kernels/kick.h"
+};
+
+V4 load_rows(const vec4* at) {
+  V4 r;
+  hn::LoadInterleaved4(D(), &at->x, r.x, r.y, r.z, r.w);
+  return r;
+}
+
+void store_rows(vec4* at, real3 xyz, V w) { hn::StoreInterleaved4(xyz.x.v, xyz.y.v, xyz.z.v, w, D(), &at->x); }
+
+// k_kick_drift for the Lanes(D()) slots from i (the kick of k_gather_kick alike: both read the
+// sums stored in force and torque); true when one of them moved past half the skin.
+bool kick_drift_at(Kernels& k, uint64_t i) {
+  LaneKick law;
+  const SimPush& pc = k.PC;
+  const V4 v4 = load_rows(&k.B_vel[i]), w4 = load_rows(&k.B_omega[i]);
+  const V4 force = load_rows(&k.B_force[i]), torque = load_rows(&k.B_torque[i]);
+  const cond moving{hn::Ne(v4.w, hn::Zero(D()))};  // the scalar kernel leaves a fixed one alone
+  const float h = pc.kick * pc.dt;
+  const bool drag = pc.air_drag > 0.0f;
+  real drag_area(0.0f);
+  V4 p4{};
+  const bool drift = (pc.flags & kFlagDrift) != 0u;
+  if (drag || drift) p4 = load_rows(&k.B_pos[i]);
+  if (drag) drag_area = real(pc.air_drag) * (real(p4.w) * real(p4.w));
+  real3 v = law.kicked_velocity(v4.xyz(), force.xyz(), v4.w, real3(real(pc.gx), real(pc.gy), real(pc.gz)), real(h),
+                                drag, drag_area);
+  real3 w = law.kicked_spin(w4.xyz(), torque.xyz(), w4.w, real(h));
+  v = pick(moving, v, v4.xyz());
+  w = pick(moving, w, w4.xyz());
+  store_rows(&k.B_vel[i], v, v4.w);
+  store_rows(&k.B_omega[i], w, w4.w);
+  if (!drift) return false;
+  const real3 x = pick(moving, law.drifted(p4.xyz(), v, real(pc.dt)), p4.xyz());
+  store_rows(&k.B_pos[i], x, p4.w);
+  const V4 built = load_rows(&k.B_pos_at_build[i]);
+  const real3 moved = x - built.xyz();
+  const M past = hn::And(moving.m, hn::Gt(law.dot3(moved, moved).v, hn::Set(D(), pc.half_skin_sq)));
+  return !hn::AllFalse(D(), past);
+}
+
+void KickDriftLanes(Kernels& k, uint64_t begin, uint64_t end) {
+  const size_t L = hn::Lanes(D());
+  end = std::min<uint64_t>(end, k.PC.n_particles);
+  bool moved = false;
+  uint64_t i = begin;
+  for (; i + L <= end; i += L) moved = kick_drift_at(k, i) || moved;
+  if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
+  for (; i < end; ++i) k.k_kick_drift(uint(i));
+}
+
+// k_gather_kick: each particle's sums by the scalar text (a particle's rows differ in length,
+// so lanes would idle), then the kick of a run of them in lanes from the sums just stored.
+void GatherKickLanes(Kernels& k, uint64_t begin, uint64_t end) {
+  const size_t L = hn::Lanes(D());
+  end = std::min<uint64_t>(end, k.PC.n_particles);
+  const bool kick = k.PC.kick > 0.0f;
+  bool moved = false;
+  uint64_t i = begin;
+  for (; i + L <= end; i += L) {
+    for (size_t l = 0; l < L; ++l) {
+      vec3 f, t;
+      k.gather_contact_sums(uint(i + l), f, t);
+    }
+    if (kick) moved = kick_drift_at(k, i) || moved;
+  }
+  if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
+  for (; i < end; ++i) k.k_gather_kick(uint(i));
+}
+
+}  // namespace repose::gpu::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace repose::gpu {
+
+HWY_EXPORT(KickDriftLanes);
+HWY_EXPORT(GatherKickLanes);
+
+namespace {
+std::atomic<bool> g_kick_lanes_on{true};
+}
+
+void kick_drift_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(KickDriftLanes)(k, begin, end); }
+void gather_kick_lanes(Kernels& k, uint64_t begin, uint64_t end) {
+  HWY_DYNAMIC_DISPATCH(GatherKickLanes)(k, begin, end);
+}
+void set_kick_lanes(bool on) { g_kick_lanes_on.store(on, std::memory_order_relaxed); }
+bool kick_lanes_enabled() { return g_kick_lanes_on.load(std::memory_order_relaxed); }
+
+}  // namespace repose::gpu
+#endif
