@@ -26,17 +26,17 @@ struct LaneKick {
 #include "kernels/kick.h"
 };
 
-V4 load_rows(const vec4* at) {
+HWY_INLINE V4 load_rows(const vec4* at) {
   V4 r;
   hn::LoadInterleaved4(D(), &at->x, r.x, r.y, r.z, r.w);
   return r;
 }
 
-void store_rows(vec4* at, real3 xyz, V w) { hn::StoreInterleaved4(xyz.x.v, xyz.y.v, xyz.z.v, w, D(), &at->x); }
+HWY_INLINE void store_rows(vec4* at, real3 xyz, V w) { hn::StoreInterleaved4(xyz.x.v, xyz.y.v, xyz.z.v, w, D(), &at->x); }
 
 // k_kick_drift for the Lanes(D()) slots from i (the kick of k_gather_kick alike: both read the
 // sums stored in force and torque); true when one of them moved past half the skin.
-bool kick_drift_at(Kernels& k, uint64_t i) {
+HWY_INLINE bool kick_drift_at(Kernels& k, uint64_t i) {
   LaneKick law;
   const SimPush& pc = k.PC;
   const V4 v4 = load_rows(&k.B_vel[i]), w4 = load_rows(&k.B_omega[i]);
