@@ -10,6 +10,7 @@
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
 #include "contact_lanes.h"
+#include "kick_lanes.h"
 #include "engine/backend_factory.h"
 #include "engine/bench_bed.h"
 #include "engine/buffer_table.h"
@@ -208,7 +209,7 @@ int run_bench(int argc, char** argv) {
   uint32_t steps = 200;
   double settle = 0.6, skin = -1;
   std::string cache_dir = "out/bench", case_path;
-  bool scalar_contacts = false;
+  bool scalar_contacts = false, scalar_kick = false;
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
@@ -225,8 +226,11 @@ int run_bench(int argc, char** argv) {
   app.add_option("--set", sets, "with --case: override a case key, KEY=VALUE (repeatable)");
   app.add_flag("--scalar-contacts", scalar_contacts,
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
+  app.add_flag("--scalar-kick", scalar_kick,
+               "cpu backend: kick_drift and gather_kick's kick one particle at a time, not in SIMD lanes (same bytes)");
   CLI11_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_contact_lanes(false);
+  if (scalar_kick) gpu::set_kick_lanes(false);
   std::vector<KernelVariant> named;  // checked before a bed is settled
   try {
     for (const auto& vt : variants) named.push_back(KernelVariant::parse(vt));

@@ -9,6 +9,7 @@
 #include <sys/mman.h>
 
 #include "contact_lanes.h"
+#include "kick_lanes.h"
 #include "engine/buffer_table.h"
 
 namespace repose {
@@ -19,6 +20,7 @@ std::string CpuBackend::describe() const {
   std::string lanes = gpu::contact_lanes_enabled()
                           ? std::string(", contacts in ") + gpu::contact_lanes_target() + " lanes"
                           : std::string(", contacts one at a time");
+  if (!gpu::kick_lanes_enabled()) lanes += ", the kick one particle at a time";
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
