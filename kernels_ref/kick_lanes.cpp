@@ -65,33 +65,34 @@ HWY_INLINE bool kick_drift_at(Kernels& k, uint64_t i) {
   return !hn::AllFalse(D(), past);
 }
 
-void KickDriftLanes(Kernels& k, uint64_t begin, uint64_t end) {
+// The slots [begin, end) in runs of Lanes(D()): `sums(i)` for each slot of a run, then the run's
+// kick (when `kick`); the tail by the scalar `kernel`. One rebuild flag for the whole range.
+template <class Sums, class Kernel>
+void kick_runs(Kernels& k, uint64_t begin, uint64_t end, bool kick, Sums sums, Kernel kernel) {
   const size_t L = hn::Lanes(D());
   end = std::min<uint64_t>(end, k.PC.n_particles);
   bool moved = false;
   uint64_t i = begin;
-  for (; i + L <= end; i += L) moved = kick_drift_at(k, i) || moved;
+  for (; i + L <= end; i += L) {
+    for (size_t l = 0; l < L; ++l) sums(uint(i + l));
+    if (kick) moved = kick_drift_at(k, i) || moved;
+  }
   if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
-  for (; i < end; ++i) k.k_kick_drift(uint(i));
+  for (; i < end; ++i) kernel(uint(i));
+}
+
+void KickDriftLanes(Kernels& k, uint64_t begin, uint64_t end) {
+  kick_runs(k, begin, end, true, [](uint) {}, [&](uint i) { k.k_kick_drift(i); });
 }
 
 // k_gather_kick: each particle's sums by the scalar text (a particle's rows differ in length,
 // so lanes would idle), then the kick of a run of them in lanes from the sums just stored.
 void GatherKickLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  const size_t L = hn::Lanes(D());
-  end = std::min<uint64_t>(end, k.PC.n_particles);
-  const bool kick = k.PC.kick > 0.0f;
-  bool moved = false;
-  uint64_t i = begin;
-  for (; i + L <= end; i += L) {
-    for (size_t l = 0; l < L; ++l) {
-      vec3 f, t;
-      k.gather_contact_sums(uint(i + l), f, t);
-    }
-    if (kick) moved = kick_drift_at(k, i) || moved;
-  }
-  if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
-  for (; i < end; ++i) k.k_gather_kick(uint(i));
+  auto sums = [&](uint i) {
+    vec3 f, t;
+    k.gather_contact_sums(i, f, t);
+  };
+  kick_runs(k, begin, end, k.PC.kick > 0.0f, sums, [&](uint i) { k.k_gather_kick(i); });
 }
 
 }  // namespace repose::gpu::HWY_NAMESPACE

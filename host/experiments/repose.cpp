@@ -461,8 +461,12 @@ ExperimentOutcome ReposeExperiment::run(const CaseSpec& spec, const ExperimentRu
 
 void ReposeExperiment::check_case(const CaseSpec& spec) const {
   const std::string& name = settings_of<ReposeSettings>(spec.experiment).lift_wall;
-  for (const WallSpec& wall : spec.walls)  // find_wall's choice; without one, run() says so
-    if (name.empty() || wall.name == name) return void(lift_end_of(spec, wall));
+  for (const WallSpec& wall : spec.walls) {  // find_wall's choice; without one, run() says so
+    if (name.empty() || wall.name == name) {
+      lift_end_of(spec, wall);
+      return;
+    }
+  }
 }
 
 const DiagnosisRole* ReposeExperiment::diagnosis() const {
