@@ -9,6 +9,7 @@
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
+#include "body_lanes.h"
 #include "contact_lanes.h"
 #include "kick_lanes.h"
 #include "engine/backend_factory.h"
@@ -209,7 +210,7 @@ int run_bench(int argc, char** argv) {
   uint32_t steps = 200;
   double settle = 0.6, skin = -1;
   std::string cache_dir = "out/bench", case_path;
-  bool scalar_contacts = false, scalar_kick = false;
+  bool scalar_contacts = false, scalar_kick = false, scalar_bodies = false;
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
@@ -228,9 +229,13 @@ int run_bench(int argc, char** argv) {
                "cpu backend: the contact kernel one contact at a time, not in SIMD lanes (same bytes)");
   app.add_flag("--scalar-kick", scalar_kick,
                "cpu backend: kick_drift and gather_kick's kick one particle at a time, not in SIMD lanes (same bytes)");
+  app.add_flag("--scalar-bodies", scalar_bodies,
+               "cpu backend: body_place and body_gather_kick one sub-sphere or body at a time, not in SIMD lanes "
+               "(same bytes)");
   CLI11_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_contact_lanes(false);
   if (scalar_kick) gpu::set_kick_lanes(false);
+  if (scalar_bodies) gpu::set_body_lanes(false);
   std::vector<KernelVariant> named;  // checked before a bed is settled
   try {
     for (const auto& vt : variants) named.push_back(KernelVariant::parse(vt));

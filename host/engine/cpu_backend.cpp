@@ -8,6 +8,7 @@
 
 #include <sys/mman.h>
 
+#include "body_lanes.h"
 #include "contact_lanes.h"
 #include "kick_lanes.h"
 #include "engine/buffer_table.h"
@@ -21,6 +22,7 @@ std::string CpuBackend::describe() const {
                           ? std::string(", contacts in ") + gpu::contact_lanes_target() + " lanes"
                           : std::string(", contacts one at a time");
   if (!gpu::kick_lanes_enabled()) lanes += ", the kick one particle at a time";
+  if (!gpu::body_lanes_enabled()) lanes += ", the bodies' kernels one at a time";
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
