@@ -67,14 +67,37 @@ real rolling_lever(Kernels& k, LaneLaw& law, VI sphere, real3 cp, real r) {
   return law.centre_of_mass_lever(cp, com, r, lone);
 }
 
-// contacts.h sphere_state for the lanes' owners i and partners p, the rows loaded as the pairs
-// need them (i's and p's positions, velocities, spins): the partners' rows miss the cache, and
-// their loads start early. LoadP (the partners') and LoadI (the owners') are rows or
-// rows_via_buffer (lane_dialect.h).
-template <V4 (*LoadP)(const vec4*, const uint*), V4 (*LoadI)(const vec4*, const uint*) = LoadP>
-HWY_INLINE void sphere_states(Kernels& k, const uint* i, const uint* p, LaneLaw::SphereState& si, LaneLaw::SphereState& sj) {
-  V4 pos_i = LoadI(k.B_pos, i), pos_j = LoadP(k.B_pos, p);
-  V4 vel_i = LoadI(k.B_vel, i), vel_j = LoadP(k.B_vel, p);
+// The owners' rows of a batch of a bed: the list is in rows by owner slot, so a batch's owners are
+// a few consecutive slots. When every owner lies within the lanes' count of the first one, the
+// rows from the first are loaded as a block and each lane takes its owner's by a permutation;
+// otherwise (or past the buffer's end) rows() joins them one by one.
+HWY_INLINE bool owner_block(const uint* i, uint n, VI& offset) {
+  const DI di;
+  const size_t L = hn::Lanes(di);
+  const uint first = i[0];
+  if (first + L > n) return false;
+  offset = hn::Sub(hn::LoadU(di, reinterpret_cast<const int32_t*>(i)), hn::Set(di, int32_t(first)));
+  const hn::RebindToUnsigned<DI> du;  // an owner below the first wraps to a large offset
+  return hn::AllTrue(du, hn::Lt(hn::BitCast(du, offset), hn::Set(du, uint32_t(L))));
+}
+HWY_INLINE V4 owner_rows(const vec4* base, const uint* i, bool block, VI offset) {
+  if (!block) return rows(base, i);
+  V4 r;
+  hn::LoadInterleaved4(D(), &base[i[0]].x, r.x, r.y, r.z, r.w);
+  const auto at = hn::IndicesFromVec(D(), offset);
+  return {hn::TableLookupLanes(r.x, at), hn::TableLookupLanes(r.y, at), hn::TableLookupLanes(r.z, at),
+          hn::TableLookupLanes(r.w, at)};
+}
+
+// contacts.h sphere_state for the lanes' owners and partners, the rows loaded as the pairs need
+// them (positions, velocities, spins of both): the partners' rows miss the cache, and their loads
+// start early. `owner(base)` and `partner(base)` load a buffer's rows of the batch's owners and
+// partners.
+template <class OwnerRows, class PartnerRows>
+HWY_INLINE void sphere_states(Kernels& k, OwnerRows owner, PartnerRows partner, LaneLaw::SphereState& si,
+                              LaneLaw::SphereState& sj) {
+  V4 pos_i = owner(k.B_pos), pos_j = partner(k.B_pos);
+  V4 vel_i = owner(k.B_vel), vel_j = partner(k.B_vel);
   si.x = pos_i.xyz();
   si.radius = pos_i.w;
   sj.x = pos_j.xyz();
@@ -83,8 +106,8 @@ HWY_INLINE void sphere_states(Kernels& k, const uint* i, const uint* p, LaneLaw:
   si.inv_mass = vel_i.w;
   sj.v = vel_j.xyz();
   sj.inv_mass = vel_j.w;
-  si.w = LoadI(k.B_omega, i).xyz();
-  sj.w = LoadP(k.B_omega, p).xyz();
+  si.w = owner(k.B_omega).xyz();
+  sj.w = partner(k.B_omega).xyz();
 }
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
@@ -96,12 +119,16 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   // A clump's sub-spheres sit in runs of slots a body long, and so do their partners: their rows
   // stay in cache, where joining them in registers is faster (the stalk bucket at rest, 2.07-2.09
   // against 1.86-1.97 CPU-s per 400 steps); a bed's partners miss it (lane_dialect.h), while its
-  // owners, a few repeated along a batch, stay in cache: contact_forces 0.78-0.82 -> 0.73-0.74 ms
-  // per step on LIGGGHTS's bed with the owners joined in registers (two threads, four rounds).
-  if ((flags & kFlagBodies) != 0u)
-    sphere_states<rows>(k, i_at, p_at, si, sj);
-  else
-    sphere_states<rows_via_buffer, rows>(k, i_at, p_at, si, sj);
+  // owners, a few consecutive slots, stay in cache and load as a block (docs/engineering.md).
+  if ((flags & kFlagBodies) != 0u) {
+    sphere_states(k, [&](const vec4* base) { return rows(base, i_at); }, [&](const vec4* base) { return rows(base, p_at); },
+                  si, sj);
+  } else {
+    VI offset;
+    const bool block = owner_block(i_at, k.PC.n_particles, offset);
+    sphere_states(k, [&](const vec4* base) { return owner_rows(base, i_at, block, offset); },
+                  [&](const vec4* base) { return rows_via_buffer(base, p_at); }, si, sj);
+  }
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);

@@ -18,8 +18,8 @@ namespace {
 // zero and non-zero spins and histories, pairs with each extension off and on, two plane walls
 // (the floor z = 5 mm; a tilted lid sliding and turning, of another material) as the partners of
 // some contacts, in runs of lanes and alone (the lanes run the law of a batch of wall contacts
-// together, and of the last few at the end), and runs of lanes whose pairs are all apart (the
-// lanes then store zeros without the law).
+// together, and of the last few at the end), runs of lanes whose pairs are all apart (the
+// lanes then store zeros without the law), and runs whose owners are a few consecutive slots.
 struct Scene {
   std::vector<vec4> pos, vel, omega, history;
   std::vector<uint> material, partner, owner;
@@ -81,6 +81,13 @@ struct Scene {
       uint i = pick(n_particles), j = pick(n_particles);
       if (j == i) j = (i + 1u) % n_particles;
       if (c % 97u == 0u) i = 0u, j = 1u;
+      // Owners in rows, as a list holds them (the lanes then load the batch's owner rows as one
+      // block): four entries each, then sixteen owners spanning 15 slots (a block), then 16 (not).
+      if (c >= 480u && c < 560u) i = 40u + (c - 480u) / 4u;
+      if (c >= 560u && c < 576u) i = 60u + (c - 560u);
+      if (c >= 576u && c < 592u) i = 80u + (c - 576u) + (c == 591u ? 1u : 0u);
+      if (j == i) j = (i + 1u) % n_particles;
+      if (c == 591u) j = 97u;  // touching (below): a wrong owner row would show
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
       if (c % 31u == 0u || (c >= 400u && c < 420u)) j = n_particles + 1u;  // the lid
       if (c >= 304u && c < 336u) i = 2u, j = 3u;
@@ -88,6 +95,7 @@ struct Scene {
       partner.push_back(j);
       history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
     }
+    pos[97] = pos[96] + vec4(0.002f, 0.0f, 0.0f, 0.0f);  // radii of 2 mm or more: they overlap
   }
 };
 
