@@ -65,8 +65,8 @@ HWY_INLINE bool kick_drift_at(Kernels& k, uint64_t i) {
   return !hn::AllFalse(D(), past);
 }
 
-// The slots [begin, end) in runs of Lanes(D()): `sums(i)` for each slot of a run, then the run's
-// kick (when `kick`); the tail by the scalar `kernel`. One rebuild flag for the whole range.
+// The slots [begin, end) in runs of Lanes(D()): `sums(i, L)` for the slots of a run, then the
+// run's kick (when `kick`); the tail by the scalar `kernel`. One rebuild flag for the whole range.
 template <class Sums, class Kernel>
 void kick_runs(Kernels& k, uint64_t begin, uint64_t end, bool kick, Sums sums, Kernel kernel) {
   const size_t L = hn::Lanes(D());
@@ -74,7 +74,7 @@ void kick_runs(Kernels& k, uint64_t begin, uint64_t end, bool kick, Sums sums, K
   bool moved = false;
   uint64_t i = begin;
   for (; i + L <= end; i += L) {
-    for (size_t l = 0; l < L; ++l) sums(uint(i + l));
+    sums(uint(i), uint(L));
     if (kick) moved = kick_drift_at(k, i) || moved;
   }
   if (moved) atomicOr(k.B_control[kCtlNeedRebuild], 1u);
@@ -82,15 +82,30 @@ void kick_runs(Kernels& k, uint64_t begin, uint64_t end, bool kick, Sums sums, K
 }
 
 void KickDriftLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  kick_runs(k, begin, end, true, [](uint) {}, [&](uint i) { k.k_kick_drift(i); });
+  kick_runs(k, begin, end, true, [](uint, uint) {}, [&](uint i) { k.k_kick_drift(i); });
+}
+
+// True when slots [i, i + n) own no entry of the list and are the partner of none: the rows'
+// starts are prefix sums, so equal starts at both ends leave every row between empty.
+HWY_INLINE bool no_entries(const Kernels& k, uint i, uint n) {
+  const uint limit = k.B_control[kCtlContacts];
+  return std::min(k.B_row_start[i], limit) == std::min(k.B_row_start[i + n], limit) &&
+         k.B_trans_start[i] == k.B_trans_start[i + n];
 }
 
 // k_gather_kick: each particle's sums by the scalar text (a particle's rows differ in length,
 // so lanes would idle), then the kick of a run of them in lanes from the sums just stored.
 void GatherKickLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  auto sums = [&](uint i) {
-    vec3 f, t;
-    k.gather_contact_sums(i, f, t);
+  auto sums = [&](uint i, uint n) {
+    if (no_entries(k, i, n)) {  // a clump's inner sub-spheres: sums of nothing, +0 (gather_contact_sums)
+      std::fill(k.B_force + i, k.B_force + i + n, vec4(0.0f));
+      std::fill(k.B_torque + i, k.B_torque + i + n, vec4(0.0f));
+      return;
+    }
+    for (uint l = 0; l < n; ++l) {
+      vec3 f, t;
+      k.gather_contact_sums(i + l, f, t);
+    }
   };
   kick_runs(k, begin, end, k.PC.kick > 0.0f, sums, [&](uint i) { k.k_gather_kick(i); });
 }
