@@ -5,7 +5,6 @@
 #include "body_lanes.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <cstring>
 
@@ -144,16 +143,10 @@ namespace repose::gpu {
 HWY_EXPORT(PlaceLanes);
 HWY_EXPORT(GatherLanes);
 
-namespace {
-std::atomic<bool> g_body_lanes_on{true};
-}
-
 void body_place_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(PlaceLanes)(k, begin, end); }
 void body_gather_kick_lanes(Kernels& k, uint64_t begin, uint64_t end) {
   HWY_DYNAMIC_DISPATCH(GatherLanes)(k, begin, end);
 }
-void set_body_lanes(bool on) { g_body_lanes_on.store(on, std::memory_order_relaxed); }
-bool body_lanes_enabled() { return g_body_lanes_on.load(std::memory_order_relaxed); }
 
 }  // namespace repose::gpu
 #endif

@@ -7,10 +7,10 @@
 // rounding.
 #include "contact_lanes.h"
 
-#include <atomic>
 #include <cstddef>
 #include <cstring>
 
+#include "lane_switches.h"
 #include "twin_kernels.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -304,12 +304,8 @@ namespace repose::gpu {
 HWY_EXPORT(ContactLanes);
 HWY_EXPORT(LanesTarget);
 
-namespace {
-std::atomic<bool> g_lanes_on{true};
-}
-
 bool contact_lanes_cover(uint flags) {
-  return g_lanes_on.load(std::memory_order_relaxed) &&
+  return lanes_enabled(LaneKernels::Contacts) &&
          (flags & kFlagsNeedFullEntries) == 0u;
 }
 
@@ -323,8 +319,6 @@ std::vector<int64_t> contact_lanes_targets() { return hwy::SupportedAndGenerated
 
 void pin_contact_lanes_target(int64_t target) { hwy::SetSupportedTargetsForTest(target); }
 
-void set_contact_lanes(bool on) { g_lanes_on.store(on, std::memory_order_relaxed); }
-bool contact_lanes_enabled() { return g_lanes_on.load(std::memory_order_relaxed); }
 
 }  // namespace repose::gpu
 #endif

@@ -23,8 +23,5 @@ const char* contact_lanes_target();
 // them; pin_contact_lanes_target(t) makes the lanes use t only (0: the best one again).
 std::vector<int64_t> contact_lanes_targets();
 void pin_contact_lanes_target(int64_t target);
-// Process-wide switch (default on), for measuring the lanes against the scalar kernel.
-void set_contact_lanes(bool on);
-bool contact_lanes_enabled();
 
 }  // namespace repose::gpu

@@ -6,6 +6,7 @@
 #include "body_lanes.h"
 #include "contact_lanes.h"
 #include "kick_lanes.h"
+#include "lane_switches.h"
 #include "twin_kernels.h"
 
 namespace repose::gpu {
@@ -34,11 +35,11 @@ static void run_lanes(Kernels& k, uint64_t n, ThreadPool& pool) {
 void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
   if (invocations == 0) return;
   Kernels k(buf);
-  if (id == KernelId::BodyPlace && body_lanes_enabled()) return run_lanes<body_place_lanes>(k, invocations, pool);
-  if (id == KernelId::BodyGatherKick && body_lanes_enabled())
+  if (id == KernelId::BodyPlace && lanes_enabled(LaneKernels::Bodies)) return run_lanes<body_place_lanes>(k, invocations, pool);
+  if (id == KernelId::BodyGatherKick && lanes_enabled(LaneKernels::Bodies))
     return run_lanes<body_gather_kick_lanes>(k, invocations, pool);
-  if (id == KernelId::KickDrift && kick_lanes_enabled()) return run_lanes<kick_drift_lanes>(k, invocations, pool);
-  if (id == KernelId::GatherKick && kick_lanes_enabled()) return run_lanes<gather_kick_lanes>(k, invocations, pool);
+  if (id == KernelId::KickDrift && lanes_enabled(LaneKernels::Kick)) return run_lanes<kick_drift_lanes>(k, invocations, pool);
+  if (id == KernelId::GatherKick && lanes_enabled(LaneKernels::Kick)) return run_lanes<gather_kick_lanes>(k, invocations, pool);
   uint limit = buf.control[kCtlContacts];
   if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);

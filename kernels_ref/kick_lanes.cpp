@@ -5,7 +5,6 @@
 #include "kick_lanes.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 
 #include "twin_kernels.h"
@@ -119,16 +118,10 @@ namespace repose::gpu {
 HWY_EXPORT(KickDriftLanes);
 HWY_EXPORT(GatherKickLanes);
 
-namespace {
-std::atomic<bool> g_kick_lanes_on{true};
-}
-
 void kick_drift_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(KickDriftLanes)(k, begin, end); }
 void gather_kick_lanes(Kernels& k, uint64_t begin, uint64_t end) {
   HWY_DYNAMIC_DISPATCH(GatherKickLanes)(k, begin, end);
 }
-void set_kick_lanes(bool on) { g_kick_lanes_on.store(on, std::memory_order_relaxed); }
-bool kick_lanes_enabled() { return g_kick_lanes_on.load(std::memory_order_relaxed); }
 
 }  // namespace repose::gpu
 #endif

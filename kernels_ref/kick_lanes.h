@@ -15,8 +15,5 @@ struct Kernels;
 void kick_drift_lanes(Kernels& k, uint64_t begin, uint64_t end);
 // k_gather_kick(i) for every slot i in [begin, end): the sums scalar, the kick in lanes.
 void gather_kick_lanes(Kernels& k, uint64_t begin, uint64_t end);
-// Process-wide switch (default on), for measuring the lanes against the scalar kernel.
-void set_kick_lanes(bool on);
-bool kick_lanes_enabled();
 
 }  // namespace repose::gpu

@@ -9,9 +9,7 @@
 #include "cli/cli_case.h"
 #include "cli/cli_checks.h"
 #include "cli/verbs.h"
-#include "body_lanes.h"
-#include "contact_lanes.h"
-#include "kick_lanes.h"
+#include "lane_switches.h"
 #include "engine/backend_factory.h"
 #include "engine/bench_bed.h"
 #include "engine/buffer_table.h"
@@ -233,9 +231,9 @@ int run_bench(int argc, char** argv) {
                "cpu backend: body_place and body_gather_kick one sub-sphere or body at a time, not in SIMD lanes "
                "(same bytes)");
   CLI11_PARSE(app, argc, argv);
-  if (scalar_contacts) gpu::set_contact_lanes(false);
-  if (scalar_kick) gpu::set_kick_lanes(false);
-  if (scalar_bodies) gpu::set_body_lanes(false);
+  if (scalar_contacts) gpu::set_lanes(gpu::LaneKernels::Contacts, false);
+  if (scalar_kick) gpu::set_lanes(gpu::LaneKernels::Kick, false);
+  if (scalar_bodies) gpu::set_lanes(gpu::LaneKernels::Bodies, false);
   std::vector<KernelVariant> named;  // checked before a bed is settled
   try {
     for (const auto& vt : variants) named.push_back(KernelVariant::parse(vt));

@@ -8,9 +8,8 @@
 
 #include <sys/mman.h>
 
-#include "body_lanes.h"
 #include "contact_lanes.h"
-#include "kick_lanes.h"
+#include "lane_switches.h"
 #include "engine/buffer_table.h"
 
 namespace repose {
@@ -18,11 +17,11 @@ namespace repose {
 CpuBackend::CpuBackend(unsigned threads) : pool_(threads) {}
 
 std::string CpuBackend::describe() const {
-  std::string lanes = gpu::contact_lanes_enabled()
+  std::string lanes = gpu::lanes_enabled(gpu::LaneKernels::Contacts)
                           ? std::string(", contacts in ") + gpu::contact_lanes_target() + " lanes"
                           : std::string(", contacts one at a time");
-  if (!gpu::kick_lanes_enabled()) lanes += ", the kick one particle at a time";
-  if (!gpu::body_lanes_enabled()) lanes += ", the bodies' kernels one at a time";
+  if (!gpu::lanes_enabled(gpu::LaneKernels::Kick)) lanes += ", the kick one particle at a time";
+  if (!gpu::lanes_enabled(gpu::LaneKernels::Bodies)) lanes += ", the bodies' kernels one at a time";
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
