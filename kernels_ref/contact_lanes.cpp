@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstring>
+#include <vector>
 
 #include "lane_switches.h"
 #include "twin_kernels.h"
@@ -293,7 +294,83 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   for (; c < end; ++c) k.process_contact(k.B_owner[c], uint(c));
 }
 
+// The law's arithmetic alone, for the bench's compute ceiling (contact_lanes.h): kLawRing batches
+// of the list's particle pairs, spread over it, their rows copied once into lanes' layout (14 KB
+// at 16 lanes, within L1), then particle_lanes' law, picks and stores run `batches` times over
+// them, storing into `sink` what particle_lanes stores in the entries (history, force, then T_i
+// and T_j, or the lean entry's n x Ft and overlap), batch after batch.
+struct RingBatch {
+  enum Field { Xi = 0, Ri = 3, Vi = 4, Mi = 7, Wi = 8, Xj = 11, Rj = 14, Vj = 15, Mj = 18, Wj = 19, H = 22, kFields = 26 };
+  alignas(64) float f[kFields][HWY_LANES(float)];
+  alignas(64) int32_t mi[HWY_LANES(float)], mj[HWY_LANES(float)];
+  real at(int field) const { return hn::Load(D(), f[field]); }
+  real3 at3(int field) const { return {at(field), at(field + 1), at(field + 2)}; }
+};
+
+// The ring's batches from the list (false when it holds no particle pair).
+bool fill_ring(Kernels& k, std::vector<RingBatch>& ring) {
+  const size_t L = hn::Lanes(D());
+  const uint64_t n = k.B_control[kCtlContacts];
+  uint64_t c = 0;
+  for (size_t b = 0; b < ring.size(); ++b) {
+    for (size_t l = 0; l < L; ++l, c = (c + 1) % n) {
+      for (uint64_t tried = 0; k.B_partner[c] >= k.PC.n_particles; c = (c + 1) % n)  // particle pairs only
+        if (++tried > n) return false;
+      const uint i = k.B_owner[c], j = k.B_partner[c];
+      const vec4 rows[] = {k.B_pos[i], k.B_vel[i], k.B_omega[i], k.B_pos[j], k.B_vel[j], k.B_omega[j], k.B_history[c]};
+      const int first[] = {RingBatch::Xi, RingBatch::Vi, RingBatch::Wi, RingBatch::Xj, RingBatch::Vj, RingBatch::Wj,
+                           RingBatch::H};
+      for (int r = 0; r < 7; ++r)
+        for (int w = 0; w < (r % 3 == 2 && r < 6 ? 3 : 4); ++w) ring[b].f[first[r] + w][l] = (&rows[r].x)[w];
+      ring[b].mi[l] = int32_t(k.B_material[i]);
+      ring[b].mj[l] = int32_t(k.B_material[j]);
+    }
+    c = (b + 1) * n / ring.size();  // the next batch further along the list
+  }
+  return true;
+}
+
+HWY_FLATTEN void LawOnly(Kernels& k, uint64_t batches, float* sink) {
+  std::vector<RingBatch> ring(kLawRing);
+  if (k.B_control[kCtlContacts] == 0 || !fill_ring(k, ring)) return;
+  const size_t L = hn::Lanes(D());
+  const uint flags = k.PC.flags;
+  LaneLaw law;
+  for (uint64_t n = 0; n < batches; ++n) {
+    const RingBatch& q = ring[n % kLawRing];
+    float* out = sink + (n % kLawRing) * kSinkFloats * L;
+    auto put = [&](int at, real x) { hn::StoreU(x.v, D(), out + at * L); };
+    LaneLaw::SphereState si{q.at3(RingBatch::Xi), q.at(RingBatch::Ri), q.at3(RingBatch::Vi), q.at(RingBatch::Mi),
+                            q.at3(RingBatch::Wi)};
+    LaneLaw::SphereState sj{q.at3(RingBatch::Xj), q.at(RingBatch::Rj), q.at3(RingBatch::Vj), q.at(RingBatch::Mj),
+                            q.at3(RingBatch::Wj)};
+    LaneLaw::ContactGeometry g;
+    real3 v_rel;
+    cond t = law.touching_spheres(si, sj, flags, g, v_rel);
+    if (hn::AllFalse(D(), t.m)) {
+      for (int f = 0; f < int(kSinkFloats); ++f) put(f, 0.0f);
+      continue;
+    }
+    real3 shear = q.at3(RingBatch::H);
+    VI mi = hn::Load(DI(), q.mi), mj = hn::Load(DI(), q.mj);
+    LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
+    const bool keep = (flags & kFlagKeepHistory) != 0u;
+    const real age = keep ? q.at(RingBatch::H + 3) : q.at(RingBatch::H + 3) + 1.0f;
+    if (keep) shear = q.at3(RingBatch::H);
+    if ((flags & kFlagLeanContacts) != 0u) {
+      const real parts[] = {shear.x, shear.y, shear.z, age, o.force_i.x, o.force_i.y, o.force_i.z, o.roll_arm,
+                            o.n_x_ft.x, o.n_x_ft.y, o.n_x_ft.z, g.overlap};
+      for (int f = 0; f < 12; ++f) put(f, zero_unless(t, parts[f]));
+      continue;
+    }
+    const real parts[] = {shear.x, shear.y, shear.z, age, o.force_i.x, o.force_i.y, o.force_i.z, o.normal_force,
+                          o.torque_i.x, o.torque_i.y, o.torque_i.z, o.torque_j.x, o.torque_j.y, o.torque_j.z};
+    for (int f = 0; f < int(kSinkFloats); ++f) put(f, zero_unless(t, parts[f]));
+  }
+}
+
 const char* LanesTarget() { return hwy::TargetName(HWY_TARGET); }
+size_t LanesWidth() { return hn::Lanes(D()); }
 
 }  // namespace repose::gpu::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
@@ -303,6 +380,8 @@ namespace repose::gpu {
 
 HWY_EXPORT(ContactLanes);
 HWY_EXPORT(LanesTarget);
+HWY_EXPORT(LawOnly);
+HWY_EXPORT(LanesWidth);
 
 bool contact_lanes_cover(uint flags) {
   return lanes_enabled(LaneKernels::Contacts) &&
@@ -312,6 +391,10 @@ bool contact_lanes_cover(uint flags) {
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end) {
   HWY_DYNAMIC_DISPATCH(ContactLanes)(k, begin, end);
 }
+
+void contact_law_lanes(Kernels& k, uint64_t batches, float* sink) { HWY_DYNAMIC_DISPATCH(LawOnly)(k, batches, sink); }
+
+size_t contact_lanes_width() { return HWY_DYNAMIC_DISPATCH(LanesWidth)(); }
 
 const char* contact_lanes_target() { return HWY_DYNAMIC_DISPATCH(LanesTarget)(); }
 

@@ -6,6 +6,7 @@
 // lanes with other wall contacts; the tail of a range and options the lanes do not cover (rolling
 // springs, spinning friction) run the scalar kernel.
 #pragma once
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -17,6 +18,13 @@ struct Kernels;
 bool contact_lanes_cover(uint32_t flags);
 // process_contact(B_owner[c], c) for every c in [begin, end), in lanes where they cover it.
 void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end);
+// The law's arithmetic alone over `batches` batches of contacts_lanes_width() contacts (the
+// bench's compute ceiling): a few batches of the list's particle pairs copied once into lanes'
+// layout, within L1, the law run over them again and again, kSinkFloats per lane stored into
+// `sink` (kLawRing batches of them: kLawRing * kSinkFloats * width floats) as the kernel stores its entries.
+constexpr size_t kLawRing = 8, kSinkFloats = 14;
+void contact_law_lanes(Kernels& k, uint64_t batches, float* sink);
+size_t contact_lanes_width();
 // The SIMD target Highway picked on this machine ("AVX3", "AVX2", ...), for bench reports.
 const char* contact_lanes_target();
 // The SIMD targets (Highway's bits) this machine can run the lanes on, for tests that compare

@@ -13,6 +13,7 @@
 #include "engine/backend_factory.h"
 #include "engine/bench_bed.h"
 #include "engine/buffer_table.h"
+#include "engine/cpu_backend.h"
 #include "engine/kernel_traffic.h"
 #include "engine/memory_need.h"
 #include "engine/model.h"
@@ -134,6 +135,24 @@ void print_roofline(const RunProfile& p, const Layout& layout, const TrafficCoun
                 all_bytes / all_seconds / copy.dram);
 }
 
+// contact_forces against the arithmetic it cannot avoid: the law alone with its rows in registers
+// (the compute ceiling), and against the larger of that and its bytes at the copy's bandwidth
+// (the roofline of a kernel that both computes and moves data).
+void print_law_ceiling(const RunProfile& p, Simulation& sim, const TrafficCounts& counts, const CopyBandwidth& copy) {
+  auto* cpu = dynamic_cast<CpuBackend*>(&sim.backend());
+  auto kernel = p.kernels.find("contact_forces");
+  if (cpu == nullptr || kernel == p.kernels.end() || p.steps == 0) return;
+  double per_contact = cpu->contact_law_seconds_per_contact();
+  if (per_contact <= 0) return;
+  double ms = 1e3 * kernel->second / double(p.steps);
+  double law_ms = 1e3 * per_contact * counts.contacts;
+  double bytes_ms = 1e3 * kernel_min_bytes("contact_forces", sim.layout(), counts) / copy.own;
+  std::printf("         compute ceiling: the contact law alone, its rows in registers, %.3g ns per contact: %.3f ms "
+              "per step for %.0f entries; contact_forces (%.3f ms) at %.2f of it, at %.2f of the larger of it and "
+              "its bytes at the buffers' copy (%.3f ms)\n",
+              1e9 * per_contact, law_ms, counts.contacts, ms, law_ms / ms, std::max(law_ms, bytes_ms) / ms, bytes_ms);
+}
+
 // One backend and variant on the settled model: setup, speed, list size and memory, then where
 // the time goes (every kernel timed over the same number of steps) and how close to the
 // memory bandwidth it runs.
@@ -172,7 +191,9 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
               format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str());
   if (backend == "cpu") {
     TrafficCounts counts{n, double(sim.contacts()), double(sim.contacts()), double(model.table_size) + 2};
-    print_roofline(p, sim.layout(), counts, measure_copies(sim.backend().memory_bytes(), threads));
+    CopyBandwidth copy = measure_copies(sim.backend().memory_bytes(), threads);
+    print_roofline(p, sim.layout(), counts, copy);
+    print_law_ceiling(p, sim, counts, copy);
   }
   std::fflush(stdout);
 }

@@ -28,6 +28,10 @@ class CpuBackend : public Backend {
   std::vector<gpu::vec4> contact_forces(uint32_t contacts) override;
   std::vector<gpu::vec4> wall_sums() override;
   size_t memory_bytes() const override;
+  // Seconds per contact of the contact law alone on the pool's threads, its rows already in
+  // registers (contact_lanes.h; the best of five passes): the bench's compute ceiling for
+  // contact_forces. 0 when the lanes do not run this step's contacts.
+  double contact_law_seconds_per_contact();
   // Binding b's array (kernel tests compare raw buffers with the Vulkan backend).
   const gpu::Buffers& buffers() const { return buf_; }
 

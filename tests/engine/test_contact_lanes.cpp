@@ -190,3 +190,53 @@ TEST_CASE("contact lanes leave rolling springs and spinning friction to the scal
   CHECK_FALSE(contact_lanes_cover(kFlagRollingSpring));
   CHECK_FALSE(contact_lanes_cover(kFlagSpinningFriction | kFlagRollingConstTorque));
 }
+
+TEST_CASE("the contact law alone (the bench's compute ceiling) computes what the kernel stores", "[engine][bitexact]") {
+  // The ring's batch b holds the lanes of contacts from b * n / kLawRing (particle pairs only: this
+  // list has no walls), so the sink of kLawRing batches must hold, field by field, what the
+  // kernel stores for those contacts from the same histories. A ceiling that skipped part of the
+  // law, or ran it on other rows, would differ.
+  Scene s(120, 16 * 40, 2, 13);
+  for (size_t c = 0; c < s.partner.size(); ++c)
+    if (s.partner[c] >= s.pos.size()) s.partner[c] = (s.owner[c] + 1u) % uint(s.pos.size());
+  const size_t L = contact_lanes_width(), n = s.owner.size();
+  for (uint flags : {0u, kFlagLeanContacts, kFlagKeepHistory | kFlagRollingConstTorque,
+                     kFlagLeanContacts | kFlagCohesionIntersection | kFlagClipAttraction}) {
+    Outputs entries = run(s, flags, true);
+    std::vector<float> sink(kLawRing * kSinkFloats * L, -1.0f);
+    std::vector<vec4> history = s.history;
+    std::vector<uint> control(16, 0u);
+    control[kCtlContacts] = uint(n);
+    Kernels k;
+    k.B_pos = s.pos.data();
+    k.B_vel = s.vel.data();
+    k.B_omega = s.omega.data();
+    k.B_material = s.material.data();
+    k.B_pairs = s.pairs.data();
+    k.B_partner = s.partner.data();
+    k.B_owner = s.owner.data();
+    k.B_history = history.data();
+    k.B_control = control.data();
+    k.PC.n_particles = uint(s.pos.size());
+    k.PC.n_materials = s.n_materials;
+    k.PC.flags = flags;
+    k.PC.dt = 1e-5f;
+    contact_law_lanes(k, kLawRing, sink.data());
+    const bool lean = (flags & kFlagLeanContacts) != 0u;
+    int differ = 0, touching = 0;
+    for (size_t b = 0; b < kLawRing; ++b)
+      for (size_t l = 0; l < L; ++l) {
+        size_t c = b * n / kLawRing + l;
+        const vec4 stored[] = {entries.history[c], entries.force[c], entries.torque_i[c], entries.torque_j[c]};
+        for (size_t f = 0; f < (lean ? 12u : kSinkFloats); ++f) {
+          float want = (&stored[f / 4].x)[f % 4];
+          if (!lean && f >= 11) want = (&stored[3].x)[f - 11];  // T_j after T_i's three
+          differ += std::memcmp(&want, &sink[(b * kSinkFloats + f) * L + l], 4) != 0;
+        }
+        touching += entries.force[c].x != 0.0f;
+      }
+    INFO("flags " << flags << ", lanes on " << contact_lanes_target());
+    CHECK(differ == 0);
+    CHECK(touching > 10);  // the law ran, not only its zeros
+  }
+}
