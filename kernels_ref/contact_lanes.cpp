@@ -285,6 +285,12 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
+    if (c + 8 * L < end) {  // the histories' stream, 8 batches ahead: its loads were the kernel's longest wait
+      __builtin_prefetch(&k.B_history[c + 8 * L]);
+      __builtin_prefetch(&k.B_history[c + 8 * L + 4]);
+      __builtin_prefetch(&k.B_history[c + 8 * L + 8]);
+      __builtin_prefetch(&k.B_history[c + 8 * L + 12]);
+    }
     if (hn::AllTrue(di, hn::Lt(p, particles)))
       particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
     else
