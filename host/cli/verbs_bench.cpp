@@ -147,10 +147,10 @@ void print_law_ceiling(const RunProfile& p, Simulation& sim, const TrafficCounts
   double ms = 1e3 * kernel->second / double(p.steps);
   double law_ms = 1e3 * per_contact * counts.contacts;
   double bytes_ms = 1e3 * kernel_min_bytes("contact_forces", sim.layout(), counts) / copy.own;
-  std::printf("         compute ceiling: the contact law alone, its rows in registers, %.3g ns per contact: %.3f ms "
-              "per step for %.0f entries; contact_forces (%.3f ms) at %.2f of it, at %.2f of the larger of it and "
-              "its bytes at the buffers' copy (%.3f ms)\n",
-              1e9 * per_contact, law_ms, counts.contacts, ms, law_ms / ms, std::max(law_ms, bytes_ms) / ms, bytes_ms);
+  std::printf("         compute ceiling: the contact law alone (its rows in registers) %.3g ns per contact, %.3f ms "
+              "per step for %.0f entries\n         contact_forces %.3f ms per step: %.2f of it; of its roofline, the "
+              "larger of it and its bytes at the buffers' copy (%.3f ms): %.2f\n",
+              1e9 * per_contact, law_ms, counts.contacts, ms, law_ms / ms, bytes_ms, std::max(law_ms, bytes_ms) / ms);
 }
 
 // One backend and variant on the settled model: setup, speed, list size and memory, then where
