@@ -104,13 +104,8 @@ struct Outputs {
   std::vector<vec4> history, force, torque_i, torque_j;
 };
 
-Outputs run(const Scene& s, uint flags, bool lanes) {
-  Outputs o;
-  size_t n = s.owner.size();
-  o.history = s.history;
-  o.force.assign(n, vec4(7.0f));
-  o.torque_i.assign(n, vec4(7.0f));
-  o.torque_j.assign(n, vec4(7.0f));
+// The scene's buffers and o's as the kernels see them.
+Kernels bind(const Scene& s, Outputs& o, uint flags) {
   Kernels k;
   k.B_pos = const_cast<vec4*>(s.pos.data());
   k.B_vel = const_cast<vec4*>(s.vel.data());
@@ -131,6 +126,17 @@ Outputs run(const Scene& s, uint flags, bool lanes) {
   k.PC.n_materials = s.n_materials;
   k.PC.flags = flags;
   k.PC.dt = 1e-5f;
+  return k;
+}
+
+Outputs run(const Scene& s, uint flags, bool lanes) {
+  Outputs o;
+  size_t n = s.owner.size();
+  o.history = s.history;
+  o.force.assign(n, vec4(7.0f));
+  o.torque_i.assign(n, vec4(7.0f));
+  o.torque_j.assign(n, vec4(7.0f));
+  Kernels k = bind(s, o, flags);
   if (lanes)
     contact_forces_lanes(k, 0, n);
   else
@@ -204,23 +210,12 @@ TEST_CASE("the contact law alone (the bench's compute ceiling) computes what the
                      kFlagLeanContacts | kFlagCohesionIntersection | kFlagClipAttraction}) {
     Outputs entries = run(s, flags, true);
     std::vector<float> sink(kLawRing * kSinkFloats * L, -1.0f);
-    std::vector<vec4> history = s.history;
+    Outputs before;  // the histories as the kernel found them
+    before.history = s.history;
     std::vector<uint> control(16, 0u);
     control[kCtlContacts] = uint(n);
-    Kernels k;
-    k.B_pos = s.pos.data();
-    k.B_vel = s.vel.data();
-    k.B_omega = s.omega.data();
-    k.B_material = s.material.data();
-    k.B_pairs = s.pairs.data();
-    k.B_partner = s.partner.data();
-    k.B_owner = s.owner.data();
-    k.B_history = history.data();
+    Kernels k = bind(s, before, flags);
     k.B_control = control.data();
-    k.PC.n_particles = uint(s.pos.size());
-    k.PC.n_materials = s.n_materials;
-    k.PC.flags = flags;
-    k.PC.dt = 1e-5f;
     contact_law_lanes(k, kLawRing, sink.data());
     const bool lean = (flags & kFlagLeanContacts) != 0u;
     int differ = 0, touching = 0;
