@@ -56,12 +56,19 @@ HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
   return out;
 }
 
-// integrate.h rolling_lever: the body of each lane's sphere, then the law's lever.
+// integrate.h rolling_lever: the body of each lane's sphere, then the law's lever. A batch's owners
+// are mostly one body's sub-spheres, and often its partners too: their body's row then loads once.
 real rolling_lever(Kernels& k, LaneLaw& law, VI sphere, real3 cp, real r) {
   constexpr int SW = sizeof(SubSphere) / 4, BW = sizeof(Body) / 4;
   constexpr int info_x = offsetof(SubSphere, info) / 4, count = offsetof(Body, spheres) / 4 + 1;
   constexpr int centre = offsetof(Body, pos) / 4;
   VI b = gather_int(k.B_subs, sphere, SW, info_x);
+  const int32_t first = hn::GetLane(b);
+  if (hn::AllTrue(DI(), hn::Eq(b, hn::Set(DI(), first)))) {  // one body (the usual case): no more gathers
+    const Body& body = k.B_bodies[first];
+    cond lone{hn::RebindMask(D(), hn::Lt(hn::Set(DI(), int32_t(body.spheres.y)), hn::Set(DI(), 2)))};
+    return law.centre_of_mass_lever(cp, real3(body.pos.x, body.pos.y, body.pos.z), r, lone);
+  }
   cond lone{hn::RebindMask(D(), hn::Lt(gather_int(k.B_bodies, b, BW, count), hn::Set(DI(), 2)))};
   real3 com(gather(k.B_bodies, b, BW, centre), gather(k.B_bodies, b, BW, centre + 1),
             gather(k.B_bodies, b, BW, centre + 2));
@@ -149,8 +156,11 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   }
   V hx, hy, hz, hw;
   hn::LoadInterleaved4(D(), &k.B_history[c].x, hx, hy, hz, hw);
-  VI mi = hn::Zero(di), mj = hn::Zero(di);  // one material: every pair is the table's first row
-  if (k.PC.n_materials > 1u) {  // gathers, which are slow on this AMD EPYC (7 % of the lanes' samples)
+  // Every particle of one material (the walls' may differ): no gathers, which are slow on this AMD
+  // EPYC (7 % of the lanes' samples on a bed in cache, more in a clump heap).
+  const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
+  VI mi = hn::Set(di, one), mj = mi;
+  if (one < 0) {
     mi = hn::GatherIndex(DI(), reinterpret_cast<const int32_t*>(k.B_material), i);
     mj = hn::GatherIndex(DI(), reinterpret_cast<const int32_t*>(k.B_material), p);
   }

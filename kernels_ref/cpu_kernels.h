@@ -16,6 +16,9 @@ struct Buffers {
   REPOSE_BUFFERS(REPOSE_BUFFER_POINTER)
 #undef REPOSE_BUFFER_POINTER
   SimPush push{};
+  // Not a device buffer: the material of every particle when they share one (else -1), so that the
+  // contact lanes gather none (CpuBackend::upload_constants; the walls' materials may differ).
+  int32_t uniform_material = -1;
 };
 
 // Runs `invocations` invocations of kernel k (as a dispatch of that many threads would).

@@ -14,10 +14,12 @@ struct Kernels {
   REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER)
 #undef REPOSE_KERNEL_BUFFER
   SimPush PC{};
+  int32_t uniform_material = -1;  // Buffers::uniform_material
 
   Kernels() = default;
 #define REPOSE_KERNEL_BUFFER_FROM(binding, Name, name, type, count, need, keep) B_##name(b.name),
-  explicit Kernels(const Buffers& b) : REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER_FROM) PC(b.push) {}
+  explicit Kernels(const Buffers& b)
+      : REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER_FROM) PC(b.push), uniform_material(b.uniform_material) {}
 #undef REPOSE_KERNEL_BUFFER_FROM
 
 // The GLSL prelude's wall_kind_possible() lets lavapipe compile out the code of wall kinds a run

@@ -59,6 +59,9 @@ void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
 
 void CpuBackend::upload_constants(const ConstantData& constants) {
   for_each_constant(constants, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
+  const uint32_t* m = buf_.material;
+  const uint32_t n = layout_.n_particles;
+  buf_.uniform_material = n > 0 && std::all_of(m, m + n, [&](uint32_t x) { return x == m[0]; }) ? int32_t(m[0]) : -1;
 }
 
 void CpuBackend::point_buffers() {

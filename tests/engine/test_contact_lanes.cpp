@@ -19,7 +19,8 @@ namespace {
 // (the floor z = 5 mm; a tilted lid sliding and turning, of another material) as the partners of
 // some contacts, in runs of lanes and alone (the lanes run the law of a batch of wall contacts
 // together, and of the last few at the end), runs of lanes whose pairs are all apart (the
-// lanes then store zeros without the law), and runs whose owners are a few consecutive slots.
+// lanes then store zeros without the law), runs whose owners are a few consecutive slots, and a
+// touching run whose owners and partners each belong to one body (their rows then load once).
 struct Scene {
   std::vector<vec4> pos, vel, omega, history;
   std::vector<uint> material, partner, owner;
@@ -28,6 +29,7 @@ struct Scene {
   std::vector<Body> bodies;
   std::vector<WallState> walls;
   uint n_materials;
+  int32_t uniform_material = -1;  // Buffers::uniform_material: every particle's, when they share one
 
   Scene(uint n_particles, uint n_contacts, uint materials, uint64_t seed) : n_materials(materials) {
     std::mt19937 rng{uint32_t(seed)};
@@ -91,6 +93,7 @@ struct Scene {
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
       if (c % 31u == 0u || (c >= 400u && c < 420u)) j = n_particles + 1u;  // the lid
       if (c >= 304u && c < 336u) i = 2u, j = 3u;
+      if (c >= 600u && c < 616u) i = 96u, j = 97u;  // touching, one body each side for the whole batch
       owner.push_back(i);
       partner.push_back(j);
       history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
@@ -126,6 +129,7 @@ Kernels bind(const Scene& s, Outputs& o, uint flags) {
   k.PC.n_materials = s.n_materials;
   k.PC.flags = flags;
   k.PC.dt = 1e-5f;
+  k.uniform_material = s.uniform_material;
   return k;
 }
 
@@ -158,17 +162,20 @@ TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every opt
                           kFlagBodies,            kFlagCohesionContactFriction, kFlagRollingLeverSphere,
                           kFlagCohesionIntersection};
   const uint n_options = sizeof(options) / sizeof(options[0]);
-  Scene many(120, 16 * 40 + 9, 3, 11), one(120, 16 * 40 + 9, 1, 12);
+  Scene many(120, 16 * 40 + 9, 3, 11), one(120, 16 * 40 + 9, 1, 12), same(120, 16 * 40 + 9, 3, 14);
+  same.material.assign(same.material.size(), 2u);  // three materials, the walls' differ, the particles' all 2
+  same.uniform_material = 2;
   for (int64_t target : contact_lanes_targets()) {
     pin_contact_lanes_target(target);
-    for (const Scene* s : {&many, &one}) {
+    for (const Scene* s : {&many, &one, &same}) {
       for (uint subset = 0; subset < (1u << n_options); ++subset) {
         uint flags = 0;
         for (uint b = 0; b < n_options; ++b)
           if (subset & (1u << b)) flags |= options[b];
         REQUIRE(contact_lanes_cover(flags));
         Outputs scalar = run(*s, flags, false), lanes = run(*s, flags, true);
-        INFO("flags " << flags << ", materials " << s->n_materials << ", lanes on " << contact_lanes_target());
+        INFO("flags " << flags << ", materials " << s->n_materials << " (the particles' all " << s->uniform_material
+                       << ", -1: not), lanes on " << contact_lanes_target());
         CHECK(same_bytes(scalar.history, lanes.history));
         CHECK(same_bytes(scalar.force, lanes.force));
         CHECK(same_bytes(scalar.torque_i, lanes.torque_i));
