@@ -58,17 +58,19 @@ HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
 
 // integrate.h rolling_lever: the body of each lane's sphere, then the law's lever. A batch's owners
 // are mostly one body's sub-spheres, and often its partners too: their body's row then loads once.
-real rolling_lever(Kernels& k, LaneLaw& law, VI sphere, real3 cp, real r) {
+real rolling_lever(Kernels& k, LaneLaw& law, const uint* spheres, real3 cp, real r) {
   constexpr int SW = sizeof(SubSphere) / 4, BW = sizeof(Body) / 4;
   constexpr int info_x = offsetof(SubSphere, info) / 4, count = offsetof(Body, spheres) / 4 + 1;
   constexpr int centre = offsetof(Body, pos) / 4;
-  VI b = gather_int(k.B_subs, sphere, SW, info_x);
-  const int32_t first = hn::GetLane(b);
-  if (hn::AllTrue(DI(), hn::Eq(b, hn::Set(DI(), first)))) {  // one body (the usual case): no more gathers
+  const uint first = k.B_subs[spheres[0]].info.x;
+  bool one_body = true;  // scalar loads: a gather of the bodies' indices waits longer (perf)
+  for (size_t l = 1; l < hn::Lanes(D()); ++l) one_body = one_body && k.B_subs[spheres[l]].info.x == first;
+  if (one_body) {  // the usual case: no gathers
     const Body& body = k.B_bodies[first];
     cond lone{hn::RebindMask(D(), hn::Lt(hn::Set(DI(), int32_t(body.spheres.y)), hn::Set(DI(), 2)))};
     return law.centre_of_mass_lever(cp, real3(body.pos.x, body.pos.y, body.pos.z), r, lone);
   }
+  VI b = gather_int(k.B_subs, hn::LoadU(DI(), reinterpret_cast<const int32_t*>(spheres)), SW, info_x);
   cond lone{hn::RebindMask(D(), hn::Lt(gather_int(k.B_bodies, b, BW, count), hn::Set(DI(), 2)))};
   real3 com(gather(k.B_bodies, b, BW, centre), gather(k.B_bodies, b, BW, centre + 1),
             gather(k.B_bodies, b, BW, centre + 2));
@@ -151,8 +153,8 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at));
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
-    g.lever_i = rolling_lever(k, law, i, cp, g.ri);
-    g.lever_j = rolling_lever(k, law, p, cp, g.rj);
+    g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
+    g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);
   }
   V hx, hy, hz, hw;
   hn::LoadInterleaved4(D(), &k.B_history[c].x, hx, hy, hz, hw);

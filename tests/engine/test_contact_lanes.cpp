@@ -93,12 +93,14 @@ struct Scene {
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
       if (c % 31u == 0u || (c >= 400u && c < 420u)) j = n_particles + 1u;  // the lid
       if (c >= 304u && c < 336u) i = 2u, j = 3u;
-      if (c >= 600u && c < 616u) i = 96u, j = 97u;  // touching, one body each side for the whole batch
+      if (c >= 600u && c < 632u) i = 96u, j = 97u;  // touching, one body each side for the whole batch,
+      if (c == 631u) i = 99u;  // then for all but the last lane's owner
       owner.push_back(i);
       partner.push_back(j);
       history.push_back(vec4(some(1e-4f), some(1e-4f), some(1e-4f), float(pick(100))));
     }
     pos[97] = pos[96] + vec4(0.002f, 0.0f, 0.0f, 0.0f);  // radii of 2 mm or more: they overlap
+    pos[99] = pos[96] + vec4(0.0f, 0.002f, 0.0f, 0.0f);  // and 99 overlaps 97 (2.8 mm apart)
   }
 };
 
