@@ -57,24 +57,31 @@ HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
 }
 
 // integrate.h rolling_lever: the body of each lane's sphere, then the law's lever. A batch's owners
-// are mostly one body's sub-spheres, and often its partners too: their body's row then loads once.
+// are mostly one body's sub-spheres, and often its partners too: their body's row then loads once;
+// otherwise each lane's row is joined in registers (rows()). Scalar loads of the bodies' indices
+// and rows: gathers of them waited longest of the kernel's instructions (perf, a clump heap).
 real rolling_lever(Kernels& k, LaneLaw& law, const uint* spheres, real3 cp, real r) {
-  constexpr int SW = sizeof(SubSphere) / 4, BW = sizeof(Body) / 4;
-  constexpr int info_x = offsetof(SubSphere, info) / 4, count = offsetof(Body, spheres) / 4 + 1;
-  constexpr int centre = offsetof(Body, pos) / 4;
+  static_assert(sizeof(Body) % sizeof(vec4) == 0 && offsetof(Body, pos) % sizeof(vec4) == 0 &&
+                offsetof(Body, spheres) % sizeof(vec4) == 0);
+  constexpr uint kBodyRows = sizeof(Body) / sizeof(vec4);
   const uint first = k.B_subs[spheres[0]].info.x;
-  bool one_body = true;  // scalar loads: a gather of the bodies' indices waits longer (perf)
-  for (size_t l = 1; l < hn::Lanes(D()); ++l) one_body = one_body && k.B_subs[spheres[l]].info.x == first;
-  if (one_body) {  // the usual case: no gathers
-    const Body& body = k.B_bodies[first];
+  alignas(64) uint row[HWY_LANES(float)];  // each lane's body, in vec4 rows from the first body's
+  bool one_body = true;
+  for (size_t l = 0; l < hn::Lanes(D()); ++l) {
+    const uint b = k.B_subs[spheres[l]].info.x;
+    row[l] = b * kBodyRows;
+    one_body = one_body && b == first;
+  }
+  const Body& body = k.B_bodies[first];
+  if (one_body) {  // the usual case
     cond lone{hn::RebindMask(D(), hn::Lt(hn::Set(DI(), int32_t(body.spheres.y)), hn::Set(DI(), 2)))};
     return law.centre_of_mass_lever(cp, real3(body.pos.x, body.pos.y, body.pos.z), r, lone);
   }
-  VI b = gather_int(k.B_subs, hn::LoadU(DI(), reinterpret_cast<const int32_t*>(spheres)), SW, info_x);
-  cond lone{hn::RebindMask(D(), hn::Lt(gather_int(k.B_bodies, b, BW, count), hn::Set(DI(), 2)))};
-  real3 com(gather(k.B_bodies, b, BW, centre), gather(k.B_bodies, b, BW, centre + 1),
-            gather(k.B_bodies, b, BW, centre + 2));
-  return law.centre_of_mass_lever(cp, com, r, lone);
+  const vec4* rows_of = reinterpret_cast<const vec4*>(k.B_bodies);
+  const V4 centre = rows(rows_of + offsetof(Body, pos) / sizeof(vec4), row);
+  const V4 counts = rows(rows_of + offsetof(Body, spheres) / sizeof(vec4), row);  // uints: their bits
+  cond lone{hn::RebindMask(D(), hn::Lt(hn::BitCast(DI(), counts.y), hn::Set(DI(), 2)))};
+  return law.centre_of_mass_lever(cp, centre.xyz(), r, lone);
 }
 
 // The owners' rows of a batch of a bed: the list is in rows by owner slot, so a batch's owners are
