@@ -127,6 +127,33 @@ HWY_INLINE void sphere_states(Kernels& k, OwnerRows owner, PartnerRows partner, 
   sj.w = partner(k.B_omega).xyz();
 }
 
+// What process_contact stores for a batch of touching or apart pairs, row by row: the history
+// (the turned spring and its age, or as it was when kept), the force, T_i (or the lean entry's
+// n x Ft and overlap) and T_j; zeros where the pair does not touch. particle_lanes stores them,
+// and the bench's law-alone ceiling (LawOnly) computes the same.
+struct EntryRows {
+  V4 history, force, third, torque_j;
+};
+HWY_INLINE V4 row_unless(cond t, real3 a, real w) {
+  return {zero_unless(t, a.x).v, zero_unless(t, a.y).v, zero_unless(t, a.z).v, zero_unless(t, w).v};
+}
+HWY_INLINE EntryRows entry_rows(cond t, uint flags, const V4& hist, real3 shear, const LaneLaw::ContactOut& o,
+                                const LaneLaw::ContactGeometry& g) {
+  const bool keep = (flags & kFlagKeepHistory) != 0u;
+  EntryRows e;
+  e.history = keep ? row_unless(t, hist.xyz(), hist.w) : row_unless(t, shear, real(hist.w) + 1.0f);
+  if ((flags & kFlagLeanContacts) != 0u) {
+    e.force = row_unless(t, o.force_i, o.roll_arm);
+    e.third = row_unless(t, o.n_x_ft, g.overlap);
+    e.torque_j = row_unless(t, real3(0.0f), 0.0f);  // a lean entry has none
+    return e;
+  }
+  e.force = row_unless(t, o.force_i, o.normal_force);
+  e.third = row_unless(t, o.torque_i, 0.0f);
+  e.torque_j = row_unless(t, o.torque_j, 0.0f);
+  return e;
+}
+
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) {
   const DI di;
@@ -156,43 +183,28 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
     if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], 0.0f, 0.0f, 0.0f, 0.0f);
     return;
   }
-  VI i = hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at));
-  VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at));
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
     g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
     g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);
   }
-  V hx, hy, hz, hw;
-  hn::LoadInterleaved4(D(), &k.B_history[c].x, hx, hy, hz, hw);
+  V4 hist;
+  hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
   // Every particle of one material (the walls' may differ): no gathers, which are slow on this AMD
   // EPYC (7 % of the lanes' samples on a bed in cache, more in a clump heap).
   const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
   VI mi = hn::Set(di, one), mj = mi;
   if (one < 0) {
-    mi = hn::GatherIndex(DI(), reinterpret_cast<const int32_t*>(k.B_material), i);
-    mj = hn::GatherIndex(DI(), reinterpret_cast<const int32_t*>(k.B_material), p);
+    mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at)));
+    mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at)));
   }
-  real3 shear(hx, hy, hz);
+  real3 shear = hist.xyz();
   LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-  if ((flags & kFlagKeepHistory) == 0u) {
-    real age = real(hw) + 1.0f;
-    store4(&k.B_history[c], zero_unless(t, shear.x), zero_unless(t, shear.y), zero_unless(t, shear.z),
-           zero_unless(t, age));
-  } else {
-    store4(&k.B_history[c], zero_unless(t, hx), zero_unless(t, hy), zero_unless(t, hz), zero_unless(t, hw));
-  }
-  real3 f = zero_unless(t, o.force_i);
-  if ((flags & kFlagLeanContacts) != 0u) {
-    real3 nf = zero_unless(t, o.n_x_ft);
-    store4(&k.B_contact_force[c], f.x, f.y, f.z, zero_unless(t, o.roll_arm));
-    store4(&k.B_torque_i[c], nf.x, nf.y, nf.z, zero_unless(t, g.overlap));
-    return;
-  }
-  real3 ti = zero_unless(t, o.torque_i), tj = zero_unless(t, o.torque_j);
-  store4(&k.B_contact_force[c], f.x, f.y, f.z, zero_unless(t, o.normal_force));
-  store4(&k.B_torque_i[c], ti.x, ti.y, ti.z, 0.0f);
-  store4(&k.B_torque_j[c], tj.x, tj.y, tj.z, 0.0f);
+  const EntryRows e = entry_rows(t, flags, hist, shear, o, g);
+  store4(&k.B_history[c], e.history);
+  store4(&k.B_contact_force[c], e.force);
+  store4(&k.B_torque_i[c], e.third);
+  if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
 }
 
 // Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (every
@@ -325,8 +337,8 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
 // The law's arithmetic alone, for the bench's compute ceiling (contact_lanes.h): kLawRing batches
 // of the list's particle pairs, spread over it, their rows copied once into lanes' layout (14 KB
 // at 16 lanes, within L1), then particle_lanes' law, picks and stores run `batches` times over
-// them, storing into `sink` what particle_lanes stores in the entries (history, force, then T_i
-// and T_j, or the lean entry's n x Ft and overlap), batch after batch.
+// them, storing into `sink` the rows particle_lanes stores in the entries (entry_rows), batch after
+// batch.
 struct RingBatch {
   enum Field { Xi = 0, Ri = 3, Vi = 4, Mi = 7, Wi = 8, Xj = 11, Rj = 14, Vj = 15, Mj = 18, Wj = 19, H = 22, kFields = 26 };
   alignas(64) float f[kFields][HWY_LANES(float)];
@@ -379,21 +391,18 @@ HWY_FLATTEN void LawOnly(Kernels& k, uint64_t batches, float* sink) {
       for (int f = 0; f < int(kSinkFloats); ++f) put(f, 0.0f);
       continue;
     }
-    real3 shear = q.at3(RingBatch::H);
+    const V4 hist{q.at(RingBatch::H).v, q.at(RingBatch::H + 1).v, q.at(RingBatch::H + 2).v, q.at(RingBatch::H + 3).v};
+    real3 shear = hist.xyz();
     VI mi = hn::Load(DI(), q.mi), mj = hn::Load(DI(), q.mj);
     LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-    const bool keep = (flags & kFlagKeepHistory) != 0u;
-    const real age = keep ? q.at(RingBatch::H + 3) : q.at(RingBatch::H + 3) + 1.0f;
-    if (keep) shear = q.at3(RingBatch::H);
-    if ((flags & kFlagLeanContacts) != 0u) {
-      const real parts[] = {shear.x, shear.y, shear.z, age, o.force_i.x, o.force_i.y, o.force_i.z, o.roll_arm,
-                            o.n_x_ft.x, o.n_x_ft.y, o.n_x_ft.z, g.overlap};
-      for (int f = 0; f < 12; ++f) put(f, zero_unless(t, parts[f]));
-      continue;
+    const EntryRows e = entry_rows(t, flags, hist, shear, o, g);
+    const V4* rows[4] = {&e.history, &e.force, &e.third, &e.torque_j};
+    for (int r = 0; r < 4; ++r) {
+      put(4 * r, rows[r]->x);
+      put(4 * r + 1, rows[r]->y);
+      put(4 * r + 2, rows[r]->z);
+      put(4 * r + 3, rows[r]->w);
     }
-    const real parts[] = {shear.x, shear.y, shear.z, age, o.force_i.x, o.force_i.y, o.force_i.z, o.normal_force,
-                          o.torque_i.x, o.torque_i.y, o.torque_i.z, o.torque_j.x, o.torque_j.y, o.torque_j.z};
-    for (int f = 0; f < int(kSinkFloats); ++f) put(f, zero_unless(t, parts[f]));
   }
 }
 

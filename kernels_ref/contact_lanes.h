@@ -22,7 +22,7 @@ void contact_forces_lanes(Kernels& k, uint64_t begin, uint64_t end);
 // bench's compute ceiling): a few batches of the list's particle pairs copied once into lanes'
 // layout, within L1, the law run over them again and again, kSinkFloats per lane stored into
 // `sink` (kLawRing batches of them: kLawRing * kSinkFloats * width floats) as the kernel stores its entries.
-constexpr size_t kLawRing = 8, kSinkFloats = 14;
+constexpr size_t kLawRing = 8, kSinkFloats = 16;  // history, force, T_i (lean: n x Ft, overlap), T_j
 void contact_law_lanes(Kernels& k, uint64_t batches, float* sink);
 size_t contact_lanes_width();
 // The SIMD target Highway picked on this machine ("AVX3", "AVX2", ...), for bench reports.

@@ -79,10 +79,6 @@ inline V gather(const void* base, VI index, int stride, int word) {
   VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
   return hn::GatherIndex(D(), static_cast<const float*>(base), at);
 }
-inline VI gather_int(const void* base, VI index, int stride, int word) {
-  VI at = hn::Add(hn::Mul(index, hn::Set(DI(), stride)), hn::Set(DI(), word));
-  return hn::GatherIndex(DI(), static_cast<const int32_t*>(base), at);
-}
 
 // The vec4 rows base[index[l]] of the lanes, as four vectors (x, y, z, w).
 struct V4 {
@@ -140,6 +136,7 @@ inline V4 rows_via_buffer(const vec4* base, const uint* index) {
 }
 
 inline void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
+inline void store4(vec4* at, const V4& r) { hn::StoreInterleaved4(r.x, r.y, r.z, r.w, D(), &at->x); }
 inline real zero_unless(cond c, real a) { return hn::IfThenElseZero(c.m, a.v); }
 inline real3 zero_unless(cond c, real3 a) { return {zero_unless(c, a.x), zero_unless(c, a.y), zero_unless(c, a.z)}; }
 
