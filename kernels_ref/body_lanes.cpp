@@ -26,19 +26,8 @@ struct LaneBody {
 #include "kernels/rigid_body.h"
 };
 
-constexpr uint kBodyRow = sizeof(Body) / sizeof(vec4);       // vec4 rows per Body
-constexpr uint kSubRow = sizeof(SubSphere) / sizeof(vec4);   // and per SubSphere
+constexpr uint kSubRow = sizeof(SubSphere) / sizeof(vec4);   // vec4 rows per SubSphere
 constexpr uint kMaxLanes = HWY_LANES(float);
-
-// Field `field` (its vec4 row in gpu::Body) of each lane's body b[l].
-V4 body_rows(const Kernels& k, const uint* b, uint field) {
-  uint at[kMaxLanes];
-  for (size_t l = 0; l < hn::Lanes(D()); ++l) at[l] = b[l] * kBodyRow + field;
-  return rows(reinterpret_cast<const vec4*>(k.B_bodies), at);
-}
-
-// A vec4 row the same in every lane.
-V4 same_row(const vec4& r) { return {hn::Set(D(), r.x), hn::Set(D(), r.y), hn::Set(D(), r.z), hn::Set(D(), r.w)}; }
 
 // k_body_place for the Lanes(D()) slots from i; true when one of them moved past half the skin.
 bool place_lanes(Kernels& k, uint64_t i) {

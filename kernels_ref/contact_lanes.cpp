@@ -58,28 +58,22 @@ HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
 
 // integrate.h rolling_lever: the body of each lane's sphere, then the law's lever. A batch's owners
 // are mostly one body's sub-spheres, and often its partners too: their body's row then loads once;
-// otherwise each lane's row is joined in registers (rows()). Scalar loads of the bodies' indices
-// and rows: gathers of them waited longest of the kernel's instructions (perf, a clump heap).
+// otherwise each lane's row is joined in registers (body_rows()). Scalar loads of the bodies'
+// indices and rows: gathers of them waited longest of the kernel's instructions (perf, a clump heap).
 real rolling_lever(Kernels& k, LaneLaw& law, const uint* spheres, real3 cp, real r) {
-  static_assert(sizeof(Body) % sizeof(vec4) == 0 && offsetof(Body, pos) % sizeof(vec4) == 0 &&
-                offsetof(Body, spheres) % sizeof(vec4) == 0);
-  constexpr uint kBodyRows = sizeof(Body) / sizeof(vec4);
-  const uint first = k.B_subs[spheres[0]].info.x;
-  alignas(64) uint row[HWY_LANES(float)];  // each lane's body, in vec4 rows from the first body's
+  uint body[HWY_LANES(float)];
   bool one_body = true;
   for (size_t l = 0; l < hn::Lanes(D()); ++l) {
-    const uint b = k.B_subs[spheres[l]].info.x;
-    row[l] = b * kBodyRows;
-    one_body = one_body && b == first;
+    body[l] = k.B_subs[spheres[l]].info.x;
+    one_body = one_body && body[l] == body[0];
   }
-  const Body& body = k.B_bodies[first];
   if (one_body) {  // the usual case
-    cond lone{hn::RebindMask(D(), hn::Lt(hn::Set(DI(), int32_t(body.spheres.y)), hn::Set(DI(), 2)))};
-    return law.centre_of_mass_lever(cp, real3(body.pos.x, body.pos.y, body.pos.z), r, lone);
+    const Body& b = k.B_bodies[body[0]];
+    cond lone{hn::RebindMask(D(), hn::Lt(hn::Set(DI(), int32_t(b.spheres.y)), hn::Set(DI(), 2)))};
+    return law.centre_of_mass_lever(cp, real3(b.pos.x, b.pos.y, b.pos.z), r, lone);
   }
-  const vec4* rows_of = reinterpret_cast<const vec4*>(k.B_bodies);
-  const V4 centre = rows(rows_of + offsetof(Body, pos) / sizeof(vec4), row);
-  const V4 counts = rows(rows_of + offsetof(Body, spheres) / sizeof(vec4), row);  // uints: their bits
+  const V4 centre = body_rows(k, body, offsetof(Body, pos) / sizeof(vec4));
+  const V4 counts = body_rows(k, body, offsetof(Body, spheres) / sizeof(vec4));  // uints: their bits
   cond lone{hn::RebindMask(D(), hn::Lt(hn::BitCast(DI(), counts.y), hn::Set(DI(), 2)))};
   return law.centre_of_mass_lever(cp, centre.xyz(), r, lone);
 }

@@ -135,6 +135,18 @@ inline V4 rows_via_buffer(const vec4* base, const uint* index) {
   return r;
 }
 
+// Field `field` (its vec4 row in gpu::Body) of each lane's body b[l], joined in registers.
+inline V4 body_rows(const Kernels& k, const uint* b, uint field) {
+  static_assert(sizeof(Body) % sizeof(vec4) == 0, "a Body is whole vec4 rows");
+  constexpr uint kBodyRow = sizeof(Body) / sizeof(vec4);
+  uint at[HWY_LANES(float)];
+  for (size_t l = 0; l < hn::Lanes(D()); ++l) at[l] = b[l] * kBodyRow + field;
+  return rows(reinterpret_cast<const vec4*>(k.B_bodies), at);
+}
+
+// A vec4 row the same in every lane.
+inline V4 same_row(const vec4& r) { return {hn::Set(D(), r.x), hn::Set(D(), r.y), hn::Set(D(), r.z), hn::Set(D(), r.w)}; }
+
 inline void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
 inline void store4(vec4* at, const V4& r) { hn::StoreInterleaved4(r.x, r.y, r.z, r.w, D(), &at->x); }
 inline real zero_unless(cond c, real a) { return hn::IfThenElseZero(c.m, a.v); }
