@@ -147,6 +147,19 @@ HWY_INLINE EntryRows entry_rows(cond t, uint flags, const V4& hist, real3 shear,
   e.torque_j = row_unless(t, o.torque_j, 0.0f);
   return e;
 }
+// The rows of a batch of pairs all apart: zeros, what the law would give them.
+HWY_INLINE EntryRows apart_rows() {
+  const V zero = hn::Zero(D());
+  const V4 row{zero, zero, zero, zero};
+  return {row, row, row, row};
+}
+// A batch's entries from c (a lean entry has no T_j).
+HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint flags) {
+  store4(&k.B_history[c], e.history);
+  store4(&k.B_contact_force[c], e.force);
+  store4(&k.B_torque_i[c], e.third);
+  if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
+}
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) {
@@ -170,13 +183,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
-  if (hn::AllFalse(D(), t.m)) {  // what the law would store for pairs apart: zeros (a clump heap's
-    store4(&k.B_history[c], 0.0f, 0.0f, 0.0f, 0.0f);  // list is mostly such pairs)
-    store4(&k.B_contact_force[c], 0.0f, 0.0f, 0.0f, 0.0f);
-    store4(&k.B_torque_i[c], 0.0f, 0.0f, 0.0f, 0.0f);
-    if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], 0.0f, 0.0f, 0.0f, 0.0f);
-    return;
-  }
+  if (hn::AllFalse(D(), t.m)) return store_entries(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
     g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
@@ -194,11 +201,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   }
   real3 shear = hist.xyz();
   LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-  const EntryRows e = entry_rows(t, flags, hist, shear, o, g);
-  store4(&k.B_history[c], e.history);
-  store4(&k.B_contact_force[c], e.force);
-  store4(&k.B_torque_i[c], e.third);
-  if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
+  store_entries(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
 }
 
 // Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (every
@@ -313,12 +316,10 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
-    if (c + 8 * L < end) {  // the histories' stream, 8 batches ahead: its loads were the kernel's longest wait
-      __builtin_prefetch(&k.B_history[c + 8 * L]);
-      __builtin_prefetch(&k.B_history[c + 8 * L + 4]);
-      __builtin_prefetch(&k.B_history[c + 8 * L + 8]);
-      __builtin_prefetch(&k.B_history[c + 8 * L + 12]);
-    }
+    // The histories' stream, 8 batches ahead, a 64-byte line (4 entries) at a time: its loads
+    // were the kernel's longest wait.
+    if (c + 9 * L <= end)
+      for (size_t e = 0; e < L; e += 4) __builtin_prefetch(&k.B_history[c + 8 * L + e]);
     if (hn::AllTrue(di, hn::Lt(p, particles)))
       particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
     else
@@ -381,15 +382,15 @@ HWY_FLATTEN void LawOnly(Kernels& k, uint64_t batches, float* sink) {
     LaneLaw::ContactGeometry g;
     real3 v_rel;
     cond t = law.touching_spheres(si, sj, flags, g, v_rel);
-    if (hn::AllFalse(D(), t.m)) {
-      for (int f = 0; f < int(kSinkFloats); ++f) put(f, 0.0f);
-      continue;
+    EntryRows e = apart_rows();
+    if (!hn::AllFalse(D(), t.m)) {
+      const V4 hist{q.at(RingBatch::H).v, q.at(RingBatch::H + 1).v, q.at(RingBatch::H + 2).v, q.at(RingBatch::H + 3).v};
+      real3 shear = hist.xyz();
+      VI mi = hn::Load(DI(), q.mi), mj = hn::Load(DI(), q.mj);
+      LaneLaw::ContactOut o =
+          law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
+      e = entry_rows(t, flags, hist, shear, o, g);
     }
-    const V4 hist{q.at(RingBatch::H).v, q.at(RingBatch::H + 1).v, q.at(RingBatch::H + 2).v, q.at(RingBatch::H + 3).v};
-    real3 shear = hist.xyz();
-    VI mi = hn::Load(DI(), q.mi), mj = hn::Load(DI(), q.mj);
-    LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-    const EntryRows e = entry_rows(t, flags, hist, shear, o, g);
     const V4* rows[4] = {&e.history, &e.force, &e.third, &e.torque_j};
     for (int r = 0; r < 4; ++r) {
       put(4 * r, rows[r]->x);
