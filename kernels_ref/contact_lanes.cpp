@@ -279,20 +279,27 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
 
 // A batch with walls (they sort last in a row): its particle pairs in lanes, the walls' lanes run
 // as a contact of the owner with itself (centres coincide: not touching) with their history kept
-// aside; then each wall contact is measured, stored as apart or added to the wall batch.
-void mixed_lanes(Kernels& k, uint64_t c, WallBatch& walls) {
-  const size_t L = hn::Lanes(D());
-  uint partner[HWY_LANES(float)];
+// aside; then each wall contact is measured, stored as apart or added to the wall batch. A bed's
+// mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few: only
+// those are visited, and the owner's material is read only when particles' materials differ.
+void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& walls) {
+  const DI di;
+  const size_t L = hn::Lanes(di);
+  const auto wall_lanes = hn::RebindMask(di, walls_at);
+  alignas(64) uint partner[HWY_LANES(float)];
+  hn::Store(hn::IfThenElse(wall_lanes, hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_owner + c)), partners), di,
+            reinterpret_cast<int32_t*>(partner));
+  uint8_t bits[8] = {};
+  hn::StoreMaskBits(di, wall_lanes, bits);
+  uint64_t lanes = 0;
+  std::memcpy(&lanes, bits, (L + 7) / 8);
   vec4 history[HWY_LANES(float)];
-  for (size_t l = 0; l < L; ++l) {
-    bool wall = k.B_partner[c + l] >= k.PC.n_particles;
-    partner[l] = wall ? k.B_owner[c + l] : k.B_partner[c + l];
-    history[l] = k.B_history[c + l];
-  }
+  for (uint64_t b = lanes; b != 0; b &= b - 1) history[__builtin_ctzll(b)] = k.B_history[c + __builtin_ctzll(b)];
   particle_lanes(k, c, k.B_owner + c, partner);
-  for (size_t l = 0; l < L; ++l) {
+  const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
+  for (uint64_t b = lanes; b != 0; b &= b - 1) {
+    const size_t l = __builtin_ctzll(b);
     uint p = k.B_partner[c + l];
-    if (partner[l] == p) continue;
     uint i = k.B_owner[c + l], contact = uint(c + l);
     k.B_history[contact] = history[l];
     Kernels::ContactState st;
@@ -303,7 +310,7 @@ void mixed_lanes(Kernels& k, uint64_t c, WallBatch& walls) {
       if ((k.PC.flags & kFlagLeanContacts) == 0u) k.B_torque_j[contact] = vec4(0.0f);
       continue;
     }
-    walls.add(contact, k.B_material[i], st, vec3(k.B_omega[i]), history[l]);
+    walls.add(contact, one >= 0 ? uint(one) : k.B_material[i], st, vec3(k.B_omega[i]), history[l]);
     if (walls.n == L) run_wall_batch(k, walls);
   }
 }
@@ -320,10 +327,11 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
     // were the kernel's longest wait.
     if (c + 9 * L <= end)
       for (size_t e = 0; e < L; e += 4) __builtin_prefetch(&k.B_history[c + 8 * L + e]);
-    if (hn::AllTrue(di, hn::Lt(p, particles)))
+    const auto walls_at = hn::Not(hn::Lt(p, particles));
+    if (hn::AllFalse(di, walls_at))
       particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
     else
-      mixed_lanes(k, c, walls);
+      mixed_lanes(k, c, p, hn::RebindMask(D(), walls_at), walls);
   }
   run_wall_batch(k, walls);
   for (; c < end; ++c) k.process_contact(k.B_owner[c], uint(c));
