@@ -93,36 +93,31 @@ HWY_INLINE bool no_entries(const Kernels& k, uint i, uint n) {
 }
 
 // gather_contact_sums (integrate.h) for particle i: the same additions in the same order (its own
-// row, then its transposed entries), the two walked as one list, as k_gather_lean walks them, with
-// each entry's side picked by arithmetic (the force's sign bit, the torque's buffer): a particle
-// then ends in one mispredicted branch instead of two, which dropped the loads in flight (the
-// gather's time is its loads at random, docs/engineering.md).
+// row, then its transposed entries), each entry's three components as one 128-bit row, the load
+// folded into the add (`x - F` subtracts the whole row: the w lane, summed too, is stored as 0).
+// Two instructions per entry where the scalar text's three floats take six to eight: the
+// gather's time is its loads at random, and fewer instructions per entry keep more of them in
+// flight (docs/engineering.md).
 HWY_INLINE void contact_sums(Kernels& k, uint i) {
 #if HWY_TARGET == HWY_SCALAR
   vec3 f, t;
   k.gather_contact_sums(i, f, t);
 #else
   const hn::FixedTag<float, 4> d4;
-  const hn::RebindToUnsigned<decltype(d4)> du4;
   const uint limit = k.B_control[kCtlContacts];
-  const uint begin = std::min(k.B_row_start[i], limit);
-  const uint own = std::min(k.B_row_start[i + 1u], limit) - begin;
-  const uint tbegin = k.B_trans_start[i];
-  const uint entries = own + (k.B_trans_start[i + 1u] - tbegin);
-  const uint tfirst = entries > own ? tbegin : 0u;  // a transposed index to read on the own side
-  const uintptr_t torque_i = reinterpret_cast<uintptr_t>(k.B_torque_i);
-  const uintptr_t to_torque_j = reinterpret_cast<uintptr_t>(k.B_torque_j) - torque_i;
   auto fs = hn::Zero(d4), ts = hn::Zero(d4);
-  for (uint q = 0; q < entries; ++q) {
-    const uint32_t transposed = q >= own ? 1u : 0u;
-    const uint t = k.B_trans_list[transposed != 0u ? tbegin + (q - own) : tfirst];
-    const uint64_t c = transposed != 0u ? t : begin + q;
-    const auto minus = hn::BitCast(d4, hn::Set(du4, transposed << 31));  // F - x is F + (x, sign flipped)
-    fs = hn::Add(fs, hn::Xor(hn::LoadU(d4, &k.B_contact_force[c].x), minus));
-    const vec4* torque = reinterpret_cast<const vec4*>(torque_i + (to_torque_j & (uintptr_t(0) - transposed)));
-    ts = hn::Add(ts, hn::LoadU(d4, &torque[c].x));
+  const uint end = std::min(k.B_row_start[i + 1u], limit);
+  for (uint c = std::min(k.B_row_start[i], limit); c < end; ++c) {
+    fs = hn::Add(fs, hn::LoadU(d4, &k.B_contact_force[c].x));
+    ts = hn::Add(ts, hn::LoadU(d4, &k.B_torque_i[c].x));
   }
-  const auto xyz = hn::FirstN(d4, 3);  // w stores 0, as vec4(fs, 0.0f)
+  const uint tend = k.B_trans_start[i + 1u];
+  for (uint q = k.B_trans_start[i]; q < tend; ++q) {
+    const uint c = k.B_trans_list[q];
+    fs = hn::Sub(fs, hn::LoadU(d4, &k.B_contact_force[c].x));
+    ts = hn::Add(ts, hn::LoadU(d4, &k.B_torque_j[c].x));
+  }
+  const auto xyz = hn::FirstN(d4, 3);  // vec4(fs, 0.0f)
   hn::StoreU(hn::IfThenElseZero(xyz, fs), d4, &k.B_force[i].x);
   hn::StoreU(hn::IfThenElseZero(xyz, ts), d4, &k.B_torque[i].x);
 #endif

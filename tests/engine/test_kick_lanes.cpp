@@ -17,7 +17,8 @@ using namespace repose::gpu;
 namespace {
 
 // Random particles (every fifth fixed: inverse mass 0) and a contact list: each particle owns 0-4
-// entries with random partners, their transposed rows built as the neighbour list builds them.
+// entries with random partners (every 37th owns 12, all with the next particle, whose transposed
+// row is then as long), their transposed rows built as the neighbour list builds them.
 struct KickScene {
   uint n = 16 * 9 + 7;
   std::vector<vec4> pos, vel, omega, pos_at_build, force, torque, contact_force, torque_i, torque_j;
@@ -38,8 +39,9 @@ struct KickScene {
     std::vector<std::vector<uint>> as_partner(n);
     row_start.push_back(0u);
     for (uint i = 0; i < n; ++i) {
-      for (uint e = rng() % 5u; e > 0; --e) {
-        as_partner[rng() % n].push_back(uint(owner.size()));
+      const bool long_rows = i % 37u == 3u;
+      for (uint e = long_rows ? 12u : rng() % 5u; e > 0; --e) {
+        as_partner[long_rows ? (i + 1u) % n : rng() % n].push_back(uint(owner.size()));
         owner.push_back(i);
         contact_force.push_back(vec4(u(rng), u(rng), u(rng), 0.5f));
         torque_i.push_back(vec4(1e-4f * u(rng), 1e-4f * u(rng), 1e-4f * u(rng), 0.0f));
