@@ -85,7 +85,7 @@ HWY_INLINE void prefetch_ahead(const Kernels& k, const uint* slot) {
   for (size_t l = 0; l < hn::Lanes(D()); ++l) {
     __builtin_prefetch(&k.B_force[slot[l] + 8]);  // 8 rows on: two lines ahead
     __builtin_prefetch(&k.B_torque[slot[l] + 8]);
-    __builtin_prefetch(&k.B_subs[slot[l] + 8]);  // a SubSphere is half a line
+    __builtin_prefetch(&k.B_subs[slot[l] + 8]);  // a SubSphere is half a line: four take two
     __builtin_prefetch(&k.B_subs[slot[l] + 10]);
   }
 }

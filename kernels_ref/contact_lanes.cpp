@@ -294,7 +294,10 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
   uint64_t lanes = 0;
   std::memcpy(&lanes, bits, (L + 7) / 8);
   vec4 history[HWY_LANES(float)];
-  for (uint64_t b = lanes; b != 0; b &= b - 1) history[__builtin_ctzll(b)] = k.B_history[c + __builtin_ctzll(b)];
+  for (uint64_t b = lanes; b != 0; b &= b - 1) {
+    const size_t l = __builtin_ctzll(b);
+    history[l] = k.B_history[c + l];
+  }
   particle_lanes(k, c, k.B_owner + c, partner);
   const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
