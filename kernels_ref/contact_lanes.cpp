@@ -36,6 +36,10 @@ struct LaneLaw {
 #include "kernels/contact_law.h"
 };
 
+// The material every particle has, or -1 when they differ (Buffers::uniform_material; a run of
+// one material has it whatever the buffers say). The walls' materials may differ either way.
+HWY_INLINE int32_t one_material(const Kernels& k) { return k.PC.n_materials == 1u ? 0 : k.uniform_material; }
+
 // The pair parameters of materials mi and mj in each lane, gathered row by row from the table.
 HWY_INLINE LaneLaw::PairParams gather_params(Kernels& k, VI mi, VI mj) {
   const PairParams* pairs = k.B_pairs;
@@ -193,7 +197,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
   // Every particle of one material (the walls' may differ): no gathers, which are slow on this AMD
   // EPYC (7 % of the lanes' samples on a bed in cache, more in a clump heap).
-  const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
+  const int32_t one = one_material(k);
   VI mi = hn::Set(di, one), mj = mi;
   if (one < 0) {
     mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at)));
@@ -299,7 +303,7 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
     history[l] = k.B_history[c + l];
   }
   particle_lanes(k, c, k.B_owner + c, partner);
-  const int32_t one = k.PC.n_materials == 1u ? 0 : k.uniform_material;
+  const int32_t one = one_material(k);
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     uint p = k.B_partner[c + l];
