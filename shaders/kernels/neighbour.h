@@ -278,14 +278,9 @@ void write_candidate(uint base, uint k, uint i, uint partner, uint old_begin, ui
     slot = slot - 1u;
   }
   B_partner[slot] = partner;
-  vec4 carried = vec4(0.0f);
-  uint from = 0xffffffffu;
-  for (uint o = old_begin; o < old_end; ++o)
-    if (B_old_partner[o] == partner) {
-      carried = B_old_history[o];
-      from = o;
-    }
-  B_history[slot] = carried;
+  uint from = 0xffffffffu;  // the old entry: a pick, where a branch mispredicted at every match
+  for (uint o = old_begin; o < old_end; ++o) from = B_old_partner[o] == partner ? o : from;
+  B_history[slot] = from != 0xffffffffu ? B_old_history[from] : vec4(0.0f);
   if (springs) B_rolling_spring[slot] = from != 0xffffffffu ? B_rolling_spring[PC.capacity + from] : vec4(0.0f);
 }
 
