@@ -327,25 +327,44 @@ uint first_slot_from(uint begin, uint end, uint lowest) {
   return lo;
 }
 
+// Sphere j of a slot that passed the id and distance tests: a candidate of i unless its cell is
+// not one of the row's (a hash collision). Returns the candidates counted, from k.
+uint keep_in_row(uint i, uint j, vec4 pj, int x0, int x1, ivec3 c, bool fill, uint base, uint k, uint old_begin,
+                 uint old_end) {
+  ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
+  if (cj.y != c.y || cj.z != c.z || cj.x < x0 || cj.x > x1) return k;
+  emit_candidate(fill, base, k, i, j, old_begin, old_end);
+  return k + 1u;
+}
+
 // The spheres of sorted slots [begin, end) that sit in cells (x0 .. x1, c.y, c.z) and are
-// candidates of i: ids from `lowest`, within the skin. A row of three cells takes consecutive
-// buckets (cell_hash), so one run of slots holds it, in the order a cell-by-cell walk would meet
-// them (each bucket sorted by id); a sphere of another cell that shares a bucket (a hash
-// collision) is left out by its cell. Returns the candidates counted, from k.
+// candidates of i: ids from `lowest` (a lower id owns the pair, or j is in i's clump), within the
+// skin. A row of three cells takes consecutive buckets (cell_hash), so one run of slots holds it,
+// in the order a cell-by-cell walk would meet them (each bucket sorted by id); a sphere of another
+// cell that shares a bucket (a hash collision) is left out by its cell. The id and distance tests
+// reject most of the spheres in 27 cells, and cost less than the cell's three floors (the same
+// pairs pass in either order). Returns the candidates counted, from k.
 uint walk_cells(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
                 uint base, uint k, uint old_begin, uint old_end) {
+  if ((PC.flags & kFlagBodies) != 0u) {
+    // A clump's cells hold runs of one body's sub-spheres (consecutive ids): the id test first,
+    // predicted along a run, skips them unread.
+    for (uint s = begin; s < end; ++s) {
+      uint j = B_sorted[s];
+      if (global_id(j) < lowest) continue;
+      if (i_fixed && is_fixed(j)) continue;
+      vec4 pj = B_pos[j];
+      if (!near_pair(pi, pj, PC.skin)) continue;
+      k = keep_in_row(i, j, pj, x0, x1, c, fill, base, k, old_begin, old_end);
+    }
+    return k;
+  }
+  // Free spheres' ids fall either side of i's at random: both tests before one branch.
   for (uint s = begin; s < end; ++s) {
     uint j = B_sorted[s];
     vec4 pj = B_pos[j];
-    bool owned = global_id(j) >= lowest;  // a lower id owns the pair (or j is in i's clump)
-    // The ids and the distance in one test: it rejects most of the spheres in 27 cells, and costs
-    // less than the cell's three floors (the same pairs pass both tests in either order).
-    if (!near_owned_pair(pi, pj, PC.skin, owned)) continue;
-    if (i_fixed && is_fixed(j)) continue;
-    ivec3 cj = cell_of_position(xyz(pj), PC.inv_cell);
-    if (cj.y != c.y || cj.z != c.z || cj.x < x0 || cj.x > x1) continue;  // a hash collision
-    emit_candidate(fill, base, k, i, j, old_begin, old_end);
-    k = k + 1u;
+    if (!near_owned_pair(pi, pj, PC.skin, global_id(j) >= lowest) || (i_fixed && is_fixed(j))) continue;
+    k = keep_in_row(i, j, pj, x0, x1, c, fill, base, k, old_begin, old_end);
   }
   return k;
 }
