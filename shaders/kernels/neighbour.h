@@ -245,20 +245,16 @@ void k_bucket_sort(uint b) {
   }
 }
 
-// True when j is a neighbour candidate of i: within the skin of touching.
-bool near_pair(vec4 pi, vec4 pj, float skin) {
-  precise vec3 d = xyz(pi) - xyz(pj);
-  precise float reach = pi.w + pj.w + skin;
-  return dot3(d, d) < reach * reach;
-}
-
-// near_pair when i owns the pair, else false, with no branch of its own: a branch on the ids
-// mispredicted on half the near pairs, whose ids fall either side of i's at random.
+// True when j is within the skin of touching i and `owned`, with no branch on `owned`: a branch
+// on the ids mispredicted on half the near pairs, whose ids fall either side of i's at random.
 bool near_owned_pair(vec4 pi, vec4 pj, float skin, bool owned) {
   precise vec3 d = xyz(pi) - xyz(pj);
   precise float reach = (pi.w + pj.w + skin) * float(owned);  // x 1: the same reach; x 0: none
   return dot3(d, d) < reach * reach;
 }
+
+// True when j is a neighbour candidate of i: within the skin of touching.
+bool near_pair(vec4 pi, vec4 pj, float skin) { return near_owned_pair(pi, pj, skin, true); }
 
 // Adds partner number k to i's row (which starts at `base`), keeping the row sorted by partner
 // id (partner_key): the gathers then sum touching contacts in the same order whatever else the
