@@ -99,10 +99,11 @@ HWY_INLINE bool no_entries(const Kernels& k, uint i, uint n) {
 // gather's time is its loads at random, and fewer instructions per entry keep more of them in
 // flight (docs/engineering.md). With `Ahead` each transposed entry's lines are asked for 32
 // entries (~8 particles) on along the list: the row ends' mispredicted branches discard the loads
-// the core had started for the next particles, but not a prefetch already on its way.
+// the core had started for the next particles, but not a prefetch already on its way; `listed` is
+// the transposed list's length.
 constexpr uint kTransposedAhead = 32;
 template <bool Ahead>
-HWY_INLINE void contact_sums(Kernels& k, uint i) {
+HWY_INLINE void contact_sums(Kernels& k, uint i, uint listed) {
 #if HWY_TARGET == HWY_SCALAR
   vec3 f, t;
   k.gather_contact_sums(i, f, t);
@@ -115,10 +116,10 @@ HWY_INLINE void contact_sums(Kernels& k, uint i) {
     fs = hn::Add(fs, hn::LoadU(d4, &k.B_contact_force[c].x));
     ts = hn::Add(ts, hn::LoadU(d4, &k.B_torque_i[c].x));
   }
-  const uint tend = k.B_trans_start[i + 1u], tall = k.B_trans_start[k.PC.n_particles];
+  const uint tend = k.B_trans_start[i + 1u];
   for (uint q = k.B_trans_start[i]; q < tend; ++q) {
     const uint c = k.B_trans_list[q];
-    if (Ahead && q + kTransposedAhead < tall) {
+    if (Ahead && q + kTransposedAhead < listed) {
       const uint ahead = k.B_trans_list[q + kTransposedAhead];
       __builtin_prefetch(&k.B_contact_force[ahead]);
       __builtin_prefetch(&k.B_torque_j[ahead]);
@@ -140,7 +141,8 @@ constexpr uint64_t kTransposedPrefetchAboveBytes = 3u << 20;
 // k_gather_kick: each particle's sums (a particle's rows differ in length, so lanes across
 // particles would idle), then the kick of a run of them in lanes from the sums just stored.
 void GatherKickLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  const bool ahead = uint64_t(k.B_trans_start[k.PC.n_particles]) * 2u * sizeof(vec4) > kTransposedPrefetchAboveBytes;
+  const uint listed = k.B_trans_start[k.PC.n_particles];
+  const bool ahead = uint64_t(listed) * 2u * sizeof(vec4) > kTransposedPrefetchAboveBytes;
   auto sums = [&](uint i, uint n) {
     if (no_entries(k, i, n)) {  // a clump's inner sub-spheres: sums of nothing, +0 (gather_contact_sums)
       std::fill(k.B_force + i, k.B_force + i + n, vec4(0.0f));
@@ -148,9 +150,9 @@ void GatherKickLanes(Kernels& k, uint64_t begin, uint64_t end) {
       return;
     }
     if (ahead)
-      for (uint l = 0; l < n; ++l) contact_sums<true>(k, i + l);
+      for (uint l = 0; l < n; ++l) contact_sums<true>(k, i + l, listed);
     else
-      for (uint l = 0; l < n; ++l) contact_sums<false>(k, i + l);
+      for (uint l = 0; l < n; ++l) contact_sums<false>(k, i + l, listed);
   };
   kick_runs(k, begin, end, k.PC.kick > 0.0f, sums, [&](uint i) { k.k_gather_kick(i); });
 }
