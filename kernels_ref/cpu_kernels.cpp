@@ -8,6 +8,7 @@
 #include "kick_lanes.h"
 #include "lane_switches.h"
 #include "twin_kernels.h"
+#include "walk_lanes.h"
 
 namespace repose::gpu {
 
@@ -40,6 +41,10 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
     return run_lanes<body_gather_kick_lanes>(k, invocations, pool);
   if (id == KernelId::KickDrift && lanes_enabled(LaneKernels::Kick)) return run_lanes<kick_drift_lanes>(k, invocations, pool);
   if (id == KernelId::GatherKick && lanes_enabled(LaneKernels::Kick)) return run_lanes<gather_kick_lanes>(k, invocations, pool);
+  if (id == KernelId::ContactCount && buf.walk_rows && lanes_enabled(LaneKernels::Walk)) {
+    run_lanes<fill_walk_rows>(k, buf.push.n_particles, pool);
+    return run_lanes<contact_count_lanes>(k, invocations, pool);
+  }
   uint limit = buf.control[kCtlContacts];
   if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);

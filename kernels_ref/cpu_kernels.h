@@ -19,6 +19,10 @@ struct Buffers {
   // Not a device buffer: the material of every particle when they share one (else -1), so that the
   // contact lanes gather none (CpuBackend::upload_constants; the walls' materials may differ).
   int32_t uniform_material = -1;
+  // Not a device buffer: the sorted slots' positions, radii and global ids as five arrays (x, y, z,
+  // radius, id; N floats each, then a SIMD width of padding), which contact_count's lanes fill
+  // and walk (walk_lanes.h); null: the scalar walk.
+  float* walk_rows = nullptr;
 };
 
 // Runs `invocations` invocations of kernel k (as a dispatch of that many threads would).

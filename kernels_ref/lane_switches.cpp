@@ -5,7 +5,7 @@
 namespace repose::gpu {
 
 namespace {
-std::atomic<bool> g_on[3] = {true, true, true};
+std::atomic<bool> g_on[4] = {true, true, true, true};
 }
 
 void set_lanes(LaneKernels which, bool on) { g_on[int(which)].store(on, std::memory_order_relaxed); }

@@ -15,11 +15,18 @@ struct Kernels {
 #undef REPOSE_KERNEL_BUFFER
   SimPush PC{};
   int32_t uniform_material = -1;  // Buffers::uniform_material
+  const float* walk_rows = nullptr;  // Buffers::walk_rows
+  // The walk of a row of cells in SIMD lanes (walk_lanes.h), set by contact_count's lanes; null:
+  // the shared text's walk_cells.
+  using RowWalk = uint (*)(Kernels&, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest,
+                           bool i_fixed, bool fill, uint base, uint k, uint old_begin, uint old_end);
+  RowWalk row_walk = nullptr;
 
   Kernels() = default;
 #define REPOSE_KERNEL_BUFFER_FROM(binding, Name, name, type, count, need, keep) B_##name(b.name),
   explicit Kernels(const Buffers& b)
-      : REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER_FROM) PC(b.push), uniform_material(b.uniform_material) {}
+      : REPOSE_BUFFERS(REPOSE_KERNEL_BUFFER_FROM) PC(b.push), uniform_material(b.uniform_material),
+        walk_rows(b.walk_rows) {}
 #undef REPOSE_KERNEL_BUFFER_FROM
 
 // The GLSL prelude's wall_kind_possible() lets lavapipe compile out the code of wall kinds a run
@@ -27,6 +34,13 @@ struct Kernels {
   static constexpr bool wall_kind_possible(uint) { return true; }
 
 #include "kernels/all.h"
+
+  // walk_neighbours' row of cells (the GLSL prelude's walk_row is walk_cells).
+  uint walk_row(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
+                uint base, uint k, uint old_begin, uint old_end) {
+    if (row_walk) return row_walk(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
+    return walk_cells(i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
+  }
 };
 
 }  // namespace repose::gpu

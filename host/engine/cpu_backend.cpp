@@ -11,6 +11,7 @@
 #include "contact_lanes.h"
 #include "lane_switches.h"
 #include "twin_kernels.h"
+#include "walk_lanes.h"
 #include "engine/buffer_table.h"
 
 namespace repose {
@@ -23,6 +24,7 @@ std::string CpuBackend::describe() const {
                           : std::string(", contacts one at a time");
   if (!gpu::lanes_enabled(gpu::LaneKernels::Kick)) lanes += ", the kick one particle at a time";
   if (!gpu::lanes_enabled(gpu::LaneKernels::Bodies)) lanes += ", the bodies' kernels one at a time";
+  if (!gpu::lanes_enabled(gpu::LaneKernels::Walk)) lanes += ", the neighbour walk one slot at a time";
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
@@ -51,8 +53,12 @@ void CpuBackend::allocate(const Layout& l, const ConstantData& constants) {
     storage_[b].length = std::max<size_t>(binding_bytes(b, l), 16);
     total += (storage_[b].length + 63) / 64 * 64;  // each binding on its own cache lines
   }
+  walk_rows_ = {nullptr, gpu::walk_rows_floats(l.n_particles) * sizeof(float)};  // Buffers::walk_rows
+  const size_t walk_rows_at = total;
+  total += walk_rows_.length;
   arena_ = zeroed_arena(total);
   for (uint32_t b = 0; b < gpu::kBindingCount; ++b) storage_[b].begin = arena_.get() + offset[b];
+  walk_rows_.begin = arena_.get() + walk_rows_at;
   point_buffers();
   upload_constants(constants);
 }
@@ -69,6 +75,7 @@ void CpuBackend::point_buffers() {
   buf_.name = reinterpret_cast<gpu::type*>(storage_[binding].data());
   REPOSE_BUFFERS(REPOSE_POINT)
 #undef REPOSE_POINT
+  buf_.walk_rows = reinterpret_cast<float*>(walk_rows_.data());
 }
 
 template <class T>
@@ -142,7 +149,7 @@ std::vector<gpu::vec4> CpuBackend::contact_forces(uint32_t contacts) {
 size_t CpuBackend::memory_bytes() const {
   size_t bytes = 0;
   for (const auto& block : storage_) bytes += block.size();
-  return bytes;
+  return bytes + walk_rows_.size();
 }
 
 double CpuBackend::contact_law_seconds_per_contact() {

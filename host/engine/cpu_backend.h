@@ -61,6 +61,7 @@ class CpuBackend : public Backend {
   std::unique_ptr<std::byte, FreeArena> arena_;
   // Each binding of the buffer table (none for aliases): its part of the arena.
   std::array<Binding, gpu::kBindingCount> storage_;
+  Binding walk_rows_;  // not a binding: Buffers::walk_rows, after the bindings in the arena
   gpu::Buffers buf_;
 };
 

@@ -6,6 +6,7 @@
 #include "engine/buffer_table.h"
 #include "engine/simulation.h"
 #include "engine/vulkan_backend.h"
+#include "walk_lanes.h"
 
 namespace repose {
 
@@ -61,6 +62,13 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
          frame;
 }
 
+// The cpu backend's scratch beside the buffer table: the walk's sorted rows (Buffers::walk_rows).
+void add_cpu_scratch(MemoryNeed& need) {
+  size_t bytes = gpu::walk_rows_floats(need.layout.n_particles) * sizeof(float);
+  need.device_bytes += bytes;
+  need.bytes_per_particle += double(bytes) / std::max(1u, need.layout.n_particles);
+}
+
 }  // namespace
 
 MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_steps, bool device_in_host_memory,
@@ -110,6 +118,7 @@ MemoryNeed check_run_memory(const Model& m, const KernelVariant& v, uint32_t bat
                             int device, bool frames, uint32_t capacity) {
   if (backend != "vulkan") {
     MemoryNeed need = memory_need(m, v, batch_steps, true, frames, capacity);
+    add_cpu_scratch(need);
     check_memory_fits(need, nullptr);
     return need;
   }

@@ -1,7 +1,7 @@
 // The memory a simulation needs, from the same buffer table the backends allocate from
 // (shaders/repose_shared.h), so the figure follows every buffer added there:
 // - the backend's buffers: host memory on the cpu backend and on Vulkan devices of the cpu type
-//   (lavapipe), device memory on a GPU;
+//   (lavapipe), device memory on a GPU; the cpu backend's walk rows beside them (check_run_memory);
 // - the host's copies: the state the simulation keeps between batches (the contact list counted
 //   at its capacity, as it can fill it before it grows), the model, the constants, a batch of
 //   wall rows, and a VTK frame while it is written.

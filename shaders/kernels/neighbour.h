@@ -437,15 +437,15 @@ uint walk_neighbours(uint i, bool fill, uint base) {
       ivec3 row = ivec3(ci.x, ci.y + dy, ci.z + dz);
       uint h0 = cell_hash(ci.x - 1, row.y, row.z, PC.table_size);
       if (h0 + 2u < PC.table_size) {  // the row's three cells: buckets h0 .. h0 + 2, one run of slots
-        k = walk_cells(i, pi, ci.x - 1, ci.x + 1, row, B_cell_start[h0], B_cell_start[h0 + 3u], lowest, i_fixed, fill,
-                       base, k, old_begin, old_end);
+        k = walk_row(i, pi, ci.x - 1, ci.x + 1, row, B_cell_start[h0], B_cell_start[h0 + 3u], lowest, i_fixed, fill,
+                     base, k, old_begin, old_end);
         continue;
       }
       for (int x = ci.x - 1; x <= ci.x + 1; ++x) {  // the row wraps around the table's end: cell by cell
         uint h = cell_hash(x, row.y, row.z, PC.table_size);
         uint end = B_cell_start[h + 1u];
-        k = walk_cells(i, pi, x, x, row, first_slot_from(B_cell_start[h], end, lowest), end, lowest, i_fixed, fill, base,
-                       k, old_begin, old_end);
+        k = walk_row(i, pi, x, x, row, first_slot_from(B_cell_start[h], end, lowest), end, lowest, i_fixed, fill, base,
+                     k, old_begin, old_end);
       }
     }
   }

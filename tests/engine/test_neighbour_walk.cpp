@@ -1,6 +1,7 @@
 // The neighbour walk (shaders/kernels/neighbour.h) against every pair tested directly: a row of
 // three cells is walked as one run of buckets, or cell by cell where it wraps around the hash
-// table's end; small tables make both, and hash collisions, common.
+// table's end; small tables make both, and hash collisions, common. The CPU twin's walk in SIMD
+// lanes (kernels_ref/walk_lanes.cpp) against the scalar walk: the same candidates in the same order.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,7 +11,9 @@
 #include <utility>
 #include <vector>
 
+#include "contact_lanes.h"
 #include "twin_kernels.h"
+#include "walk_lanes.h"
 
 using namespace repose::gpu;
 
@@ -37,8 +40,9 @@ struct WalkScene {
   }
 };
 
-// Each slot's candidates as contact_count finds them with a hash table of `table` buckets.
-std::vector<std::set<uint>> walk(const WalkScene& s, uint table) {
+// Each slot's candidates in the order contact_count finds them with a hash table of `table`
+// buckets, by the scalar walk or in lanes.
+std::vector<std::vector<uint>> walk_in_order(const WalkScene& s, uint table, bool lanes) {
   std::vector<vec4> pos = s.pos, vel = s.vel, at_build = s.pos_at_build;
   std::vector<uint> ids = s.ids, cell_of(s.n), cell_start(table + 2, 0u), cell_fill(table + 1, 0u), sorted(s.n);
   std::vector<uint> row_start(s.n + 1), trans_start(s.n + 1), trans_fill(s.n), candidates(s.n * kCandidateSlots);
@@ -67,12 +71,28 @@ std::vector<std::set<uint>> walk(const WalkScene& s, uint table) {
   for (uint b = 0; b <= table + 1; ++b) std::swap(sum, cell_start[b]), sum += cell_start[b];
   for (uint i = 0; i < s.n; ++i) k.k_bucket_scatter(i);
   for (uint b = 0; b <= table; ++b) k.k_bucket_sort(b);
-  std::vector<std::set<uint>> found(s.n);
+  std::vector<float> walk_rows(walk_rows_floats(s.n));
+  if (lanes) {
+    k.walk_rows = walk_rows.data();
+    fill_walk_rows(k, 0, s.n);
+    contact_count_lanes(k, 0, s.n + 1);
+  } else {
+    for (uint i = 0; i <= s.n; ++i) k.k_contact_count(i);
+  }
+  std::vector<std::vector<uint>> found(s.n);
   for (uint i = 0; i < s.n; ++i) {
-    uint count = k.walk_neighbours(i, false, 0u);
+    uint count = row_start[i];
     REQUIRE(count <= kCandidateSlots);
-    for (uint c = 0; c < count; ++c) found[i].insert(candidates[i * kCandidateSlots + c]);
-    REQUIRE(found[i].size() == count);  // nobody twice
+    found[i].assign(candidates.begin() + i * kCandidateSlots, candidates.begin() + i * kCandidateSlots + count);
+  }
+  return found;
+}
+
+std::vector<std::set<uint>> walk(const WalkScene& s, uint table) {
+  std::vector<std::set<uint>> found;
+  for (const auto& row : walk_in_order(s, table, false)) {
+    found.emplace_back(row.begin(), row.end());
+    REQUIRE(found.back().size() == row.size());  // nobody twice
   }
   return found;
 }
@@ -105,4 +125,18 @@ TEST_CASE("neighbour walk: rows of cells as one run of buckets or cell by cell, 
       CHECK(walk(s, table) == expected);
     }
   }
+}
+
+TEST_CASE("neighbour walk in SIMD lanes: the scalar walk's candidates in its order, on every SIMD target", "[engine]") {
+  for (int64_t target : contact_lanes_targets()) {
+    pin_contact_lanes_target(target);
+    for (uint32_t seed : {1u, 2u}) {
+      WalkScene s(seed);
+      for (uint table : {4u, 64u, 1024u}) {
+        INFO("target " << target << ", seed " << seed << ", table " << table);
+        CHECK(walk_in_order(s, table, true) == walk_in_order(s, table, false));
+      }
+    }
+  }
+  pin_contact_lanes_target(0);
 }
