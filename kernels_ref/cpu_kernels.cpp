@@ -42,7 +42,7 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
   if (id == KernelId::KickDrift && lanes_enabled(LaneKernels::Kick)) return run_lanes<kick_drift_lanes>(k, invocations, pool);
   if (id == KernelId::GatherKick && lanes_enabled(LaneKernels::Kick)) return run_lanes<gather_kick_lanes>(k, invocations, pool);
   if (id == KernelId::ContactCount && buf.walk_rows && lanes_enabled(LaneKernels::Walk)) {
-    run_lanes<fill_walk_rows>(k, buf.push.n_particles, pool);
+    run_lanes<fill_walk_rows>(k, buf.cell_start[buf.push.table_size + 1u], pool);  // the slots bucket_scatter filled
     return run_lanes<contact_count_lanes>(k, invocations, pool);
   }
   uint limit = buf.control[kCtlContacts];

@@ -15,12 +15,15 @@ struct Kernels {
 #undef REPOSE_KERNEL_BUFFER
   SimPush PC{};
   int32_t uniform_material = -1;  // Buffers::uniform_material
-  const float* walk_rows = nullptr;  // Buffers::walk_rows
-  // The walk of a row of cells in SIMD lanes (walk_lanes.h), set by contact_count's lanes; null:
-  // the shared text's walk_cells.
+  float* walk_rows = nullptr;  // Buffers::walk_rows
+  // The walks of a row of cells and of the large bucket in SIMD lanes (walk_lanes.h), set by
+  // contact_count's lanes; null: the shared text's walk_cells and walk_large.
   using RowWalk = uint (*)(Kernels&, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest,
                            bool i_fixed, bool fill, uint base, uint k, uint old_begin, uint old_end);
+  using LargeWalk = uint (*)(Kernels&, uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
+                             uint old_begin, uint old_end);
   RowWalk row_walk = nullptr;
+  LargeWalk large_walk = nullptr;
 
   Kernels() = default;
 #define REPOSE_KERNEL_BUFFER_FROM(binding, Name, name, type, count, need, keep) B_##name(b.name),
@@ -35,11 +38,16 @@ struct Kernels {
 
 #include "kernels/all.h"
 
-  // walk_neighbours' row of cells (the GLSL prelude's walk_row is walk_cells).
+  // walk_neighbours' row of cells and large bucket (the GLSL prelude's are walk_cells and walk_large).
   uint walk_row(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
                 uint base, uint k, uint old_begin, uint old_end) {
     if (row_walk) return row_walk(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
     return walk_cells(i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
+  }
+  uint walk_large_bucket(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
+                         uint old_begin, uint old_end) {
+    if (large_walk) return large_walk(*this, i, pi, large, begin, end, fill, base, k, old_begin, old_end);
+    return walk_large(i, pi, large, begin, end, fill, base, k, old_begin, old_end);
   }
 };
 

@@ -1,4 +1,4 @@
-// The neighbour walk's rows in SIMD lanes (walk_lanes.h). Compiled once per SIMD target by
+// The neighbour walk's rows of cells and large bucket in SIMD lanes (walk_lanes.h). Compiled once per SIMD target by
 // Highway's foreach_target; -ffp-contract=off keeps every Mul and Add a separate rounding, so a
 // lane's test is near_owned_pair's to the bit.
 #include "walk_lanes.h"
@@ -19,7 +19,7 @@ using DI = hn::RebindToSigned<D>;
 
 void FillWalkRows(Kernels& k, uint64_t begin, uint64_t end) {
   const size_t n = k.PC.n_particles;
-  float* x = const_cast<float*>(k.walk_rows);
+  float* x = k.walk_rows;
   uint* id = reinterpret_cast<uint*>(x + 4 * n);
   for (uint64_t s = begin; s < end; ++s) {
     const uint j = k.B_sorted[s];
@@ -32,48 +32,77 @@ void FillWalkRows(Kernels& k, uint64_t begin, uint64_t end) {
   }
 }
 
-// walk_cells(...) with the id and distance tests of a lane's worth of slots at a time: a slot
-// passes when near_owned_pair(pi, pj, skin, id >= lowest) (the same operations: d = pi - pj,
-// (dx dx + dy dy) + dz dz < ((ri + rj) + skin)^2, the reach times 0 or 1 being the reach or no
-// reach) and, when i is fixed, j is not; then keep_in_row as walk_cells does.
-uint WalkRow(Kernels& k, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed,
-             bool fill, uint base, uint kk, uint old_begin, uint old_end) {
+// The slots of [s, min(s + lanes, end)) whose sphere j has a global id from `lowest` and is
+// within the skin of touching sphere i (near_owned_pair(pi, pj, skin, id >= lowest): the same
+// operations, d = pi - pj, (dx dx + dy dy) + dz dz < ((ri + rj) + skin)^2, where the reach times
+// 0 or 1 is no reach or the reach), as bits from slot s up.
+struct NearSlots {
   const D d;
   const DI di;
-  const size_t L = hn::Lanes(d), n = k.PC.n_particles;
-  const float* X = k.walk_rows;
-  const uint* ID = reinterpret_cast<const uint*>(X + 4 * n);
-  const auto px = hn::Set(d, pi.x), py = hn::Set(d, pi.y), pz = hn::Set(d, pi.z), pr = hn::Set(d, pi.w);
-  const auto skin = hn::Set(d, k.PC.skin);
-  // Ids compare as unsigned: with the top bit flipped, a signed compare orders them so.
-  const auto flip = hn::Set(di, int32_t(0x80000000u)), low = hn::Xor(hn::Set(di, int32_t(lowest)), flip);
-  for (uint s = begin; s < end; s += uint(L)) {
+  const float* X;
+  const int32_t* ID;
+  size_t n;
+  hn::Vec<D> px, py, pz, pr, skin;
+  hn::Vec<DI> flip, low;  // ids compare as unsigned: with the top bit flipped, a signed compare orders them so
+
+  NearSlots(const Kernels& k, vec4 pi, uint lowest)
+      : X(k.walk_rows), ID(reinterpret_cast<const int32_t*>(k.walk_rows + 4 * size_t(k.PC.n_particles))),
+        n(k.PC.n_particles), px(hn::Set(d, pi.x)), py(hn::Set(d, pi.y)), pz(hn::Set(d, pi.z)), pr(hn::Set(d, pi.w)),
+        skin(hn::Set(d, k.PC.skin)), flip(hn::Set(di, int32_t(0x80000000u))),
+        low(hn::Xor(hn::Set(di, int32_t(lowest)), flip)) {}
+
+  uint64_t at(uint s, uint end) const {
     const auto dx = hn::Sub(px, hn::LoadU(d, X + s));
     const auto dy = hn::Sub(py, hn::LoadU(d, X + n + s));
     const auto dz = hn::Sub(pz, hn::LoadU(d, X + 2 * n + s));
     const auto dd = hn::Add(hn::Add(hn::Mul(dx, dx), hn::Mul(dy, dy)), hn::Mul(dz, dz));
     const auto reach = hn::Add(hn::Add(pr, hn::LoadU(d, X + 3 * n + s)), skin);
-    const auto near = hn::Lt(dd, hn::Mul(reach, reach));
-    const auto ids = hn::Xor(hn::LoadU(di, reinterpret_cast<const int32_t*>(ID + s)), flip);
-    const auto owned = hn::RebindMask(d, hn::Not(hn::Lt(ids, low)));
-    const auto pass = hn::And(hn::And(near, owned), hn::FirstN(d, end - s));
-    if (hn::AllFalse(d, pass)) continue;
+    const auto owned = hn::RebindMask(d, hn::Not(hn::Lt(hn::Xor(hn::LoadU(di, ID + s), flip), low)));
+    const auto pass = hn::And(hn::And(hn::Lt(dd, hn::Mul(reach, reach)), owned), hn::FirstN(d, end - s));
+    if (hn::AllFalse(d, pass)) return 0;
     uint8_t bits[8] = {};
     hn::StoreMaskBits(d, pass, bits);
     uint64_t lanes = 0;
-    __builtin_memcpy(&lanes, bits, (L + 7) / 8);
-    for (; lanes != 0; lanes &= lanes - 1) {
+    __builtin_memcpy(&lanes, bits, (hn::Lanes(d) + 7) / 8);
+    return lanes;
+  }
+};
+
+// walk_cells: the slots that pass NearSlots, then (when i is fixed) those whose j is not, through
+// keep_in_row in slot order.
+uint WalkRow(Kernels& k, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed,
+             bool fill, uint base, uint kk, uint old_begin, uint old_end) {
+  const NearSlots near(k, pi, lowest);
+  const uint L = uint(hn::Lanes(D()));
+  for (uint s = begin; s < end; s += L)
+    for (uint64_t lanes = near.at(s, end); lanes != 0; lanes &= lanes - 1) {
       const uint j = k.B_sorted[s + uint(__builtin_ctzll(lanes))];
       if (i_fixed && k.is_fixed(j)) continue;
       kk = k.keep_in_row(i, j, k.B_pos[j], x0, x1, c, fill, base, kk, old_begin, old_end);
     }
-  }
+  return kk;
+}
+
+// walk_large: the slots that pass NearSlots (ids from i's own plus one when i is large), then
+// those that are not one body's two sides or two fixed spheres, emitted in slot order.
+uint WalkLarge(Kernels& k, uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint kk,
+               uint old_begin, uint old_end) {
+  const NearSlots near(k, pi, large ? k.global_id(i) + 1u : 0u);
+  const uint L = uint(hn::Lanes(D()));
+  for (uint s = begin; s < end; s += L)
+    for (uint64_t lanes = near.at(s, end); lanes != 0; lanes &= lanes - 1) {
+      const uint j = k.B_sorted[s + uint(__builtin_ctzll(lanes))];
+      if (k.no_contact(i, j)) continue;
+      k.emit_candidate(fill, base, kk, i, j, old_begin, old_end);
+      kk = kk + 1u;
+    }
   return kk;
 }
 
 void CountLanes(Kernels& k, uint64_t begin, uint64_t end) {
   Kernels w = k;
   w.row_walk = &WalkRow;
+  w.large_walk = &WalkLarge;
   for (uint64_t i = begin; i < end; ++i) w.k_contact_count(uint(i));
 }
 

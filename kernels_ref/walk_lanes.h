@@ -4,8 +4,9 @@
 // candidate. Here a pass over the sorted slots first copies their positions, radii and global
 // ids into five arrays (Buffers::walk_rows), so that a row's slots load in order with no gather;
 // the lanes then do near_owned_pair's test (its operations in its order) and each slot that
-// passes goes through the shared text's keep_in_row in slot order, as walk_cells would: the same
-// candidates in the same order (tests/engine/test_walk_lanes.cpp).
+// passes goes on through the shared text in slot order (keep_in_row in a row of cells, as
+// walk_cells; no_contact in the large bucket, as walk_large, which every sphere walks whole): the
+// same candidates in the same order (tests/engine/test_neighbour_walk.cpp).
 #pragma once
 #include <cstddef>
 #include <cstdint>

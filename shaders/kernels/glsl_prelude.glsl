@@ -105,7 +105,9 @@ SimPush pc_specialised() {
 // False when the run has no wall of this kind: lavapipe then compiles the kind's code out
 // instead of running it under a lane mask. The twin's is always true (kernels_ref/twin_kernels.h).
 bool wall_kind_possible(uint kind) { return (PC.absent_wall_kinds & (1u << kind)) == 0u; }
-// A row of cells' walk (kernels/neighbour.h): walk_cells here; the twin may take its slots in
-// SIMD lanes instead (kernels_ref/twin_kernels.h walk_row, walk_lanes.h), finding the same candidates.
+// The walk of a row of cells and of the large bucket (kernels/neighbour.h): walk_cells and
+// walk_large here; the twin may test their slots in SIMD lanes instead (kernels_ref/twin_kernels.h,
+// walk_lanes.h), finding the same candidates in the same order.
 #define walk_row walk_cells
+#define walk_large_bucket walk_large
 #endif

@@ -365,6 +365,22 @@ uint walk_cells(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, 
   return k;
 }
 
+// The spheres of the large bucket (sorted slots [begin, end), radii above PC.large_radius) that are
+// candidates of i: a small i owns its pairs with them, a large one those with higher ids (from
+// `lowest`; i itself is below it); within the skin; not two sides of one body or two fixed
+// spheres. Returns the candidates counted, from k.
+uint walk_large(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k, uint old_begin,
+                uint old_end) {
+  uint lowest = large ? global_id(i) + 1u : 0u;
+  for (uint s = begin; s < end; ++s) {
+    uint j = B_sorted[s];
+    if (global_id(j) < lowest || !near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;
+    emit_candidate(fill, base, k, i, j, old_begin, old_end);
+    k = k + 1u;
+  }
+  return k;
+}
+
 // Wall w as the k-th candidate of sphere i when it comes within the skin of touching as
 // wall_contact sees it (and i's part may meet it: part_walls); returns the candidates so far.
 uint wall_candidate(uint i, vec4 pi, uint w, uint near_walls, bool fill, uint base, uint k, uint old_begin,
@@ -449,15 +465,9 @@ uint walk_neighbours(uint i, bool fill, uint base) {
       }
     }
   }
-  uint large_end = pairs ? B_cell_start[PC.table_size + 1u] : 0u;
-  uint id_i = global_id(i);
-  for (uint s = pairs ? B_cell_start[PC.table_size] : 0u; s < large_end; ++s) {
-    uint j = B_sorted[s];
-    if (j == i || (large && global_id(j) < id_i)) continue;
-    if (!near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;
-    emit_candidate(fill, base, k, i, j, old_begin, old_end);
-    k = k + 1u;
-  }
+  if (pairs)
+    k = walk_large_bucket(i, pi, large, B_cell_start[PC.table_size], B_cell_start[PC.table_size + 1u], fill, base, k,
+                          old_begin, old_end);
   if (i_fixed) return k;  // a wall cannot push a fixed particle either
   return walk_walls(i, pi, ci, large, fill, base, k, old_begin, old_end);
 }

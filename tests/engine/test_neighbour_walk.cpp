@@ -21,15 +21,18 @@ namespace {
 
 // Spheres of radius 0.5 at random in a box 10 cells wide (cells of 1.2: a diameter and the
 // skin), in slots scrambled against their global ids, a few of them fixed.
+// With `large`, every ninth sphere has radius 1.5, beyond the cells' reach: the large bucket.
 struct WalkScene {
   uint n = 400;
+  float large_radius = 1e9f;
   std::vector<vec4> pos, vel, pos_at_build;
   std::vector<uint> ids;
-  explicit WalkScene(uint32_t seed) {
+  explicit WalkScene(uint32_t seed, bool large = false) {
     std::mt19937 rng{seed};
     std::uniform_real_distribution<float> u(-6.0f, 6.0f);
+    if (large) large_radius = 0.6f;
     for (uint s = 0; s < n; ++s) {
-      pos.push_back(vec4(u(rng), u(rng), u(rng), 0.5f));
+      pos.push_back(vec4(u(rng), u(rng), u(rng), large && s % 9u == 4u ? 1.5f : 0.5f));
       vel.push_back(vec4(0.0f, 0.0f, 0.0f, s % 7u == 0u ? 0.0f : 1.0f));
     }
     pos_at_build.resize(n);
@@ -40,9 +43,10 @@ struct WalkScene {
   }
 };
 
-// Each slot's candidates in the order contact_count finds them with a hash table of `table`
-// buckets, by the scalar walk or in lanes.
-std::vector<std::vector<uint>> walk_in_order(const WalkScene& s, uint table, bool lanes) {
+// Each slot's count of candidates and the first kCandidateSlots of them in the order
+// contact_count finds them with a hash table of `table` buckets, by the scalar walk or in lanes.
+using Found = std::vector<std::pair<uint, std::vector<uint>>>;
+Found walk_in_order(const WalkScene& s, uint table, bool lanes) {
   std::vector<vec4> pos = s.pos, vel = s.vel, at_build = s.pos_at_build;
   std::vector<uint> ids = s.ids, cell_of(s.n), cell_start(table + 2, 0u), cell_fill(table + 1, 0u), sorted(s.n);
   std::vector<uint> row_start(s.n + 1), trans_start(s.n + 1), trans_fill(s.n), candidates(s.n * kCandidateSlots);
@@ -65,7 +69,7 @@ std::vector<std::vector<uint>> walk_in_order(const WalkScene& s, uint table, boo
   k.PC.table_size = table;
   k.PC.inv_cell = 1.0f / 1.2f;
   k.PC.skin = 0.2f;
-  k.PC.large_radius = 1e9f;
+  k.PC.large_radius = s.large_radius;
   for (uint i = 0; i < s.n; ++i) k.k_bucket_count(i);
   uint sum = 0;  // the scan of the bucket counts
   for (uint b = 0; b <= table + 1; ++b) std::swap(sum, cell_start[b]), sum += cell_start[b];
@@ -79,18 +83,18 @@ std::vector<std::vector<uint>> walk_in_order(const WalkScene& s, uint table, boo
   } else {
     for (uint i = 0; i <= s.n; ++i) k.k_contact_count(i);
   }
-  std::vector<std::vector<uint>> found(s.n);
+  Found found(s.n);
   for (uint i = 0; i < s.n; ++i) {
-    uint count = row_start[i];
-    REQUIRE(count <= kCandidateSlots);
-    found[i].assign(candidates.begin() + i * kCandidateSlots, candidates.begin() + i * kCandidateSlots + count);
+    auto first = candidates.begin() + i * kCandidateSlots;
+    found[i] = {row_start[i], std::vector<uint>(first, first + std::min(row_start[i], kCandidateSlots))};
   }
   return found;
 }
 
 std::vector<std::set<uint>> walk(const WalkScene& s, uint table) {
   std::vector<std::set<uint>> found;
-  for (const auto& row : walk_in_order(s, table, false)) {
+  for (const auto& [count, row] : walk_in_order(s, table, false)) {
+    REQUIRE(count <= kCandidateSlots);
     found.emplace_back(row.begin(), row.end());
     REQUIRE(found.back().size() == row.size());  // nobody twice
   }
@@ -130,13 +134,14 @@ TEST_CASE("neighbour walk: rows of cells as one run of buckets or cell by cell, 
 TEST_CASE("neighbour walk in SIMD lanes: the scalar walk's candidates in its order, on every SIMD target", "[engine]") {
   for (int64_t target : contact_lanes_targets()) {
     pin_contact_lanes_target(target);
-    for (uint32_t seed : {1u, 2u}) {
-      WalkScene s(seed);
-      for (uint table : {4u, 64u, 1024u}) {
-        INFO("target " << target << ", seed " << seed << ", table " << table);
-        CHECK(walk_in_order(s, table, true) == walk_in_order(s, table, false));
+    for (uint32_t seed : {1u, 2u})
+      for (bool large : {false, true}) {
+        WalkScene s(seed, large);
+        for (uint table : {4u, 64u, 1024u}) {
+          INFO("target " << target << ", seed " << seed << ", large spheres " << large << ", table " << table);
+          CHECK(walk_in_order(s, table, true) == walk_in_order(s, table, false));
+        }
       }
-    }
   }
   pin_contact_lanes_target(0);
 }
