@@ -16,14 +16,6 @@ struct Kernels {
   SimPush PC{};
   int32_t uniform_material = -1;  // Buffers::uniform_material
   float* walk_rows = nullptr;  // Buffers::walk_rows
-  // The walks of a row of cells and of the large bucket in SIMD lanes (walk_lanes.h), set by
-  // contact_count's lanes; null: the shared text's walk_cells and walk_large.
-  using RowWalk = uint (*)(Kernels&, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest,
-                           bool i_fixed, bool fill, uint base, uint k, uint old_begin, uint old_end);
-  using LargeWalk = uint (*)(Kernels&, uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
-                             uint old_begin, uint old_end);
-  RowWalk row_walk = nullptr;
-  LargeWalk large_walk = nullptr;
 
   Kernels() = default;
 #define REPOSE_KERNEL_BUFFER_FROM(binding, Name, name, type, count, need, keep) B_##name(b.name),
@@ -38,15 +30,14 @@ struct Kernels {
 
 #include "kernels/all.h"
 
-  // walk_neighbours' row of cells and large bucket (the GLSL prelude's are walk_cells and walk_large).
+  // walk_neighbours' row of cells and large bucket (the GLSL prelude's are walk_cells and walk_large;
+  // contact_count's lanes walk them in SIMD lanes instead, walk_lanes.cpp).
   uint walk_row(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
                 uint base, uint k, uint old_begin, uint old_end) {
-    if (row_walk) return row_walk(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
     return walk_cells(i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
   }
   uint walk_large_bucket(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
                          uint old_begin, uint old_end) {
-    if (large_walk) return large_walk(*this, i, pi, large, begin, end, fill, base, k, old_begin, old_end);
     return walk_large(i, pi, large, begin, end, fill, base, k, old_begin, old_end);
   }
 };

@@ -99,10 +99,24 @@ uint WalkLarge(Kernels& k, uint i, vec4 pi, bool large, uint begin, uint end, bo
   return kk;
 }
 
+// The walk's text again with its rows and large bucket in lanes: the shared text's functions as
+// members that hide Kernels' own, so walk_neighbours calls WalkRow and WalkLarge directly.
+struct LaneWalk : Kernels {
+  explicit LaneWalk(const Kernels& k) : Kernels(k) {}
+  uint walk_row(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
+                uint base, uint k, uint old_begin, uint old_end) {
+    return WalkRow(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
+  }
+  uint walk_large_bucket(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
+                         uint old_begin, uint old_end) {
+    return WalkLarge(*this, i, pi, large, begin, end, fill, base, k, old_begin, old_end);
+  }
+#undef REPOSE_KERNELS_NEIGHBOUR_H  // its guard is set: Kernels has the text already
+#include "kernels/neighbour.h"
+};
+
 void CountLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  Kernels w = k;
-  w.row_walk = &WalkRow;
-  w.large_walk = &WalkLarge;
+  LaneWalk w(k);
   for (uint64_t i = begin; i < end; ++i) w.k_contact_count(uint(i));
 }
 
