@@ -33,6 +33,21 @@ static void run_lanes(Kernels& k, uint64_t n, ThreadPool& pool) {
   pool.parallel_for(n, [&](uint64_t begin, uint64_t end) { Lanes(k, begin, end); });
 }
 
+// transpose_fill with each transposed row filled in its owners' global id order (the owners
+// visited by id): the rows come out as transpose_sort leaves them, with no atomic cursor and no
+// sort (the trans_fill counters end as the kernel's do). One thread: split by partners' ranges
+// over two, each reading every row, it measured no faster.
+static void fill_transposed_in_order(Kernels& k) {
+  const uint n = k.PC.n_particles, used = k.B_control[kCtlContacts];
+  for (uint g = 0; g < n; ++g) {
+    const uint i = k.slot_of(g), end = min(k.B_row_start[i + 1u], used);
+    for (uint c = min(k.B_row_start[i], used); c < end; ++c) {
+      const uint p = k.B_partner[c];
+      if (p < n) k.B_trans_list[k.B_trans_start[p] + k.B_trans_fill[p]++] = c;
+    }
+  }
+}
+
 void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& pool) {
   if (invocations == 0) return;
   Kernels k(buf);
@@ -41,10 +56,12 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
     return run_lanes<body_gather_kick_lanes>(k, invocations, pool);
   if (id == KernelId::KickDrift && lanes_enabled(LaneKernels::Kick)) return run_lanes<kick_drift_lanes>(k, invocations, pool);
   if (id == KernelId::GatherKick && lanes_enabled(LaneKernels::Kick)) return run_lanes<gather_kick_lanes>(k, invocations, pool);
-  if (id == KernelId::ContactCount && buf.walk_rows && lanes_enabled(LaneKernels::Walk)) {
+  if (id == KernelId::ContactCount && buf.walk_rows && lanes_enabled(LaneKernels::Neighbours)) {
     run_lanes<fill_walk_rows>(k, buf.cell_start[buf.push.table_size + 1u], pool);  // the slots bucket_scatter filled
     return run_lanes<contact_count_lanes>(k, invocations, pool);
   }
+  if (id == KernelId::TransposeFill && lanes_enabled(LaneKernels::Neighbours)) return fill_transposed_in_order(k);
+  if (id == KernelId::TransposeSort && lanes_enabled(LaneKernels::Neighbours)) return;  // in order already
   uint limit = buf.control[kCtlContacts];
   if (id == KernelId::ContactForces && contact_lanes_cover(buf.push.flags))
     return run_contact_lanes(k, std::min<uint64_t>(invocations, limit), pool);

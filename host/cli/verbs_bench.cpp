@@ -229,7 +229,7 @@ int run_bench(int argc, char** argv) {
   uint32_t steps = 200;
   double settle = 0.6, skin = -1;
   std::string cache_dir = "out/bench", case_path;
-  bool scalar_contacts = false, scalar_kick = false, scalar_bodies = false, scalar_walk = false;
+  bool scalar_contacts = false, scalar_kick = false, scalar_bodies = false, scalar_neighbours = false;
   app.add_option("--n", n, "spheres in the bed (default 50000)");
   app.add_option("--backend", backends, "cpu and/or vulkan (default both)");
   app.add_option("--threads", threads, "cpu backend threads (default all cores)");
@@ -251,13 +251,14 @@ int run_bench(int argc, char** argv) {
   app.add_flag("--scalar-bodies", scalar_bodies,
                "cpu backend: body_place and body_gather_kick one sub-sphere or body at a time, not in SIMD lanes "
                "(same bytes)");
-  app.add_flag("--scalar-walk", scalar_walk,
-               "cpu backend: contact_count's neighbour walk one slot at a time, not in SIMD lanes (same bytes)");
+  app.add_flag("--scalar-neighbours", scalar_neighbours,
+               "cpu backend: the neighbour list as the shaders build it, the walk one slot at a time and the transposed "
+               "rows by atomic cursor, then sorted (same bytes)");
   CLI11_PARSE(app, argc, argv);
   if (scalar_contacts) gpu::set_lanes(gpu::LaneKernels::Contacts, false);
   if (scalar_kick) gpu::set_lanes(gpu::LaneKernels::Kick, false);
   if (scalar_bodies) gpu::set_lanes(gpu::LaneKernels::Bodies, false);
-  if (scalar_walk) gpu::set_lanes(gpu::LaneKernels::Walk, false);
+  if (scalar_neighbours) gpu::set_lanes(gpu::LaneKernels::Neighbours, false);
   std::vector<KernelVariant> named;  // checked before a bed is settled
   try {
     for (const auto& vt : variants) named.push_back(KernelVariant::parse(vt));

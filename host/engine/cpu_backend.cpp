@@ -24,7 +24,7 @@ std::string CpuBackend::describe() const {
                           : std::string(", contacts one at a time");
   if (!gpu::lanes_enabled(gpu::LaneKernels::Kick)) lanes += ", the kick one particle at a time";
   if (!gpu::lanes_enabled(gpu::LaneKernels::Bodies)) lanes += ", the bodies' kernels one at a time";
-  if (!gpu::lanes_enabled(gpu::LaneKernels::Walk)) lanes += ", the neighbour walk one slot at a time";
+  if (!gpu::lanes_enabled(gpu::LaneKernels::Neighbours)) lanes += ", the neighbour list as the shaders build it";
   return "cpu (C++ twin of the shaders, " + std::to_string(pool_.size()) + " thread" +
          (pool_.size() == 1 ? "" : "s") + lanes + ")";
 }
