@@ -33,6 +33,16 @@ static void run_lanes(Kernels& k, uint64_t n, ThreadPool& pool) {
   pool.parallel_for(n, [&](uint64_t begin, uint64_t end) { Lanes(k, begin, end); });
 }
 
+// transpose_count with plain additions on one thread: the atomic additions of the kernel's
+// threads cost more than the whole pass (the same counts).
+static void count_transposed(Kernels& k) {
+  const uint n = k.PC.n_particles, used = k.B_control[kCtlContacts];
+  for (uint c = 0; c < used; ++c) {
+    const uint p = k.B_partner[c];
+    if (p < n) k.B_trans_start[p] += 1u;
+  }
+}
+
 // transpose_fill with each transposed row filled in its owners' global id order (the owners
 // visited by id): the rows come out as transpose_sort leaves them, with no atomic cursor and no
 // sort (the trans_fill counters end as the kernel's do). One thread: split by partners' ranges
@@ -60,6 +70,7 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
     run_lanes<fill_walk_rows>(k, buf.cell_start[buf.push.table_size + 1u], pool);  // the slots bucket_scatter filled
     return run_lanes<contact_count_lanes>(k, invocations, pool);
   }
+  if (id == KernelId::TransposeCount && lanes_enabled(LaneKernels::Neighbours)) return count_transposed(k);
   if (id == KernelId::TransposeFill && lanes_enabled(LaneKernels::Neighbours)) return fill_transposed_in_order(k);
   if (id == KernelId::TransposeSort && lanes_enabled(LaneKernels::Neighbours)) return;  // in order already
   uint limit = buf.control[kCtlContacts];
