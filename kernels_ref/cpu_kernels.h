@@ -20,7 +20,7 @@ struct Buffers {
   // contact lanes gather none (CpuBackend::upload_constants; the walls' materials may differ).
   int32_t uniform_material = -1;
   // Not a device buffer: the sorted slots' positions, radii and global ids as five arrays (x, y, z,
-  // radius, id; N floats each, then a SIMD width of padding), which contact_count's lanes fill
+  // radius, id; N floats each, then a vector's width of padding), which contact_count's lanes fill
   // and walk (walk_lanes.h); null: the scalar walk.
   float* walk_rows = nullptr;
 };

@@ -130,7 +130,10 @@ namespace repose::gpu {
 HWY_EXPORT(FillWalkRows);
 HWY_EXPORT(CountLanes);
 
-size_t walk_rows_floats(size_t n) { return 5 * n + HWY_MAX_BYTES / sizeof(float); }
+// The padding after the ids: a whole vector of the widest target Highway has (256 B, SVE's and
+// RVV's at most; AVX-512's is 64) may load from the last slot. HWY_MAX_BYTES here is the last
+// target's compiled, not the widest: with it the lanes read past the arena's end.
+size_t walk_rows_floats(size_t n) { return 5 * n + 256 / sizeof(float); }
 
 void fill_walk_rows(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(FillWalkRows)(k, begin, end); }
 

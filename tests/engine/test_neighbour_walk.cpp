@@ -1,7 +1,8 @@
 // The neighbour walk (shaders/kernels/neighbour.h) against every pair tested directly: a row of
 // three cells is walked as one run of buckets, or cell by cell where it wraps around the hash
 // table's end; small tables make both, and hash collisions, common. The CPU twin's walk in SIMD
-// lanes (kernels_ref/walk_lanes.cpp) against the scalar walk: the same candidates in the same order.
+// lanes (kernels_ref/walk_lanes.cpp) against the scalar walk: the same candidates in the same order,
+// and no load past the walk rows.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -10,6 +11,9 @@
 #include <set>
 #include <utility>
 #include <vector>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "contact_lanes.h"
 #include "twin_kernels.h"
@@ -41,6 +45,24 @@ struct WalkScene {
     std::shuffle(ids.begin(), ids.begin() + n, rng);
     for (uint s = 0; s < n; ++s) ids[n + ids[s]] = s;
   }
+};
+
+// `count` floats that end where an inaccessible page begins, so that a lane loading past the
+// walk rows' padding crashes the test (on the heap such a load reads a neighbour's bytes unseen).
+struct GuardedFloats {
+  void* base = nullptr;
+  size_t bytes = 0;
+  float* data = nullptr;
+  explicit GuardedFloats(size_t count) {
+    const size_t page = size_t(sysconf(_SC_PAGESIZE)), need = count * sizeof(float);
+    const size_t pages = (need + page - 1) / page;
+    bytes = (pages + 1) * page;
+    base = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    REQUIRE(base != MAP_FAILED);
+    REQUIRE(mprotect(static_cast<char*>(base) + pages * page, page, PROT_NONE) == 0);
+    data = reinterpret_cast<float*>(static_cast<char*>(base) + pages * page - need);
+  }
+  ~GuardedFloats() { munmap(base, bytes); }
 };
 
 // Each slot's count of candidates and the first kCandidateSlots of them in the order
@@ -75,9 +97,9 @@ Found walk_in_order(const WalkScene& s, uint table, bool lanes) {
   for (uint b = 0; b <= table + 1; ++b) std::swap(sum, cell_start[b]), sum += cell_start[b];
   for (uint i = 0; i < s.n; ++i) k.k_bucket_scatter(i);
   for (uint b = 0; b <= table; ++b) k.k_bucket_sort(b);
-  std::vector<float> walk_rows(walk_rows_floats(s.n));
+  GuardedFloats walk_rows(walk_rows_floats(s.n));
   if (lanes) {
-    k.walk_rows = walk_rows.data();
+    k.walk_rows = walk_rows.data;
     fill_walk_rows(k, 0, s.n);
     contact_count_lanes(k, 0, s.n + 1);
   } else {
