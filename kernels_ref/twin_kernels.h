@@ -36,9 +36,9 @@ struct Kernels {
                 uint base, uint k, uint old_begin, uint old_end) {
     return walk_cells(i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
   }
-  uint walk_large_bucket(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
+  uint walk_large_bucket(uint i, vec4 pi, uint lowest, uint begin, uint end, bool fill, uint base, uint k,
                          uint old_begin, uint old_end) {
-    return walk_large(i, pi, large, begin, end, fill, base, k, old_begin, old_end);
+    return walk_large(i, pi, lowest, begin, end, fill, base, k, old_begin, old_end);
   }
 };
 

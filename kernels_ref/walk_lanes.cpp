@@ -84,11 +84,11 @@ uint WalkRow(Kernels& k, uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, u
   return kk;
 }
 
-// walk_large: the slots that pass NearSlots (ids from i's own plus one when i is large), then
-// those that are not one body's two sides or two fixed spheres, emitted in slot order.
-uint WalkLarge(Kernels& k, uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint kk,
+// walk_large: the slots that pass NearSlots, then those that are not one body's two sides or two
+// fixed spheres, emitted in slot order.
+uint WalkLarge(Kernels& k, uint i, vec4 pi, uint lowest, uint begin, uint end, bool fill, uint base, uint kk,
                uint old_begin, uint old_end) {
-  const NearSlots near(k, pi, large ? k.global_id(i) + 1u : 0u);
+  const NearSlots near(k, pi, lowest);
   const uint L = uint(hn::Lanes(D()));
   for (uint s = begin; s < end; s += L)
     for (uint64_t lanes = near.at(s, end); lanes != 0; lanes &= lanes - 1) {
@@ -108,9 +108,9 @@ struct LaneWalk : Kernels {
                 uint base, uint k, uint old_begin, uint old_end) {
     return WalkRow(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
   }
-  uint walk_large_bucket(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k,
+  uint walk_large_bucket(uint i, vec4 pi, uint lowest, uint begin, uint end, bool fill, uint base, uint k,
                          uint old_begin, uint old_end) {
-    return WalkLarge(*this, i, pi, large, begin, end, fill, base, k, old_begin, old_end);
+    return WalkLarge(*this, i, pi, lowest, begin, end, fill, base, k, old_begin, old_end);
   }
 #undef REPOSE_KERNELS_NEIGHBOUR_H  // its guard is set: Kernels has the text already
 #include "kernels/neighbour.h"

@@ -366,12 +366,11 @@ uint walk_cells(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, 
 }
 
 // The spheres of the large bucket (sorted slots [begin, end), radii above PC.large_radius) that are
-// candidates of i: a small i owns its pairs with them, a large one those with higher ids (from
-// `lowest`; i itself is below it); within the skin; not two sides of one body or two fixed
+// candidates of i: ids from `lowest` (walk_neighbours: 0 for a small i, which owns its pairs with
+// them; past i's own for a large one), within the skin, not two sides of one body or two fixed
 // spheres. Returns the candidates counted, from k.
-uint walk_large(uint i, vec4 pi, bool large, uint begin, uint end, bool fill, uint base, uint k, uint old_begin,
+uint walk_large(uint i, vec4 pi, uint lowest, uint begin, uint end, bool fill, uint base, uint k, uint old_begin,
                 uint old_end) {
-  uint lowest = large ? global_id(i) + 1u : 0u;
   for (uint s = begin; s < end; ++s) {
     uint j = B_sorted[s];
     if (global_id(j) < lowest || !near_pair(pi, B_pos[j], PC.skin) || no_contact(i, j)) continue;
@@ -466,8 +465,8 @@ uint walk_neighbours(uint i, bool fill, uint base) {
     }
   }
   if (pairs)
-    k = walk_large_bucket(i, pi, large, B_cell_start[PC.table_size], B_cell_start[PC.table_size + 1u], fill, base, k,
-                          old_begin, old_end);
+    k = walk_large_bucket(i, pi, large ? global_id(i) + 1u : 0u, B_cell_start[PC.table_size],
+                          B_cell_start[PC.table_size + 1u], fill, base, k, old_begin, old_end);
   if (i_fixed) return k;  // a wall cannot push a fixed particle either
   return walk_walls(i, pi, ci, large, fill, base, k, old_begin, old_end);
 }
