@@ -18,6 +18,13 @@ done | sort -u | while read -r lib; do
     *) cp -L "$lib" "$dir/lib/" ;;
   esac
 done
+# The NVIDIA Vulkan driver (libGLX_nvidia) loads glvnd's dispatch library, which a bare CUDA image
+# may lack: without these, such a machine answered "no Vulkan driver found" (2026-11-27, an H200).
+for lib in libGLdispatch.so.0 libGLX.so.0; do
+  for d in /usr/lib/x86_64-linux-gnu /usr/lib64 /usr/lib; do
+    [ -e "$d/$lib" ] && { cp -L "$d/$lib" "$dir/lib/"; break; }
+  done
+done
 # The tests find their cases under the source folder compiled into them, and run the binary
 # whose path is compiled into them.
 flags=build/CMakeFiles/test_engine.dir/flags.make

@@ -6,24 +6,27 @@
 # order, and `repose bench` in both orders), `repose bench` at 1e5, 1e6 and 1e7 spheres on the
 # GPU beside the cpu backend on every core, and the scan's block passes against one workgroup.
 # the large heap (cases/large_heap: a million grains poured and their angle measured) on the GPU.
-# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--quick]
+# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--heap N] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
 #   --out:    where report.md and the raw logs go (default out/gpu-check).
 #   --only:   run only the steps whose title matches REGEX (grep -E, any case), e.g. --only 'heap|1000000 spheres'
 #             where a session's device time is short; the report lists the steps left out.
+#   --heap:   grains in the large heap (default its case's million; 100000, a tenth, ends in ~99,000
+#             steps, and its result files can be compared with the cpu backend's for the same count).
 #   --quick:  a check of this script itself on any Vulkan device (lavapipe through VK_DRIVER_FILES):
 #             the twin tests left out, 2,000-sphere beds, short runs and benches.
 # Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
 set -u
 cd "$(dirname "$0")/.."
-bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only=""
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only="" heap=1000000
 while [ $# -gt 0 ]; do
   case "$1" in
     --bundle) bundle=$2; shift 2 ;;
     --out) out=$2; shift 2 ;;
     --sizes) sizes=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
+    --heap) heap=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
   esac
@@ -37,7 +40,11 @@ report="$out/report.md"
 if [ -n "$bundle" ]; then
   bundle=$(cd "$bundle" && pwd)
   bin="$bundle/bin"
+  # The bundle's libraries, then the driver's own folder where the image keeps it out of the loader's path.
   export LD_LIBRARY_PATH="$bundle/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+  for d in /usr/local/nvidia/lib64 /usr/local/nvidia/lib; do
+    [ -d "$d" ] && LD_LIBRARY_PATH="$LD_LIBRARY_PATH:$d"
+  done
   src=$(cat "$bundle/source_dir")
   # The tests read cases from the source folder compiled into them: point it here.
   if [ "$src" != "$PWD" ] && [ ! -e "$src" ]; then mkdir -p "$(dirname "$src")" && ln -s "$PWD" "$src"; fi
@@ -143,9 +150,9 @@ if [ $quick = 1 ]; then
       cases/large_heap/large_heap.toml --set fill.0.count=2000 --backend vulkan --steps 100 --quiet \
       --overwrite --out "$out/large_heap"
 else
-  TAIL=60 step "the large heap (cases/large_heap), a million grains poured and measured" 540 "$bin/repose" \
-      experiment repose cases/large_heap/large_heap.toml --backend vulkan --profile --overwrite \
-      --out "$out/large_heap"
+  TAIL=60 step "the large heap (cases/large_heap), $heap grains poured and measured" 540 "$bin/repose" \
+      experiment repose cases/large_heap/large_heap.toml --set fill.0.count=$heap --backend vulkan --profile \
+      --overwrite --out "$out/large_heap"
 fi
 say ""
 say "Logs: $out"
