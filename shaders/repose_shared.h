@@ -171,8 +171,10 @@ REPOSE_CONST kFeatureFace = 0;
 REPOSE_CONST kFeatureEdge = 1;
 REPOSE_CONST kFeatureVertex = 2;
 // Two triangles of a mesh are coplanar (one flat patch) when |n1 . n2| reaches this (0.26 deg).
-// Spinning friction leaves relative spins below this (rad/s) alone (contact_law.h): its limiter
-// halves a spin each step, which would walk it into the denormal range that some GPUs flush.
+// Spinning friction leaves relative spins below this (rad/s) alone, and rolling torques the
+// spin's components below it (contact_law.h): spinning friction's limiter halves a spin each step,
+// and a rolling torque shrinks a small component of a stopped roll step after step, either of
+// which would walk it into the denormal range that some GPUs flush.
 #ifdef __cplusplus
 inline constexpr float kCoplanarCos = 0.99999f;
 inline constexpr float kSpinFloor = 1e-20f;

@@ -62,6 +62,16 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
          frame;
 }
 
+// A GPU's two staging buffers (one each way), which grow by doubling from 1 MiB to the largest
+// transfer, at most vk::staging_bytes() (vk::Context::staging).
+size_t staging_host_bytes(const Layout& l) {
+  size_t largest = 0;
+  for (uint32_t i = 0; i < gpu::kBindingCount; ++i) largest = std::max(largest, binding_bytes(i, l));
+  size_t most = vk::staging_bytes(), one = std::min(size_t(1) << 20, most);
+  while (one < largest && one < most) one = std::min(2 * one, most);
+  return 2 * one;
+}
+
 // The cpu backend's scratch beside the buffer table: the walk's sorted rows (Buffers::walk_rows).
 void add_cpu_scratch(MemoryNeed& need) {
   size_t bytes = gpu::walk_rows_floats(need.layout.n_particles) * sizeof(float);
@@ -79,6 +89,7 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   bool reordered = v.reorder != 0;
   need.host_bytes = host_bytes(m, need.layout, frames, reordered);
   need.device_in_host_memory = device_in_host_memory;
+  if (!device_in_host_memory) need.staging_bytes = staging_host_bytes(need.layout);
   Layout one = need.layout;
   one.capacity = 1;
   Layout none = need.layout;
@@ -87,17 +98,19 @@ MemoryNeed memory_need(const Model& m, const KernelVariant& v, uint32_t batch_st
   if (reordered && need.layout.capacity)  // its scratch row is the larger of a particle's and a contact's
     host_entry += double(order_bytes(need.layout) - order_bytes(none)) / need.layout.capacity;
   need.bytes_per_entry = host_entry + (device_in_host_memory ? double(bytes_per_contact(need.layout)) : 0.0);
-  need.bytes_per_particle =
-      (double(need.host_total()) - need.bytes_per_entry * need.layout.capacity) / std::max(1u, m.n_particles);
+  need.bytes_per_particle = (double(need.host_total() - need.staging_bytes) - need.bytes_per_entry * need.layout.capacity) /
+                            std::max(1u, m.n_particles);
   return need;
 }
 
 std::string describe_memory_need(const MemoryNeed& need) {
   char text[256];
-  std::snprintf(text, sizeof text, "needs %s (%u particles x %.0f B + %u list entries x %.0f B)",
+  std::snprintf(text, sizeof text, "needs %s (%u particles x %.0f B + %u list entries x %.0f B",
                 format_bytes(double(need.host_total())).c_str(), need.layout.n_particles, need.bytes_per_particle,
                 need.layout.capacity, need.bytes_per_entry);
   std::string line = text;
+  if (need.staging_bytes) line += " + " + format_bytes(double(need.staging_bytes)) + " of staging";
+  line += ")";
   if (!need.device_in_host_memory) line += " on the host, " + format_bytes(double(need.device_bytes)) + " on the device";
   if (need.available.bytes) line += ", " + format_bytes(double(need.available.bytes)) + " available";
   return line;

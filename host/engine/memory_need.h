@@ -25,12 +25,13 @@ struct MemoryNeed {
   Layout layout;
   size_t device_bytes = 0;         // the backend's buffers
   size_t host_bytes = 0;           // the host's copies
+  size_t staging_bytes = 0;        // a GPU's transfer buffers in host memory (vk::kStagingBytes)
   bool device_in_host_memory = true;
-  // What the run adds to this process's memory: host copies, and the buffers when they are there.
-  size_t host_total() const { return host_bytes + (device_in_host_memory ? device_bytes : 0); }
+  // What the run adds to this process's memory: host copies, staging, and the buffers when they are there.
+  size_t host_total() const { return host_bytes + staging_bytes + (device_in_host_memory ? device_bytes : 0); }
   // The same split by what it grows with (both add up to host_total()).
   double bytes_per_entry = 0;      // per contact-list entry
-  double bytes_per_particle = 0;   // per particle, the rest (buckets, bodies, walls shared out)
+  double bytes_per_particle = 0;   // per particle, the rest but staging (buckets, bodies, walls shared out)
   AvailableMemory available;       // what this process may still allocate (check_memory_fits)
 };
 

@@ -1,5 +1,6 @@
 #include "vk/buffer.h"
 
+#include <algorithm>
 #include <cstring>
 #include <utility>
 
@@ -32,9 +33,11 @@ Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, Memor
     throw_vk_error("vkAllocateMemory", r, __FILE__, __LINE__);
   }
   VK_CHECK(vkBindBufferMemory(ctx.device(), buffer_, memory_, 0));
-  // lavapipe's only memory type is device-local, host-visible and cached: map it and skip staging.
+  // lavapipe's only memory type is device-local, host-visible and cached: map it and skip staging
+  // (unless REPOSE_STAGING asks for a discrete GPU's path).
   VkMemoryPropertyFlags flags = ctx.memory_flags(ai.memoryTypeIndex);
-  if ((flags & host) == host) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
+  bool map = (flags & host) == host && !(memory == Memory::Device && staging_forced());
+  if (map) VK_CHECK(vkMapMemory(ctx.device(), memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
   cached_ = mapped_ && (flags & VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
 }
 
@@ -74,12 +77,16 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
     return;
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());  // the staging buffer is shared
-  Buffer& staging = ctx_->staging(Memory::Upload, bytes);
-  std::memcpy(staging.mapped(), data, bytes);
-  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-    VkBufferCopy region{0, offset, bytes};
-    vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
-  });
+  for (size_t done = 0; done < bytes;) {  // in pieces of at most the staging buffer's size
+    Buffer& staging = ctx_->staging(Memory::Upload, bytes - done);
+    size_t piece = std::min(bytes - done, staging.size());
+    std::memcpy(staging.mapped(), static_cast<const char*>(data) + done, piece);
+    ctx_->submit_and_wait([&](VkCommandBuffer cb) {
+      VkBufferCopy region{0, offset + done, piece};
+      vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
+    });
+    done += piece;
+  }
 }
 
 void Buffer::download(void* data, size_t bytes, size_t offset) const {
@@ -89,12 +96,16 @@ void Buffer::download(void* data, size_t bytes, size_t offset) const {
     return;
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());
-  Buffer& staging = ctx_->staging(Memory::Download, bytes);
-  ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-    VkBufferCopy region{offset, 0, bytes};
-    vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
-  });
-  std::memcpy(data, staging.mapped(), bytes);
+  for (size_t done = 0; done < bytes;) {
+    Buffer& staging = ctx_->staging(Memory::Download, bytes - done);
+    size_t piece = std::min(bytes - done, staging.size());
+    ctx_->submit_and_wait([&](VkCommandBuffer cb) {
+      VkBufferCopy region{offset + done, 0, piece};
+      vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
+    });
+    std::memcpy(static_cast<char*>(data) + done, staging.mapped(), piece);
+    done += piece;
+  }
 }
 
 }  // namespace repose::vk

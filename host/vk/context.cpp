@@ -1,6 +1,7 @@
 #include "vk/context.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -238,6 +239,7 @@ Context::Context(VkInstance instance, VkPhysicalDevice physical, const DeviceInf
     qi.queueCount = 1;
     qi.pQueuePriorities = &priority;
     rounding_ = choose_rounding(info_);
+    staging_bytes();  // a malformed REPOSE_STAGING is refused here, before anything is allocated
     VkPhysicalDeviceFeatures enabled{};
     enabled.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
     VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
@@ -283,11 +285,35 @@ uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required
   throw VulkanError("no Vulkan memory type with the required properties");
 }
 
+size_t staging_bytes() {
+  static const size_t bytes = [] {
+    const char* text = std::getenv("REPOSE_STAGING");
+    if (!text || !*text) return kStagingBytes;
+    char* end = nullptr;
+    unsigned long long v = std::strtoull(text, &end, 10);
+    if (*end || !std::isdigit(static_cast<unsigned char>(*text)) || v == 0 || v > kStagingBytes)
+      throw VulkanError(std::string("REPOSE_STAGING = '") + text + "': give the staging buffers' bytes, 1 ... " +
+                        std::to_string(kStagingBytes));
+    return size_t(v);
+  }();
+  return bytes;
+}
+
+bool staging_forced() {
+  static const bool forced = [] {
+    const char* text = std::getenv("REPOSE_STAGING");
+    return text && *text;
+  }();
+  return forced;
+}
+
 Buffer& Context::staging(Memory direction, size_t bytes) {
   std::unique_ptr<Buffer>& kept = direction == Memory::Upload ? upload_staging_ : download_staging_;
+  size_t most = staging_bytes();
+  bytes = std::min(bytes, most);
   if (!kept || kept->size() < bytes) {
-    size_t size = size_t(1) << 20;
-    while (size < bytes) size *= 2;
+    size_t size = std::min(size_t(1) << 20, most);
+    while (size < bytes) size = std::min(2 * size, most);
     kept.reset();  // free the smaller one first
     kept = std::make_unique<Buffer>(*this, size, 0, direction);
   }

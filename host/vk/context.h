@@ -33,6 +33,18 @@ struct DeviceInfo {
   std::string limits_text() const;       // one line for `repose devices` and error messages
 };
 
+// Transfers to and from device memory the host cannot map go through two host buffers (one each
+// way) of at most this many bytes, in as many copies as a transfer needs: the host's share stays
+// fixed however large the device's buffers (whole-buffer staging would take 2 x 16 GiB of pinned
+// host memory at 1e8 spheres).
+inline constexpr size_t kStagingBytes = size_t(64) << 20;
+
+// The staging buffers' size: kStagingBytes, or REPOSE_STAGING=N (bytes, 1 ... kStagingBytes), which
+// also sends every device buffer through them where the host could map it (lavapipe), so that CI
+// runs a discrete GPU's transfers, in many small copies. Throws, naming the variable, if malformed.
+size_t staging_bytes();
+bool staging_forced();
+
 class Context {
  public:
   // The device `device_index` (< 0: the first discrete GPU, else the first device, which is
@@ -80,8 +92,8 @@ class Context {
   }
   VkCommandBuffer begin_commands();
   void end_and_submit(VkCommandBuffer cb);
-  // A host buffer of at least `bytes` for transfers one way (Memory::Upload or Memory::Download),
-  // kept and grown as needed: a transfer allocates nothing.
+  // A host buffer for transfers one way (Memory::Upload or Memory::Download) of min(`bytes`,
+  // staging_bytes()) or more, kept and grown up to staging_bytes(): a transfer allocates nothing.
   Buffer& staging(Memory direction, size_t bytes);
 
  private:

@@ -47,16 +47,25 @@ struct SphereState {
   real3 w;        // angular velocity
 };
 
+// A spin with its components of at most kSpinFloor (rad/s) left out, for a rolling torque's
+// direction w / |w|: the torque's share along a small component shrinks that component step after
+// step once a roll has stopped, which would walk it into the denormals that a GPU without
+// DenormPreserve flushes (the large heap's grains on its mat, about the vertical, on an H200).
+real3 spin_above_floor(real3 w) {
+  return real3(pick(abs(w.x) > kSpinFloor, w.x, real(0.0f)), pick(abs(w.y) > kSpinFloor, w.y, real(0.0f)),
+               pick(abs(w.z) > kSpinFloor, w.z, real(0.0f)));
+}
+
 // Torque on one body of a contact: the tangential force's moment about its sphere's centre (r
 // from that centre to the contact point), plus EDEM's standard rolling torque mu_r |Fn| x lever
 // against the body's own spin when roll_arm >= 0 (lw = |w|, passed in so a gather computes it once
-// per body). The lever is r for a sphere; for a clump, |contact point - centre of mass| (EDEM) or
+// per body; the spin's components below kSpinFloor get none). The lever is r for a sphere; for a clump, |contact point - centre of mass| (EDEM) or
 // r (rolling_lever = "sphere"; centre_of_mass_lever()). The lean gather calls it again on stored
 // (n x Ft, mu_r |Fn|), so stored and recomputed torques are the same bits.
 real3 body_torque(real3 n_x_ft, real r, real roll_arm, real lever, real3 w, real lw) {
   precise real3 t = scale3(n_x_ft, -r);
   precise real k = div_rn(-(roll_arm * lever), lw);
-  precise real3 rolled = t + scale3(w, k);
+  precise real3 rolled = t + scale3(spin_above_floor(w), k);
   return pick(roll_arm >= 0.0f && lw > 0.0f, rolled, t);
 }
 
@@ -87,12 +96,13 @@ real centre_of_mass_lever(real3 cp, real3 centre, real r, cond lone) {
 // LIGGGHTS writes it: mu_r Fn_el lever w / |w| with w = w_i - w_j (a wall's spin is not
 // counted), then its component along n removed (the torque has no twist part, but |w| keeps
 // the twist spin). roll_arm = mu_r Fn_el, the elastic normal force kn dn; lever = R* for two
-// spheres, r_i - dn/2 for a wall. False (and tr zero) when the two spins are equal.
+// spheres, r_i - dn/2 for a wall. False (and tr zero) when the two spins are equal; the relative
+// spin's components below kSpinFloor get no torque (spin_above_floor()).
 cond relative_rolling(real3 w_i, real3 w_j, real roll_arm, real lever, real3 n, OUT(real3) tr) {
   precise real3 w = w_i - w_j;
   precise real lw = length3(w);
   precise real k = div_rn(-(roll_arm * lever), lw);
-  precise real3 t = scale3(w, k);
+  precise real3 t = scale3(spin_above_floor(w), k);
   precise real3 rolled = t - scale3(n, dot3(t, n));
   cond rolls = lw > 0.0f;
   tr = pick(rolls, rolled, real3(0.0f));

@@ -4,7 +4,8 @@
 // sqrt their own way: the kernels correct that (div_rn, sqrt_rn), and REPOSE_ROUNDING=test first
 // puts lavapipe's results up to 2 ULP off so that the correction runs here. A large case's scans
 // take their block passes over the whole device; REPOSE_SCAN_BLOCKS_FROM=1 makes small ones do so.
-// Either way a settling box and a clump settle give the cpu backend's state bytes.
+// A discrete GPU's memory is reached through staging buffers of at most 64 MiB, in pieces;
+// REPOSE_STAGING=N sends lavapipe's transfers that way, in pieces of N bytes. Either way a settling box and a clump settle give the cpu backend's state bytes.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -94,4 +95,26 @@ TEST_CASE("divisions and square roots put 2 ULP off and corrected give the cpu b
                                           (dir / "bad").string());
   CHECK(bad.status != 0);
   CHECK(bad.output.find("REPOSE_ROUNDING") != std::string::npos);
+}
+
+TEST_CASE("transfers through small staging buffers, in pieces, give the same bytes", "[engine][bitexact]") {
+  fs::path dir = fs::temp_directory_path() / "repose_test_staging";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // 4,099 bytes: every buffer of the settling box (2,400 spheres, 38 kB per vec4 row) goes in
+  // several pieces, cut inside its elements; the uploads of a reorder and the state read back for
+  // the state file go the same way.
+  std::string whole = state_after("settle_box.toml", "cpu", 200, 0, dir);
+  CHECK(state_after("settle_box.toml", "vulkan", 200, 0, dir, "REPOSE_STAGING=4099 ") == whole);
+  std::string clumps = state_after("cabbage_settle.toml", "cpu", 60, 0, dir);
+  CHECK(state_after("cabbage_settle.toml", "vulkan", 60, 0, dir, "REPOSE_STAGING=4099 ") == clumps);
+  for (const char* bad : {"0", "4k", "67108865"}) {
+    auto r = repose::test::run_repose_env(std::string("REPOSE_STAGING=") + bad + " ",
+                                          "run " + std::string(REPOSE_SOURCE_DIR) +
+                                              "/cases/settle_box.toml --backend vulkan --steps 1 --quiet --overwrite --out " +
+                                              (dir / "bad").string());
+    INFO(bad << ": " << r.output);
+    CHECK(r.status != 0);
+    CHECK(r.output.find("REPOSE_STAGING") != std::string::npos);
+  }
 }
