@@ -18,9 +18,10 @@ done | sort -u | while read -r lib; do
     *) cp -L "$lib" "$dir/lib/" ;;
   esac
 done
-# The NVIDIA Vulkan driver (libGLX_nvidia) loads glvnd's dispatch library, which a bare CUDA image
-# may lack: without these, such a machine answered "no Vulkan driver found" (2026-11-27, an H200).
-for lib in libGLdispatch.so.0 libGLX.so.0; do
+# The NVIDIA Vulkan driver loads glvnd's libraries, which a bare CUDA image may lack: without them
+# (libEGL too: a bundle without it failed again), such a machine answered "no Vulkan driver found"
+# (2026-11-27, an H200).
+for lib in libGLdispatch.so.0 libGLX.so.0 libEGL.so.1; do
   for d in /usr/lib/x86_64-linux-gnu /usr/lib64 /usr/lib; do
     [ -e "$d/$lib" ] && { cp -L "$d/$lib" "$dir/lib/"; break; }
   done
