@@ -1,10 +1,10 @@
 #include "engine/step_program.h"
 
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+
+#include "util/env_setting.h"
 
 namespace repose {
 
@@ -118,28 +118,13 @@ gpu::SimPush base_push(const Model& m, const Layout& l, const KernelVariant& v, 
   return p;
 }
 
-namespace {
-
-// The whole number 1 ... `most` in environment variable `name`, or `fallback` when it is unset.
-uint32_t env_limit(const char* name, uint32_t fallback, uint32_t most) {
-  const char* text = std::getenv(name);
-  if (!text || !*text) return fallback;
-  char* end = nullptr;
-  unsigned long v = std::strtoul(text, &end, 10);
-  if (*end || !std::isdigit(static_cast<unsigned char>(*text)) || v == 0 || v > most)
-    throw std::invalid_argument(std::string(name) + " = '" + text + "': give 1 ... " + std::to_string(most));
-  return static_cast<uint32_t>(v);
-}
-
-}  // namespace
-
 uint32_t max_groups_x() {
-  static const uint32_t limit = env_limit("REPOSE_MAX_GROUPS_X", gpu::kMaxGroupsX, gpu::kMaxGroupsX);
+  static const uint32_t limit = uint32_t(env_whole_number("REPOSE_MAX_GROUPS_X", gpu::kMaxGroupsX, gpu::kMaxGroupsX));
   return limit;
 }
 
 uint32_t scan_blocks_from() {
-  static const uint32_t from = env_limit("REPOSE_SCAN_BLOCKS_FROM", kScanBlocksFrom, 0xffffffffu);
+  static const uint32_t from = uint32_t(env_whole_number("REPOSE_SCAN_BLOCKS_FROM", kScanBlocksFrom, 0xffffffffu));
   return from;
 }
 

@@ -1,7 +1,6 @@
 #include "vk/context.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +10,7 @@
 #include <stdexcept>
 
 #include "repose_shared.h"
+#include "util/env_setting.h"
 #include "vk/buffer.h"
 #include "vk/vk_check.h"
 
@@ -286,16 +286,7 @@ uint32_t Context::memory_type(uint32_t type_bits, VkMemoryPropertyFlags required
 }
 
 size_t staging_bytes() {
-  static const size_t bytes = [] {
-    const char* text = std::getenv("REPOSE_STAGING");
-    if (!text || !*text) return kStagingBytes;
-    char* end = nullptr;
-    unsigned long long v = std::strtoull(text, &end, 10);
-    if (*end || !std::isdigit(static_cast<unsigned char>(*text)) || v == 0 || v > kStagingBytes)
-      throw VulkanError(std::string("REPOSE_STAGING = '") + text + "': give the staging buffers' bytes, 1 ... " +
-                        std::to_string(kStagingBytes));
-    return size_t(v);
-  }();
+  static const size_t bytes = env_whole_number("REPOSE_STAGING", kStagingBytes, kStagingBytes);
   return bytes;
 }
 
