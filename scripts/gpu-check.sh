@@ -6,7 +6,8 @@
 # order, and `repose bench` in both orders), `repose bench` at 1e5, 1e6 and 1e7 spheres on the
 # GPU beside the cpu backend on every core, and the scan's block passes against one workgroup.
 # the large heap (cases/large_heap: a million grains poured and their angle measured) on the GPU.
-# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--heap N] [--quick]
+# Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--heap N]
+#                                  [--budget SECONDS] [--quick]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
 #   --out:    where report.md and the raw logs go (default out/gpu-check).
@@ -14,12 +15,17 @@
 #             where a session's device time is short; the report lists the steps left out.
 #   --heap:   grains in the large heap (default its case's million; 100000, a tenth, ends in ~99,000
 #             steps, and its result files can be compared with the cpu backend's for the same count).
+#   --budget: stop within SECONDS: each step gets at most the time left, and the steps that find
+#             less than 15 s left are listed as left out. The whole check takes ~15 minutes on an
+#             H200 (the million-grain heap ~6 of them), more than one call of a 15-minute lease
+#             may run (10 minutes): e.g. --budget 540 --sizes 1000000 --heap 100000, then
+#             --only heap --budget 560 for the million.
 #   --quick:  a check of this script itself on any Vulkan device (lavapipe through VK_DRIVER_FILES):
 #             the twin tests left out, 2,000-sphere beds, short runs and benches.
 # Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
 set -u
 cd "$(dirname "$0")/.."
-bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only="" heap=1000000
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only="" heap=1000000 budget=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --bundle) bundle=$2; shift 2 ;;
@@ -27,6 +33,7 @@ while [ $# -gt 0 ]; do
     --sizes) sizes=$2; shift 2 ;;
     --only) only=$2; shift 2 ;;
     --heap) heap=$2; shift 2 ;;
+    --budget) budget=$2; shift 2 ;;
     --quick) quick=1; shift ;;
     *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
   esac
@@ -62,6 +69,7 @@ if [ -z "${VK_DRIVER_FILES:-}" ]; then
   done
 fi
 
+deadline=$(( $(date +%s) + budget ))
 say() { printf '%s\n' "$*" | tee -a "$report"; }
 # step TITLE SECONDS COMMAND...: runs it with a limit, keeps its log, puts its tail in the report;
 # SECONDS "always": 60 s, and never left out by --only.
@@ -73,6 +81,11 @@ step() {
     return 0
   fi
   [ "$limit" = always ] && limit=60
+  if [ "$budget" != 0 ]; then
+    local left=$(( deadline - $(date +%s) ))
+    if [ $left -lt 15 ]; then say "- left out (--budget, $left s left): $title"; return 0; fi
+    [ $left -lt $limit ] && limit=$left
+  fi
   local log="$out/$(echo "$title" | tr -c 'A-Za-z0-9_\n' '_' | tr -s _).log"
   local t0=$(date +%s)
   timeout --signal=TERM --kill-after=10 "$limit" "$@" >"$log" 2>&1
@@ -91,7 +104,7 @@ say "# Repose on a hardware GPU: $(date -u '+%Y-%m-%d %H:%M UTC')"
 say ""
 say "- version: $(git describe --always --dirty 2>/dev/null || echo unknown); binaries: $bin"
 say "- host: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(free -g | awk '/Mem:/{print $2}') GiB"
-say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}"
+say "- VK_DRIVER_FILES=${VK_DRIVER_FILES:-unset}$([ "$budget" != 0 ] && echo "; budget $budget s")"
 step "nvidia-smi" always nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv
 [ -x "$bin/vulkaninfo" ] && step "vulkaninfo --summary" always "$bin/vulkaninfo" --summary
 step "repose devices" always "$bin/repose" devices
