@@ -99,12 +99,15 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
   for (int k = 0; k < 3; ++k) info.max_groups[k] = props.properties.limits.maxComputeWorkGroupCount[k];
   info.max_allocation = maintenance3.maxMemoryAllocationSize;
   info.subgroup_size = subgroup.subgroupSize;
+  // What vk::Buffer does: device buffers take the first device-local type, and are mapped when it
+  // is host-visible and coherent (lavapipe's one type); a mappable type further down the list (a
+  // GPU's resizable BAR) is not used.
   for (uint32_t t = 0; t < mem.memoryTypeCount; ++t) {
     VkMemoryPropertyFlags f = mem.memoryTypes[t].propertyFlags;
-    if ((f & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) && (f & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) &&
-        (f & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT) &&
-        mem.memoryHeaps[mem.memoryTypes[t].heapIndex].size == info.device_local_bytes)
-      info.device_local_mappable = true;
+    if (!(f & VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)) continue;
+    info.device_local_mappable =
+        (f & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (f & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    break;
   }
   return info;
 }
@@ -173,7 +176,7 @@ std::string DeviceInfo::limits_text() const {
   char line[384];
   std::snprintf(line, sizeof line,
                 "workgroups %u x %u x %u, storage buffer range %.3g GiB, allocation %.3g GiB, %u storage buffers "
-                "per stage, subgroup %u, device-local memory %s, / and sqrt %s, denormals %s",
+                "per stage, subgroup %u, device buffers %s, / and sqrt %s, denormals %s",
                 max_groups[0], max_groups[1], max_groups[2], max_storage_range / 1073741824.0,
                 max_allocation / 1073741824.0, max_storage_buffers, subgroup_size,
                 device_local_mappable ? "mapped directly" : "reached through staging copies",

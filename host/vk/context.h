@@ -26,7 +26,7 @@ struct DeviceInfo {
   uint32_t max_groups[3] = {0, 0, 0};    // maxComputeWorkGroupCount
   uint64_t max_allocation = 0;           // maxMemoryAllocationSize
   uint32_t subgroup_size = 0;            // for the record: no kernel depends on it
-  bool device_local_mappable = false;    // a device-local type the host can map (no staging)
+  bool device_local_mappable = false;    // device buffers' memory type is host-mappable (no staging)
   bool float64 = false;                  // shaderFloat64 (the rounding correction needs it)
   bool rounds_like_ieee = false;         // / and sqrt correctly rounded (lavapipe: LLVM's own)
   bool denorm_preserve32 = false;        // shaderDenormPreserveFloat32 (vk/spirv_patch.h)
