@@ -38,6 +38,26 @@ std::string state_after(const std::string& case_file, const std::string& backend
   return slurp(state);
 }
 
+// `name`=`value` in the environment: a run refused with a message naming `name`.
+void check_refused(const std::string& name, const std::string& value, const std::string& backend = "cpu") {
+  auto r = repose::test::run_repose_env(name + "=" + value + " ",
+                                        "run " + std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml --backend " +
+                                            backend + " --steps 1 --quiet --overwrite --out " +
+                                            (fs::temp_directory_path() / "repose_test_env_bad").string());
+  INFO(name << "=" << value << ": " << r.output);
+  CHECK(r.status != 0);
+  CHECK(r.output.find(name) != std::string::npos);
+}
+
+// The settling box (200 steps) and the cabbage settle (60 steps) on lavapipe with `env`
+// ("NAME=value ") in the environment: the cpu backend's state bytes.
+void check_cpu_bytes_on_lavapipe_with(const std::string& env, const fs::path& dir) {
+  std::string whole = state_after("settle_box.toml", "cpu", 200, 0, dir);
+  CHECK(state_after("settle_box.toml", "vulkan", 200, 0, dir, env) == whole);
+  std::string clumps = state_after("cabbage_settle.toml", "cpu", 60, 0, dir);
+  CHECK(state_after("cabbage_settle.toml", "vulkan", 60, 0, dir, env) == clumps);
+}
+
 }  // namespace
 
 TEST_CASE("dispatches split into rows of workgroups give the same bytes on both backends", "[engine][bitexact]") {
@@ -62,39 +82,20 @@ TEST_CASE("dispatches split into rows of workgroups give the same bytes on both 
 }
 
 TEST_CASE("REPOSE_MAX_GROUPS_X outside 1 ... 65535 is refused by name", "[engine]") {
-  auto r = repose::test::run_repose_env("REPOSE_MAX_GROUPS_X=70000 ", "run " + std::string(REPOSE_SOURCE_DIR) +
-                                                                          "/cases/settle_box.toml --steps 1 --quiet --out " +
-                                                                          (fs::temp_directory_path() / "repose_test_rows_bad").string() +
-                                                                          " --overwrite");
-  CHECK(r.status != 0);
-  CHECK(r.output.find("REPOSE_MAX_GROUPS_X") != std::string::npos);
+  check_refused("REPOSE_MAX_GROUPS_X", "70000");
 }
 
 TEST_CASE("REPOSE_SCAN_BLOCKS_FROM that is not a whole number from 1 is refused by name", "[engine]") {
-  for (const char* bad : {"0", "-1", "8x", "99999999999"}) {
-    auto r = repose::test::run_repose_env(std::string("REPOSE_SCAN_BLOCKS_FROM=") + bad + " ",
-                                          "run " + std::string(REPOSE_SOURCE_DIR) + "/cases/settle_box.toml --steps 1 --quiet --out " +
-                                              (fs::temp_directory_path() / "repose_test_scan_bad").string() + " --overwrite");
-    INFO(bad << ": " << r.output);
-    CHECK(r.status != 0);
-    CHECK(r.output.find("REPOSE_SCAN_BLOCKS_FROM") != std::string::npos);
-  }
+  for (const char* bad : {"0", "-1", "8x", "99999999999"}) check_refused("REPOSE_SCAN_BLOCKS_FROM", bad);
 }
 
 TEST_CASE("divisions and square roots put 2 ULP off and corrected give the cpu backend's bytes", "[engine][bitexact]") {
   fs::path dir = fs::temp_directory_path() / "repose_test_rounding";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::string whole = state_after("settle_box.toml", "cpu", 200, 0, dir);
-  CHECK(state_after("settle_box.toml", "vulkan", 200, 0, dir, "REPOSE_ROUNDING=test ") == whole);
   // Clumps normalise their quaternions (a square root and four divisions per body and step).
-  std::string clumps = state_after("cabbage_settle.toml", "cpu", 60, 0, dir);
-  CHECK(state_after("cabbage_settle.toml", "vulkan", 60, 0, dir, "REPOSE_ROUNDING=test ") == clumps);
-  auto bad = repose::test::run_repose_env("REPOSE_ROUNDING=fast ", "run " + std::string(REPOSE_SOURCE_DIR) +
-                                          "/cases/settle_box.toml --backend vulkan --steps 1 --quiet --overwrite --out " +
-                                          (dir / "bad").string());
-  CHECK(bad.status != 0);
-  CHECK(bad.output.find("REPOSE_ROUNDING") != std::string::npos);
+  check_cpu_bytes_on_lavapipe_with("REPOSE_ROUNDING=test ", dir);
+  check_refused("REPOSE_ROUNDING", "fast", "vulkan");
 }
 
 TEST_CASE("transfers through small staging buffers, in pieces, give the same bytes", "[engine][bitexact]") {
@@ -104,17 +105,6 @@ TEST_CASE("transfers through small staging buffers, in pieces, give the same byt
   // 4,099 bytes: every buffer of the settling box (2,400 spheres, 38 kB per vec4 row) goes in
   // several pieces, cut inside its elements; the uploads of a reorder and the state read back for
   // the state file go the same way.
-  std::string whole = state_after("settle_box.toml", "cpu", 200, 0, dir);
-  CHECK(state_after("settle_box.toml", "vulkan", 200, 0, dir, "REPOSE_STAGING=4099 ") == whole);
-  std::string clumps = state_after("cabbage_settle.toml", "cpu", 60, 0, dir);
-  CHECK(state_after("cabbage_settle.toml", "vulkan", 60, 0, dir, "REPOSE_STAGING=4099 ") == clumps);
-  for (const char* bad : {"0", "4k", "67108865"}) {
-    auto r = repose::test::run_repose_env(std::string("REPOSE_STAGING=") + bad + " ",
-                                          "run " + std::string(REPOSE_SOURCE_DIR) +
-                                              "/cases/settle_box.toml --backend vulkan --steps 1 --quiet --overwrite --out " +
-                                              (dir / "bad").string());
-    INFO(bad << ": " << r.output);
-    CHECK(r.status != 0);
-    CHECK(r.output.find("REPOSE_STAGING") != std::string::npos);
-  }
+  check_cpu_bytes_on_lavapipe_with("REPOSE_STAGING=4099 ", dir);
+  for (const char* bad : {"0", "4k", "67108865"}) check_refused("REPOSE_STAGING", bad, "vulkan");
 }
