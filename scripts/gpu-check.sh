@@ -167,5 +167,15 @@ else
       experiment repose cases/large_heap/large_heap.toml --set fill.0.count=$heap --backend vulkan --profile \
       --overwrite --out "$out/large_heap"
 fi
+# The heap's files by hash, to compare with the cpu backend's run of the same case and count
+# (`repose experiment repose cases/large_heap/large_heap.toml --set fill.0.count=N --backend cpu`):
+# the same bytes give the same hashes (repose.json differs: it names the device and its times).
+if [ -d "$out/large_heap" ]; then
+  say ""
+  say "sha256 of the large heap's files:"
+  say '```'
+  (cd "$out/large_heap" && sha256sum -- * 2>/dev/null) | tee -a "$report" >/dev/null
+  say '```'
+fi
 say ""
 say "Logs: $out"
