@@ -21,10 +21,13 @@ done
 # The NVIDIA Vulkan driver loads glvnd's libraries, which a bare CUDA image may lack: without them
 # (libEGL too: a bundle without it failed again), such a machine answered "no Vulkan driver found"
 # (2026-11-27, an H200).
+glvnd=()
+for pkg in libglvnd0 libglx0 libegl1; do dpkg -s "$pkg" >/dev/null 2>&1 || glvnd+=("$pkg"); done
+if [ ${#glvnd[@]} -gt 0 ]; then
+  apt-get update -qq && apt-get install -y -qq --no-install-recommends "${glvnd[@]}"
+fi
 for lib in libGLdispatch.so.0 libGLX.so.0 libEGL.so.1; do
-  for d in /usr/lib/x86_64-linux-gnu /usr/lib64 /usr/lib; do
-    [ -e "$d/$lib" ] && { cp -L "$d/$lib" "$dir/lib/"; break; }
-  done
+  cp -L "/usr/lib/x86_64-linux-gnu/$lib" "$dir/lib/"
 done
 # The tests find their cases under the source folder compiled into them, and run the binary
 # whose path is compiled into them.
