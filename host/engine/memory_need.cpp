@@ -62,14 +62,11 @@ size_t host_bytes(const Model& m, const Layout& l, bool frames, bool reordered) 
          frame;
 }
 
-// A GPU's two staging buffers (one each way), which grow by doubling from 1 MiB to the largest
-// transfer, at most vk::staging_bytes() (vk::Context::staging).
+// A GPU's two staging buffers (one each way), as large as the largest transfer makes them.
 size_t staging_host_bytes(const Layout& l) {
   size_t largest = 0;
   for (uint32_t i = 0; i < gpu::kBindingCount; ++i) largest = std::max(largest, binding_bytes(i, l));
-  size_t most = vk::staging_bytes(), one = std::min(size_t(1) << 20, most);
-  while (one < largest && one < most) one = std::min(2 * one, most);
-  return 2 * one;
+  return 2 * vk::staging_size_for(largest);
 }
 
 // The cpu backend's scratch beside the buffer table: the walk's sorted rows (Buffers::walk_rows).

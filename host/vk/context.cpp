@@ -301,15 +301,17 @@ bool staging_forced() {
   return forced;
 }
 
+size_t staging_size_for(size_t bytes) {
+  size_t most = staging_bytes(), size = std::min(size_t(1) << 20, most);
+  while (size < bytes && size < most) size = std::min(2 * size, most);
+  return size;
+}
+
 Buffer& Context::staging(Memory direction, size_t bytes) {
   std::unique_ptr<Buffer>& kept = direction == Memory::Upload ? upload_staging_ : download_staging_;
-  size_t most = staging_bytes();
-  bytes = std::min(bytes, most);
-  if (!kept || kept->size() < bytes) {
-    size_t size = std::min(size_t(1) << 20, most);
-    while (size < bytes) size = std::min(2 * size, most);
+  if (!kept || kept->size() < std::min(bytes, staging_bytes())) {
     kept.reset();  // free the smaller one first
-    kept = std::make_unique<Buffer>(*this, size, 0, direction);
+    kept = std::make_unique<Buffer>(*this, staging_size_for(bytes), 0, direction);
   }
   return *kept;
 }

@@ -44,6 +44,9 @@ inline constexpr size_t kStagingBytes = size_t(64) << 20;
 // runs a discrete GPU's transfers, in many small copies. Throws, naming the variable, if malformed.
 size_t staging_bytes();
 bool staging_forced();
+// The size of a staging buffer made for a transfer of `bytes`: doubling from 1 MiB until it holds
+// them, at most staging_bytes() (Context::staging; the memory a run needs counts two).
+size_t staging_size_for(size_t bytes);
 
 class Context {
  public:
