@@ -165,8 +165,46 @@ HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint f
   if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
 }
 
+// The plane walls of a batch, a row per lane (wall_row: where a moving wall stands this step),
+// measured in the batch's lanes by the shared text (plane_contact, wall_geometry), which is what
+// touch_wall does one contact at a time. Taken without bodies (a clump's centre-of-mass levers are
+// measured for pairs only).
+struct PlaneLanes {
+  M at;  // the lanes whose partner is a plane wall
+  V4 point, normal, vel, omega, centre;
+  VI material;
+};
+HWY_INLINE bool planes_in_lanes(uint flags) { return (flags & kFlagBodies) == 0u; }
+HWY_INLINE cond no_lanes() { return {hn::FirstN(D(), 0)}; }
+
+// The plane lanes' geometry, relative velocity and touching in place of the pair's.
+HWY_INLINE void measure_planes(LaneLaw& law, const PlaneLanes& q, const LaneLaw::SphereState& si, uint flags,
+                               LaneLaw::ContactGeometry& g, real3& v_rel, cond& t) {
+  real overlap;
+  const real3 n = q.normal.xyz();
+  const cond near = law.plane_contact(si.x, si.radius, q.point.xyz(), n, 0.0f, overlap);
+  LaneLaw::ContactGeometry gw;
+  real3 vw;
+  law.wall_geometry(si, n, overlap, q.vel.xyz(), q.omega.xyz(), q.centre.xyz(), flags, gw, vw);
+  const cond wall{q.at};
+  g.n = pick(wall, gw.n, g.n);
+  g.overlap = pick(wall, gw.overlap, g.overlap);
+  g.radius_star = pick(wall, gw.radius_star, g.radius_star);
+  g.mass_star = pick(wall, gw.mass_star, g.mass_star);
+  g.ri = pick(wall, gw.ri, g.ri);
+  g.rj = pick(wall, gw.rj, g.rj);
+  g.lever_i = pick(wall, gw.lever_i, g.lever_i);
+  g.lever_j = pick(wall, gw.lever_j, g.lever_j);
+  g.cohesion_lens = pick(wall, gw.cohesion_lens, g.cohesion_lens);
+  v_rel = pick(wall, vw, v_rel);
+  const cond touches = near && overlap > 0.0f;  // touch_wall's test
+  t = cond{hn::Or(hn::And(q.at, touches.m), hn::AndNot(q.at, t.m))};
+}
+
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
-HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at) {
+// With `planes`, its lanes are contacts with plane walls (p_at holds their owners there).
+HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at,
+                                const PlaneLanes* planes = nullptr) {
   const DI di;
   LaneLaw law;
   const uint flags = k.PC.flags;
@@ -187,6 +225,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
+  if (planes != nullptr) measure_planes(law, *planes, si, flags, g, v_rel, t);
   if (hn::AllFalse(D(), t.m)) return store_entries(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
@@ -203,8 +242,12 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
     mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at)));
     mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at)));
   }
+  if (planes != nullptr) mj = hn::IfThenElse(hn::RebindMask(di, planes->at), planes->material, mj);
   real3 shear = hist.xyz();
-  LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
+  // A wall's spin is not j's: touch_wall gives the law none.
+  const cond wall = planes != nullptr ? cond{planes->at} : no_lanes();
+  const real3 w_j = planes != nullptr ? zero_unless(!wall, sj.w) : sj.w;
+  LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, w_j, wall, gather_params(k, mi, mj), k.PC.dt, flags, shear);
   store_entries(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
 }
 
@@ -258,7 +301,7 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
   g.cohesion_lens = q.at(WallBatch::Lens);
   real3 shear = q.at3(WallBatch::Hx);
   VI mi = hn::LoadU(DI(), q.mi), mj = hn::LoadU(DI(), q.mj);
-  LaneLaw::ContactOut o = law.hertz_mindlin(g, q.at3(WallBatch::Vx), q.at3(WallBatch::Wx), real3(0.0f), true,
+  LaneLaw::ContactOut o = law.hertz_mindlin(g, q.at3(WallBatch::Vx), q.at3(WallBatch::Wx), real3(0.0f), !no_lanes(),
                                             gather_params(k, mi, mj), k.PC.dt, flags, shear);
   alignas(64) vec4 history[HWY_LANES(float)], force[HWY_LANES(float)], ti[HWY_LANES(float)], tj[HWY_LANES(float)];
   store4(history, shear.x, shear.y, shear.z, q.at(WallBatch::Hw) + 1.0f);
@@ -281,11 +324,47 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
   q.n = 0;
 }
 
+// The rows of the batch's plane walls (`row`, each lane's; `planes`, their lanes' bits). Mostly
+// one wall (an owner by the floor): its rows are broadcast; otherwise each lane's joined, a lane
+// that is not a plane's taking the first plane's, which its pick ignores.
+PlaneLanes plane_rows(const Kernels& k, const uint* row, uint64_t planes) {
+  uint8_t bits[8] = {};
+  std::memcpy(bits, &planes, sizeof(bits));
+  const M at = hn::LoadMaskBits(D(), bits);
+  const uint first = row[__builtin_ctzll(planes)];
+  bool one = true;
+  for (uint64_t b = planes; b != 0; b &= b - 1) one = one && row[__builtin_ctzll(b)] == first;
+  if (one) {
+    const WallState& w = k.B_walls[first];
+    return {at, same_row(w.p0), same_row(w.p1), same_row(w.vel), same_row(w.omega), same_row(w.centre),
+            hn::Set(DI(), int32_t(w.info.y))};
+  }
+  constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
+  static_assert(sizeof(WallState) % sizeof(vec4) == 0, "a WallState is whole vec4 rows");
+  const size_t L = hn::Lanes(D());
+  uint index[HWY_LANES(float)];
+  alignas(64) int32_t material[HWY_LANES(float)];
+  for (size_t l = 0; l < L; ++l) {
+    const uint r = (planes >> l) & 1u ? row[l] : first;
+    index[l] = r * kRow;
+    material[l] = int32_t(k.B_walls[r].info.y);
+  }
+  const vec4* walls = reinterpret_cast<const vec4*>(k.B_walls);
+  auto field = [&](size_t offset) { return rows(walls + offset / sizeof(vec4), index); };
+  return {at,
+          field(offsetof(WallState, p0)),
+          field(offsetof(WallState, p1)),
+          field(offsetof(WallState, vel)),
+          field(offsetof(WallState, omega)),
+          field(offsetof(WallState, centre)),
+          hn::Load(DI(), material)};
+}
+
 // A batch with walls (they sort last in a row): its particle pairs in lanes, the walls' lanes run
-// as a contact of the owner with itself (centres coincide: not touching) with their history kept
-// aside; then each wall contact is measured, stored as apart or added to the wall batch. A bed's
-// mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few: only
-// those are visited, and the owner's material is read only when particles' materials differ.
+// as a contact of the owner with itself (centres coincide: not touching). Plane walls are then
+// measured in those lanes (measure_planes); any other wall's lane keeps its history aside, and
+// after the lanes each such contact is measured, stored as apart or added to the wall batch. A
+// bed's mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few.
 void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& walls) {
   const DI di;
   const size_t L = hn::Lanes(di);
@@ -295,14 +374,27 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
             reinterpret_cast<int32_t*>(partner));
   uint8_t bits[8] = {};
   hn::StoreMaskBits(di, wall_lanes, bits);
-  uint64_t lanes = 0;
+  uint64_t lanes = 0, planes = 0;
   std::memcpy(&lanes, bits, (L + 7) / 8);
+  uint row[HWY_LANES(float)];
+  if (planes_in_lanes(k.PC.flags))
+    for (uint64_t b = lanes; b != 0; b &= b - 1) {
+      const size_t l = __builtin_ctzll(b);
+      row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
+      if (k.B_walls[row[l]].info.x == kWallPlane) planes |= uint64_t(1) << l;
+    }
+  lanes &= ~planes;  // the walls measured one by one
   vec4 history[HWY_LANES(float)];
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     history[l] = k.B_history[c + l];
   }
-  particle_lanes(k, c, k.B_owner + c, partner);
+  if (planes != 0) {
+    const PlaneLanes rows = plane_rows(k, row, planes);
+    particle_lanes(k, c, k.B_owner + c, partner, &rows);
+  } else {
+    particle_lanes(k, c, k.B_owner + c, partner);
+  }
   const int32_t one = one_material(k);
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
@@ -403,7 +495,7 @@ HWY_FLATTEN void LawOnly(Kernels& k, uint64_t batches, float* sink) {
       real3 shear = hist.xyz();
       VI mi = hn::Load(DI(), q.mi), mj = hn::Load(DI(), q.mj);
       LaneLaw::ContactOut o =
-          law.hertz_mindlin(g, v_rel, si.w, sj.w, false, gather_params(k, mi, mj), k.PC.dt, flags, shear);
+          law.hertz_mindlin(g, v_rel, si.w, sj.w, no_lanes(), gather_params(k, mi, mj), k.PC.dt, flags, shear);
       e = entry_rows(t, flags, hist, shear, o, g);
     }
     const V4* rows[4] = {&e.history, &e.force, &e.third, &e.torque_j};

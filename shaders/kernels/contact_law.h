@@ -175,6 +175,38 @@ cond touching_spheres(SphereState i, SphereState j, uint flags, OUT(ContactGeome
   return overlap > 0.0f && dist > 0.0f;
 }
 
+// A sphere (centre x, radius r) against the plane through `point` with unit normal `normal`
+// (walls.h, a plane wall): its overlap, and whether its centre lies within r + margin of the
+// plane on either side.
+cond plane_contact(real3 x, real r, real3 point, real3 normal, float margin, OUT(real) overlap) {
+  precise real3 rel = x - point;
+  precise real dist = dot3(rel, normal);
+  overlap = r - dist;
+  return dist < r + margin && dist > -r - margin;
+}
+
+// Sphere i against a wall that it touches at unit normal n (from the wall towards i) with this
+// overlap, as touching_spheres() gives a pair: R* = R_i, m* = m_i, rj = 0. The wall's surface
+// moves at vel + omega x (p - centre), its prescribed motion (WallState).
+void wall_geometry(SphereState i, real3 n, real overlap, real3 vel, real3 omega, real3 centre, uint flags,
+                   OUT(ContactGeometry) g, OUT(real3) v_rel) {
+  precise real ri = i.radius - 0.5f * overlap;
+  precise real mass_star = div_rn(1.0f, i.inv_mass);
+  precise real3 arm = contact_point(i.x, n, ri) - centre;
+  precise real3 v_wall = vel + cross3(omega, arm);
+  precise real3 surface_velocity = (i.v - v_wall) - cross3(scale3(i.w, ri), n);
+  v_rel = surface_velocity;
+  g.n = n;
+  g.overlap = overlap;
+  g.radius_star = i.radius;
+  g.mass_star = mass_star;
+  g.ri = ri;
+  g.rj = 0.0f;
+  g.lever_i = ri;
+  g.lever_j = 0.0f;
+  g.cohesion_lens = cohesion_lens(flags, i.radius, 0.0f, 0.0f, overlap, true);
+}
+
 // A stored spring (tangential or rolling) turned into the current tangent plane, its length kept.
 real3 turn_into_tangent_plane(real3 s, real3 n) {
   precise real old_sq = dot3(s, s);
@@ -237,23 +269,23 @@ real3 spinning_friction_torque(real3 n, real3 w_i, real3 w_j, real mu_spin, real
 // the tangential force's moment about each sphere's centre, and the rolling torque, EDEM's
 // against each body's own spin (lever lever_i, lever_j) or LIGGGHTS cdt's against the relative
 // spin (relative_rolling()).
-void contact_torques(ContactGeometry g, real3 w_i, real3 w_j, bool j_is_wall, uint flags, INOUT(ContactOut) o) {
+void contact_torques(ContactGeometry g, real3 w_i, real3 w_j, cond j_is_wall, uint flags, INOUT(ContactOut) o) {
   bool relative = (flags & kFlagRollingRelativeOmega) != 0u;
   real arm = o.roll_arm;
   real own_arm = relative ? real(-1.0f) : arm;
-  real arm_j = j_is_wall ? real(-1.0f) : own_arm;
+  real arm_j = pick(j_is_wall, real(-1.0f), own_arm);
   precise real lw_i = pick(own_arm >= 0.0f, length3(w_i), 0.0f);
   precise real lw_j = pick(arm_j >= 0.0f, length3(w_j), 0.0f);
   o.torque_i = body_torque(o.n_x_ft, g.ri, own_arm, g.lever_i, w_i, lw_i);
   o.torque_j = body_torque(o.n_x_ft, g.rj, arm_j, g.lever_j, w_j, lw_j);
   if (!relative) return;
-  real lever = j_is_wall ? g.ri : g.radius_star;
+  real lever = pick(j_is_wall, g.ri, g.radius_star);
   real3 tr;
   cond rolls = relative_rolling(w_i, w_j, arm, lever, g.n, tr) && arm >= 0.0f;
   precise real3 rolled_i = o.torque_i + tr;
   precise real3 rolled_j = o.torque_j - tr;
   o.torque_i = pick(rolls, rolled_i, o.torque_i);
-  if (!j_is_wall) o.torque_j = pick(rolls, rolled_j, o.torque_j);
+  o.torque_j = pick(rolls && !j_is_wall, rolled_j, o.torque_j);
 }
 
 // The tangential force: the stored spring turned into the tangent plane and stretched by v_t dt,
@@ -285,7 +317,7 @@ real3 tangential_force(real3 v_t, real3 n, real st, real gamma_t, real ft_max, f
   return pick(slips, capped, ft);
 }
 
-ContactOut hertz_mindlin(ContactGeometry g, real3 v_rel, real3 w_i, real3 w_j, bool j_is_wall, PairParams pp,
+ContactOut hertz_mindlin(ContactGeometry g, real3 v_rel, real3 w_i, real3 w_j, cond j_is_wall, PairParams pp,
                          float dt, uint flags, INOUT(real3) shear) {
   ContactOut o;
   real3 n = g.n;

@@ -80,10 +80,7 @@ bool touch_particle(uint i, uint p, OUT(ContactState) s) {
 
 // Contact of particle i with wall row p - n_particles (contact c): false when not touching.
 bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
-  vec4 pi = B_pos[i];
-  vec4 vi = B_vel[i];
-  vec3 xi = xyz(pi);
-  float rad_i = pi.w;
+  SphereState si = sphere_state(i);
   WallState ws = wall_at(p - PC.n_particles);
   s.mj = ws.info.y;
   s.wj = vec3(0.0f);
@@ -91,28 +88,14 @@ bool touch_wall(uint i, uint c, uint p, OUT(ContactState) s) {
   uint feature = kFeatureFace;
   vec3 n;
   float overlap;
-  bool touching = wall_contact_feature(ws, xi, rad_i, 0.0f, n, overlap, feature) && overlap > 0.0f;
+  bool touching = wall_contact_feature(ws, si.x, si.radius, 0.0f, n, overlap, feature) && overlap > 0.0f;
   if (touching && wall_kind_possible(kWallTriangle) && ws.info.x == kWallTriangle)
-    touching = !mesh_contact_shadowed(i, c, ws, p - PC.n_particles, xi, rad_i, overlap, feature);
+    touching = !mesh_contact_shadowed(i, c, ws, p - PC.n_particles, si.x, si.radius, overlap, feature);
   if (!touching) return false;
-  vec3 wi = xyz(B_omega[i]);
-  precise float ri = rad_i - 0.5f * overlap;
-  precise float mass_star = div_rn(1.0f, vi.w);
-  precise vec3 v_wall = wall_point_velocity(ws, contact_point(xi, n, ri));
-  precise vec3 v_rel = (xyz(vi) - v_wall) - cross3(scale3(wi, ri), n);
-  precise float inv_inertia_r = div_rn(vi.w, 1.4f * (ri * ri));
-  s.g.n = n;
-  s.g.overlap = overlap;
-  s.g.radius_star = rad_i;
-  s.g.mass_star = mass_star;
-  s.g.ri = ri;
-  s.g.rj = 0.0f;
-  s.g.lever_i = ri;
-  s.g.lever_j = 0.0f;
-  s.g.cohesion_lens = cohesion_lens(PC.flags, rad_i, 0.0f, 0.0f, overlap, true);
-  s.v_rel = v_rel;
+  wall_geometry(si, n, overlap, xyz(ws.vel), xyz(ws.omega), xyz(ws.centre), PC.flags, s.g, s.v_rel);
+  precise float inv_inertia_r = div_rn(si.inv_mass, 1.4f * (s.g.ri * s.g.ri));
   s.inv_inertia_r = inv_inertia_r;
-  set_rolling_levers(i, p, xi, true, s.g);
+  set_rolling_levers(i, p, si.x, true, s.g);
   return true;
 }
 

@@ -7,11 +7,12 @@
 // (uploaded once: a wall without motion never changes); a wall with a prescribed motion
 // (topo.w = 1 + its place among them) has a row per step of the batch after those, uploaded with
 // each batch, so a 20,000-triangle mesh is not sent again for every step a gate slides.
-WallState wall_at(uint w) {
+uint wall_row(uint w) {
   uint moving = B_walls[w].topo.w;
-  if (moving == 0u) return B_walls[w];
-  return B_walls[PC.n_walls + PC.wall_slot * PC.n_moving_walls + (moving - 1u)];
+  if (moving == 0u) return w;
+  return PC.n_walls + PC.wall_slot * PC.n_moving_walls + (moving - 1u);
 }
+WallState wall_at(uint w) { return B_walls[wall_row(w)]; }
 
 // Closest point to p on triangle (a, b, c) and its feature (kFeatureFace/Edge/Vertex): Ericson,
 // Real-Time Collision Detection 5.1.5, the float twin of host/geometry/closest_point.cpp.
@@ -84,10 +85,8 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
   vec3 dir = xyz(ws.p1);
   uint type = ws.info.x;
   if (type == kWallPlane) {
-    precise float dist = dot3(rel, dir);
     n = dir;
-    overlap = r - dist;
-    return dist < r + margin && dist > -r - margin;
+    return plane_contact(x, r, xyz(ws.p0), dir, margin, overlap);
   }
   if (wall_kind_possible(kWallRectangle) && type == kWallRectangle) {
     // One-sided like a plane inside the rectangle; beyond it the nearest boundary point (edge or
@@ -176,13 +175,6 @@ bool mesh_contact_shadowed(uint i, uint c, WallState ws, uint w, vec3 x, float r
     if (overlap2 > overlap || (overlap2 == overlap && w2 < w)) return true;
   }
   return false;
-}
-
-// Velocity of the wall's surface at point p (prescribed translation and rotation).
-vec3 wall_point_velocity(WallState ws, vec3 p) {
-  precise vec3 arm = p - xyz(ws.centre);
-  precise vec3 v = xyz(ws.vel) + cross3(xyz(ws.omega), arm);
-  return v;
 }
 
 #endif
