@@ -167,14 +167,12 @@ HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint f
 
 // The plane walls of a batch, a row per lane (wall_row: where a moving wall stands this step),
 // measured in the batch's lanes by the shared text (plane_contact, wall_geometry), which is what
-// touch_wall does one contact at a time. Taken without bodies (a clump's centre-of-mass levers are
-// measured for pairs only).
+// touch_wall does one contact at a time.
 struct PlaneLanes {
   M at;  // the lanes whose partner is a plane wall
   V4 point, normal, vel, omega, centre;
   VI material;
 };
-HWY_INLINE bool planes_in_lanes(uint flags) { return (flags & kFlagBodies) == 0u; }
 HWY_INLINE cond no_lanes() { return {hn::FirstN(D(), 0)}; }
 
 // The plane lanes' geometry, relative velocity and touching in place of the pair's.
@@ -230,7 +228,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
     g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
-    g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);
+    g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);  // a wall's lane: unread (its arm_j is -1)
   }
   V4 hist;
   hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
@@ -377,12 +375,11 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
   uint64_t lanes = 0, planes = 0;
   std::memcpy(&lanes, bits, (L + 7) / 8);
   uint row[HWY_LANES(float)];
-  if (planes_in_lanes(k.PC.flags))
-    for (uint64_t b = lanes; b != 0; b &= b - 1) {
-      const size_t l = __builtin_ctzll(b);
-      row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
-      if (k.B_walls[row[l]].info.x == kWallPlane) planes |= uint64_t(1) << l;
-    }
+  for (uint64_t b = lanes; b != 0; b &= b - 1) {
+    const size_t l = __builtin_ctzll(b);
+    row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
+    if (k.B_walls[row[l]].info.x == kWallPlane) planes |= uint64_t(1) << l;
+  }
   lanes &= ~planes;  // the walls measured one by one
   vec4 history[HWY_LANES(float)];
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
