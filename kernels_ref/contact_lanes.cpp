@@ -165,7 +165,8 @@ HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint f
   if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
 }
 
-// The plane walls of a batch, a row per lane (wall_row: where a moving wall stands this step),
+// The plane walls of a batch (and rectangles whose face the owner lies over: plane_at), a row per
+// lane (wall_row: where a moving wall stands this step),
 // measured in the batch's lanes by the shared text (plane_contact, wall_geometry), which is what
 // touch_wall does one contact at a time.
 struct PlaneLanes {
@@ -358,6 +359,11 @@ PlaneLanes plane_rows(const Kernels& k, const uint* row, uint64_t planes) {
           hn::Load(DI(), material)};
 }
 
+// Whether wall w is a plane for particle i: a plane, or a rectangle whose face i lies over.
+HWY_INLINE bool plane_at(Kernels& k, const WallState& w, uint i) {
+  return w.info.x == kWallPlane || (w.info.x == kWallRectangle && k.over_rectangle_face(w, vec3(k.B_pos[i])));
+}
+
 // A batch with walls (they sort last in a row): its particle pairs in lanes, the walls' lanes run
 // as a contact of the owner with itself (centres coincide: not touching). Plane walls are then
 // measured in those lanes (measure_planes); any other wall's lane keeps its history aside, and
@@ -378,7 +384,7 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
-    if (k.B_walls[row[l]].info.x == kWallPlane) planes |= uint64_t(1) << l;
+    if (plane_at(k, k.B_walls[row[l]], k.B_owner[c + l])) planes |= uint64_t(1) << l;
   }
   lanes &= ~planes;  // the walls measured one by one
   vec4 history[HWY_LANES(float)];

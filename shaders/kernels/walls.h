@@ -63,6 +63,15 @@ vec3 closest_on_triangle(vec3 p, vec3 a, vec3 b, vec3 c, OUT(uint) feature) {
   return q;
 }
 
+// Whether x lies over rectangle ws's face (within its half extents along u and v): there the
+// rectangle is the plane through its centre (plane_contact), as the contact lanes take it.
+bool over_rectangle_face(WallState ws, vec3 x) {
+  precise vec3 rel = x - xyz(ws.p0);
+  precise float su = dot3(rel, xyz(ws.p2));
+  precise float sv = dot3(rel, xyz(ws.p3));
+  return abs(su) <= ws.p2.w && abs(sv) <= ws.p3.w;
+}
+
 // Contact with a point q of a wall's edge or corner: normal from q to the centre.
 bool point_contact(vec3 x, vec3 q, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
   precise vec3 d = x - q;
@@ -91,14 +100,13 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
   if (wall_kind_possible(kWallRectangle) && type == kWallRectangle) {
     // One-sided like a plane inside the rectangle; beyond it the nearest boundary point (edge or
     // corner), seen from the front side only, so a sphere rolls off the plate's edge.
+    if (over_rectangle_face(ws, x)) {
+      n = dir;
+      return plane_contact(x, r, xyz(ws.p0), dir, margin, overlap);
+    }
     precise float h = dot3(rel, dir);
     precise float su = dot3(rel, xyz(ws.p2));
     precise float sv = dot3(rel, xyz(ws.p3));
-    if (abs(su) <= ws.p2.w && abs(sv) <= ws.p3.w) {
-      n = dir;
-      overlap = r - h;
-      return h < r + margin && h > -r - margin;
-    }
     // A candidate (margin > 0) just beyond the edge but behind the plane can move over the face
     // before the next rebuild and touch it there: keep it, or results would depend on the skin.
     bool near_face = abs(su) <= ws.p2.w + margin && abs(sv) <= ws.p3.w + margin;

@@ -2,6 +2,7 @@
 // mirrors, for every combination of the options the lanes take: same bytes in every output.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <string_view>
@@ -16,10 +17,11 @@ namespace {
 
 // Random particles, bodies, material pairs and contacts: touching and not, coincident centres,
 // zero and non-zero spins and histories, pairs with each extension off and on, two plane walls
-// (the floor z = 5 mm; a tilted lid sliding and turning, of another material) and a cylinder as the
-// partners of some contacts, in runs of lanes and alone, planes and the cylinder in one batch (the
-// lanes measure plane walls in the batch's lanes, and run the law of a batch of other walls'
-// contacts together, and of the last few at the end), runs of lanes whose pairs are all apart (the
+// (the floor z = 5 mm; a tilted lid sliding and turning, of another material), a cylinder and a
+// rectangle (a plate facing down, touched on its face and at its edges) as the partners of some
+// contacts, in runs of lanes and alone, all four kinds in one batch (the lanes measure plane walls
+// and a rectangle's face in the batch's lanes, and run the law of a batch of other wall contacts
+// together, and of the last few at the end), runs of lanes whose pairs are all apart (the
 // lanes then store zeros without the law), runs whose owners are a few consecutive slots, and a
 // touching run whose owners and partners each belong to one body (their rows then load once).
 struct Scene {
@@ -86,6 +88,13 @@ struct Scene {
     drum.p1 = vec4(0.0f, 0.0f, 1.0f, 0.012f);
     drum.vel = vec4(0.0f, 0.0f, 0.0f, 0.03f);
     walls.push_back(drum);
+    WallState plate{};  // a square plate facing down over the middle: face lanes and edge lanes
+    plate.info = uvec4(kWallRectangle, 0u, 0u, 0u);
+    plate.p0 = vec4(0.015f, 0.015f, 0.025f, 0.0f);
+    plate.p1 = vec4(0.0f, 0.0f, -1.0f, 0.0f);
+    plate.p2 = vec4(1.0f, 0.0f, 0.0f, 0.008f);
+    plate.p3 = vec4(0.0f, 1.0f, 0.0f, 0.008f);
+    walls.push_back(plate);
     for (uint c = 0; c < n_contacts; ++c) {
       uint i = pick(n_particles), j = pick(n_particles);
       if (j == i) j = (i + 1u) % n_particles;
@@ -100,6 +109,7 @@ struct Scene {
       if (c % 23u == 0u || (c >= 200u && c < 216u)) j = n_particles;  // the floor
       if (c % 31u == 0u || (c >= 400u && c < 420u)) j = n_particles + 1u;  // the lid
       if (c % 37u == 0u || (c >= 212u && c < 216u)) j = n_particles + 2u;  // the drum, beside the floor
+      if ((c % 11u == 5u && j < n_particles) || (c >= 216u && c < 220u)) j = n_particles + 3u;  // the plate, beside both
       if (c >= 304u && c < 336u) i = 2u, j = 3u;
       if (c >= 600u && c < 632u) i = 96u, j = 97u;  // touching, one body each side for the whole batch,
       if (c == 631u) i = 99u;  // then for all but the last lane's owner
@@ -201,12 +211,19 @@ TEST_CASE("contact kernel in SIMD lanes: the scalar kernel's bytes for every opt
   CHECK(touching_contacts > 100);
   CHECK(touching_contacts < int(o.force.size()) - 100);
   // ... and the wall contacts fill more than one batch of lanes, each wall some of them.
-  int on_wall[3] = {0, 0, 0};
+  int on_wall[4] = {0, 0, 0, 0}, plate_face = 0;
   for (size_t c = 0; c < o.force.size(); ++c)
-    if (many.partner[c] >= many.pos.size() && o.force[c].x != 0.0f) ++on_wall[many.partner[c] - many.pos.size()];
+    if (many.partner[c] >= many.pos.size() && o.force[c].x != 0.0f) {
+      const size_t w = many.partner[c] - many.pos.size();
+      ++on_wall[w];
+      const vec4 x = many.pos[many.owner[c]];
+      if (w == 3u && std::abs(x.x - 0.015f) <= 0.008f && std::abs(x.y - 0.015f) <= 0.008f) ++plate_face;
+    }
   CHECK(on_wall[0] >= 5);
   CHECK(on_wall[1] >= 5);
   CHECK(on_wall[2] >= 5);
+  CHECK(plate_face >= 3);                 // touched on its face (in the lanes) ...
+  CHECK(on_wall[3] - plate_face >= 3);    // ... and at its edges (one by one)
   CHECK(on_wall[0] + on_wall[1] > 16);
 }
 
