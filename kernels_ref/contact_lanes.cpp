@@ -165,23 +165,36 @@ HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint f
   if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
 }
 
-// The plane walls of a batch (and rectangles whose face the owner lies over: plane_at), a row per
-// lane (wall_row: where a moving wall stands this step),
-// measured in the batch's lanes by the shared text (plane_contact, wall_geometry), which is what
-// touch_wall does one contact at a time.
-struct PlaneLanes {
-  M at;  // the lanes whose partner is a plane wall
+// The walls of a batch measured in its lanes (planes, rectangles whose face the owner lies over,
+// cylinders: lane_wall), a row per lane (wall_row: where a moving wall stands this step), by the
+// shared text (plane_contact, cylinder_contact, wall_geometry) that touch_wall runs one contact at a
+// time. A cylinder's rows are a plane's: base and axis in point and normal, radius normal.w,
+// height vel.w.
+struct LaneWalls {
+  M at;        // the lanes whose partner is such a wall
+  M cylinder;  // those of them that are cylinders
+  bool any_cylinder;
   V4 point, normal, vel, omega, centre;
   VI material;
 };
 HWY_INLINE cond no_lanes() { return {hn::FirstN(D(), 0)}; }
 
-// The plane lanes' geometry, relative velocity and touching in place of the pair's.
-HWY_INLINE void measure_planes(LaneLaw& law, const PlaneLanes& q, const LaneLaw::SphereState& si, uint flags,
-                               LaneLaw::ContactGeometry& g, real3& v_rel, cond& t) {
+// The wall lanes' geometry, relative velocity and touching in place of the pair's.
+HWY_INLINE void measure_walls(LaneLaw& law, const LaneWalls& q, const LaneLaw::SphereState& si, uint flags,
+                              LaneLaw::ContactGeometry& g, real3& v_rel, cond& t) {
   real overlap;
-  const real3 n = q.normal.xyz();
-  const cond near = law.plane_contact(si.x, si.radius, q.point.xyz(), n, 0.0f, overlap);
+  real3 n = q.normal.xyz();
+  cond near = law.plane_contact(si.x, si.radius, q.point.xyz(), n, 0.0f, overlap);
+  if (q.any_cylinder) {
+    real3 n_c;
+    real overlap_c;
+    const cond near_c = law.cylinder_contact(si.x, si.radius, q.point.xyz(), q.normal.xyz(), real(q.normal.w),
+                                             real(q.vel.w), 0.0f, n_c, overlap_c);
+    const cond cylinder{q.cylinder};
+    n = pick(cylinder, n_c, n);
+    overlap = pick(cylinder, overlap_c, overlap);
+    near = (cylinder && near_c) || (!cylinder && near);
+  }
   LaneLaw::ContactGeometry gw;
   real3 vw;
   law.wall_geometry(si, n, overlap, q.vel.xyz(), q.omega.xyz(), q.centre.xyz(), flags, gw, vw);
@@ -201,9 +214,9 @@ HWY_INLINE void measure_planes(LaneLaw& law, const PlaneLanes& q, const LaneLaw:
 }
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
-// With `planes`, its lanes are contacts with plane walls (p_at holds their owners there).
+// With `walls`, its lanes are contacts with those walls (p_at holds their owners there).
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at,
-                                const PlaneLanes* planes = nullptr) {
+                                const LaneWalls* walls = nullptr) {
   const DI di;
   LaneLaw law;
   const uint flags = k.PC.flags;
@@ -224,7 +237,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
-  if (planes != nullptr) measure_planes(law, *planes, si, flags, g, v_rel, t);
+  if (walls != nullptr) measure_walls(law, *walls, si, flags, g, v_rel, t);
   if (hn::AllFalse(D(), t.m)) return store_entries(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
@@ -241,17 +254,17 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
     mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at)));
     mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at)));
   }
-  if (planes != nullptr) mj = hn::IfThenElse(hn::RebindMask(di, planes->at), planes->material, mj);
+  if (walls != nullptr) mj = hn::IfThenElse(hn::RebindMask(di, walls->at), walls->material, mj);
   real3 shear = hist.xyz();
   // A wall's spin is not j's: touch_wall gives the law none.
-  const cond wall = planes != nullptr ? cond{planes->at} : no_lanes();
-  const real3 w_j = planes != nullptr ? zero_unless(!wall, sj.w) : sj.w;
+  const cond wall = walls != nullptr ? cond{walls->at} : no_lanes();
+  const real3 w_j = walls != nullptr ? zero_unless(!wall, sj.w) : sj.w;
   LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, w_j, wall, gather_params(k, mi, mj), k.PC.dt, flags, shear);
   store_entries(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
 }
 
-// Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (every
-// wall kind: planes, cylinders, rectangles, mesh triangles with their shadowing), then the law
+// Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (the
+// kinds the lanes do not: rectangles' edges and corners, mesh triangles with their shadowing), then the law
 // runs in lanes with j a wall for the whole batch: the law is most of a wall contact's cost
 // (process_contact and touch_wall were 7 % of the LIGGGHTS bed's samples, 5 of them the law).
 struct WallBatch {
@@ -323,19 +336,29 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
   q.n = 0;
 }
 
-// The rows of the batch's plane walls (`row`, each lane's; `planes`, their lanes' bits). Mostly
-// one wall (an owner by the floor): its rows are broadcast; otherwise each lane's joined, a lane
-// that is not a plane's taking the first plane's, which its pick ignores.
-PlaneLanes plane_rows(const Kernels& k, const uint* row, uint64_t planes) {
-  uint8_t bits[8] = {};
-  std::memcpy(bits, &planes, sizeof(bits));
-  const M at = hn::LoadMaskBits(D(), bits);
-  const uint first = row[__builtin_ctzll(planes)];
+// The rows of the batch's lane walls (`row`, each lane's; `lanes`, their bits; `cylinders`, the
+// cylinders' among them). Mostly one wall (an owner by the floor): its rows are broadcast;
+// otherwise each lane's joined, a lane without one taking the first one's, which its pick ignores.
+LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t cylinders) {
+  auto mask = [](uint64_t b) {
+    uint8_t bits[8] = {};
+    std::memcpy(bits, &b, sizeof(bits));
+    return hn::LoadMaskBits(D(), bits);
+  };
+  const M at = mask(lanes), cylinder = mask(cylinders);
+  const uint first = row[__builtin_ctzll(lanes)];
   bool one = true;
-  for (uint64_t b = planes; b != 0; b &= b - 1) one = one && row[__builtin_ctzll(b)] == first;
+  for (uint64_t b = lanes; b != 0; b &= b - 1) one = one && row[__builtin_ctzll(b)] == first;
   if (one) {
     const WallState& w = k.B_walls[first];
-    return {at, same_row(w.p0), same_row(w.p1), same_row(w.vel), same_row(w.omega), same_row(w.centre),
+    return {at,
+            cylinder,
+            cylinders != 0,
+            same_row(w.p0),
+            same_row(w.p1),
+            same_row(w.vel),
+            same_row(w.omega),
+            same_row(w.centre),
             hn::Set(DI(), int32_t(w.info.y))};
   }
   constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
@@ -344,13 +367,15 @@ PlaneLanes plane_rows(const Kernels& k, const uint* row, uint64_t planes) {
   uint index[HWY_LANES(float)];
   alignas(64) int32_t material[HWY_LANES(float)];
   for (size_t l = 0; l < L; ++l) {
-    const uint r = (planes >> l) & 1u ? row[l] : first;
+    const uint r = (lanes >> l) & 1u ? row[l] : first;
     index[l] = r * kRow;
     material[l] = int32_t(k.B_walls[r].info.y);
   }
   const vec4* walls = reinterpret_cast<const vec4*>(k.B_walls);
   auto field = [&](size_t offset) { return rows(walls + offset / sizeof(vec4), index); };
   return {at,
+          cylinder,
+          cylinders != 0,
           field(offsetof(WallState, p0)),
           field(offsetof(WallState, p1)),
           field(offsetof(WallState, vel)),
@@ -359,14 +384,19 @@ PlaneLanes plane_rows(const Kernels& k, const uint* row, uint64_t planes) {
           hn::Load(DI(), material)};
 }
 
-// Whether wall w is a plane for particle i: a plane, or a rectangle whose face i lies over.
-HWY_INLINE bool plane_at(Kernels& k, const WallState& w, uint i) {
-  return w.info.x == kWallPlane || (w.info.x == kWallRectangle && k.over_rectangle_face(w, vec3(k.B_pos[i])));
+// How the lanes take wall w for particle i: as a plane (a plane, or a rectangle whose face i lies
+// over), as a cylinder, or not (the other walls: measured one by one).
+enum class LaneWall { None, Plane, Cylinder };
+HWY_INLINE LaneWall lane_wall(Kernels& k, const WallState& w, uint i) {
+  if (w.info.x == kWallPlane || (w.info.x == kWallRectangle && k.over_rectangle_face(w, vec3(k.B_pos[i]))))
+    return LaneWall::Plane;
+  return w.info.x == kWallCylinder ? LaneWall::Cylinder : LaneWall::None;
 }
 
 // A batch with walls (they sort last in a row): its particle pairs in lanes, the walls' lanes run
-// as a contact of the owner with itself (centres coincide: not touching). Plane walls are then
-// measured in those lanes (measure_planes); any other wall's lane keeps its history aside, and
+// as a contact of the owner with itself (centres coincide: not touching). Planes, rectangles' faces
+// and cylinders are then measured in those lanes (measure_walls); any other wall's lane (a
+// rectangle's edge, a mesh triangle) keeps its history aside, and
 // after the lanes each such contact is measured, stored as apart or added to the wall batch. A
 // bed's mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few.
 void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& walls) {
@@ -378,22 +408,24 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
             reinterpret_cast<int32_t*>(partner));
   uint8_t bits[8] = {};
   hn::StoreMaskBits(di, wall_lanes, bits);
-  uint64_t lanes = 0, planes = 0;
+  uint64_t lanes = 0, in_lanes = 0, cylinders = 0;
   std::memcpy(&lanes, bits, (L + 7) / 8);
   uint row[HWY_LANES(float)];
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
-    if (plane_at(k, k.B_walls[row[l]], k.B_owner[c + l])) planes |= uint64_t(1) << l;
+    const LaneWall kind = lane_wall(k, k.B_walls[row[l]], k.B_owner[c + l]);
+    if (kind != LaneWall::None) in_lanes |= uint64_t(1) << l;
+    if (kind == LaneWall::Cylinder) cylinders |= uint64_t(1) << l;
   }
-  lanes &= ~planes;  // the walls measured one by one
+  lanes &= ~in_lanes;  // the walls measured one by one
   vec4 history[HWY_LANES(float)];
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     history[l] = k.B_history[c + l];
   }
-  if (planes != 0) {
-    const PlaneLanes rows = plane_rows(k, row, planes);
+  if (in_lanes != 0) {
+    const LaneWalls rows = wall_rows(k, row, in_lanes, cylinders);
     particle_lanes(k, c, k.B_owner + c, partner, &rows);
   } else {
     particle_lanes(k, c, k.B_owner + c, partner);

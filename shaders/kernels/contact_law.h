@@ -185,6 +185,26 @@ cond plane_contact(real3 x, real r, real3 point, real3 normal, float margin, OUT
   return dist < r + margin && dist > -r - margin;
 }
 
+// A sphere (centre x, radius r) against a cylinder's inner surface (walls.h): base centre `base`,
+// unit `axis`, `radius`, `height` along the axis from the base. Its overlap and unit normal (from
+// the surface towards the axis), and whether its centre lies along the cylinder (margin beyond
+// either end while margin > 0) and off the axis within radius + margin of it, and it is within
+// margin of touching. Outside the surface (d >= R) a sphere never touches it.
+cond cylinder_contact(real3 x, real r, real3 base, real3 axis, real radius, real height, float margin,
+                      OUT(real3) n, OUT(real) overlap) {
+  precise real3 rel = x - base;
+  precise real s = dot3(rel, axis);
+  precise real3 q = rel - scale3(axis, s);
+  precise real d = length3(q);
+  precise real inv_d = div_rn(-1.0f, d);
+  n = scale3(q, inv_d);
+  overlap = r + d - radius;
+  cond along = !(s < -margin || s > height + margin);
+  cond inside = d > 0.0f && d < radius + margin;  // a candidate may move inside
+  cond beyond_ends = margin == 0.0f && (s < 0.0f || s > height);
+  return along && inside && !beyond_ends && overlap > -margin;
+}
+
 // Sphere i against a wall that it touches at unit normal n (from the wall towards i) with this
 // overlap, as touching_spheres() gives a pair: R* = R_i, m* = m_i, rj = 0. The wall's surface
 // moves at vel + omega x (p - centre), its prescribed motion (WallState).

@@ -133,16 +133,7 @@ bool wall_contact_feature(WallState ws, vec3 x, float r, float margin, OUT(vec3)
   if (!wall_kind_possible(kWallCylinder)) return false;
   // Cylinder: inner surface of radius p1.w, from the base along the axis for vel.w. It holds
   // the spheres whose centres are inside; one outside (d >= R) never touches the inner surface.
-  precise float s = dot3(rel, dir);
-  if (s < -margin || s > ws.vel.w + margin) return false;
-  precise vec3 q = rel - scale3(dir, s);
-  precise float d = length3(q);
-  if (!(d > 0.0f) || !(d < ws.p1.w + margin)) return false;  // a candidate may move inside
-  precise float inv_d = div_rn(-1.0f, d);
-  n = scale3(q, inv_d);
-  overlap = r + d - ws.p1.w;
-  if (margin == 0.0f && (s < 0.0f || s > ws.vel.w)) return false;
-  return overlap > -margin;
+  return cylinder_contact(x, r, xyz(ws.p0), dir, ws.p1.w, ws.vel.w, margin, n, overlap);
 }
 
 bool wall_contact(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(float) overlap) {
