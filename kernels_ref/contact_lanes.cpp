@@ -340,48 +340,38 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
 // cylinders' among them). Mostly one wall (an owner by the floor): its rows are broadcast;
 // otherwise each lane's joined, a lane without one taking the first one's, which its pick ignores.
 LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t cylinders) {
+  constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
+  static_assert(sizeof(WallState) % sizeof(vec4) == 0, "a WallState is whole vec4 rows");
   auto mask = [](uint64_t b) {
     uint8_t bits[8] = {};
     std::memcpy(bits, &b, sizeof(bits));
     return hn::LoadMaskBits(D(), bits);
   };
-  const M at = mask(lanes), cylinder = mask(cylinders);
   const uint first = row[__builtin_ctzll(lanes)];
   bool one = true;
   for (uint64_t b = lanes; b != 0; b &= b - 1) one = one && row[__builtin_ctzll(b)] == first;
-  if (one) {
-    const WallState& w = k.B_walls[first];
-    return {at,
-            cylinder,
-            cylinders != 0,
-            same_row(w.p0),
-            same_row(w.p1),
-            same_row(w.vel),
-            same_row(w.omega),
-            same_row(w.centre),
-            hn::Set(DI(), int32_t(w.info.y))};
-  }
-  constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
-  static_assert(sizeof(WallState) % sizeof(vec4) == 0, "a WallState is whole vec4 rows");
   const size_t L = hn::Lanes(D());
   uint index[HWY_LANES(float)];
   alignas(64) int32_t material[HWY_LANES(float)];
-  for (size_t l = 0; l < L; ++l) {
+  for (size_t l = 0; l < L && !one; ++l) {
     const uint r = (lanes >> l) & 1u ? row[l] : first;
     index[l] = r * kRow;
     material[l] = int32_t(k.B_walls[r].info.y);
   }
   const vec4* walls = reinterpret_cast<const vec4*>(k.B_walls);
-  auto field = [&](size_t offset) { return rows(walls + offset / sizeof(vec4), index); };
-  return {at,
-          cylinder,
+  auto field = [&](size_t offset) {
+    const vec4* base = walls + offset / sizeof(vec4);
+    return one ? same_row(base[first * kRow]) : rows(base, index);
+  };
+  return {mask(lanes),
+          mask(cylinders),
           cylinders != 0,
           field(offsetof(WallState, p0)),
           field(offsetof(WallState, p1)),
           field(offsetof(WallState, vel)),
           field(offsetof(WallState, omega)),
           field(offsetof(WallState, centre)),
-          hn::Load(DI(), material)};
+          one ? hn::Set(DI(), int32_t(k.B_walls[first].info.y)) : hn::Load(DI(), material)};
 }
 
 // How the lanes take wall w for particle i: as a plane (a plane, or a rectangle whose face i lies
