@@ -19,22 +19,10 @@
 #include <hwy/foreach_target.h>  // re-includes this file once per target
 #include <hwy/highway.h>
 
-#include "lane_dialect.h"  // once per target, as this file
+#include "lane_law.h"  // once per target, as this file (with lane_dialect.h)
 
 HWY_BEFORE_NAMESPACE();
 namespace repose::gpu::HWY_NAMESPACE {
-
-// The contact law in lanes: the shared text, its types and functions as members.
-struct LaneLaw {
-  // Each lane's pair parameters: every row of REPOSE_PAIR_PARAMS (repose_shared.h), by name.
-  struct PairParams {
-#define REPOSE_LANE_PARAM(name, unit, source) real name;
-    REPOSE_PAIR_PARAMS(REPOSE_LANE_PARAM)
-#undef REPOSE_LANE_PARAM
-  };
-#include "kernels/vector3.h"
-#include "kernels/contact_law.h"
-};
 
 // The material every particle has, or -1 when they differ (Buffers::uniform_material; a run of
 // one material has it whatever the buffers say). The walls' materials may differ either way.
@@ -374,15 +362,6 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
           one ? hn::Set(DI(), int32_t(k.B_walls[first].info.y)) : hn::Load(DI(), material)};
 }
 
-// How the lanes take wall w for particle i: as a plane (a plane, or a rectangle whose face i lies
-// over), as a cylinder, or not (the other walls: measured one by one).
-enum class LaneWall { None, Plane, Cylinder };
-HWY_INLINE LaneWall lane_wall(Kernels& k, const WallState& w, uint i) {
-  if (w.info.x == kWallPlane || (w.info.x == kWallRectangle && k.over_rectangle_face(w, vec3(k.B_pos[i]))))
-    return LaneWall::Plane;
-  return w.info.x == kWallCylinder ? LaneWall::Cylinder : LaneWall::None;
-}
-
 // A batch with walls (they sort last in a row): its particle pairs in lanes, the walls' lanes run
 // as a contact of the owner with itself (centres coincide: not touching). Planes, rectangles' faces
 // and cylinders are then measured in those lanes (measure_walls); any other wall's lane (a
@@ -404,7 +383,7 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);
     row[l] = k.wall_row(k.B_partner[c + l] - k.PC.n_particles);
-    const LaneWall kind = lane_wall(k, k.B_walls[row[l]], k.B_owner[c + l]);
+    const LaneWall kind = lane_wall(k, k.B_walls[row[l]], vec3(k.B_pos[k.B_owner[c + l]]));
     if (kind != LaneWall::None) in_lanes |= uint64_t(1) << l;
     if (kind == LaneWall::Cylinder) cylinders |= uint64_t(1) << l;
   }

@@ -3,6 +3,9 @@
 // rounding, so a lane's test is near_owned_pair's to the bit.
 #include "walk_lanes.h"
 
+#include <algorithm>
+#include <cstring>
+
 #include "twin_kernels.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -10,12 +13,10 @@
 #include <hwy/foreach_target.h>  // re-includes this file once per target
 #include <hwy/highway.h>
 
+#include "lane_law.h"  // once per target, as this file (with lane_dialect.h)
+
 HWY_BEFORE_NAMESPACE();
 namespace repose::gpu::HWY_NAMESPACE {
-namespace hn = hwy::HWY_NAMESPACE;
-
-using D = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<D>;
 
 void FillWalkRows(Kernels& k, uint64_t begin, uint64_t end) {
   const size_t n = k.PC.n_particles;
@@ -100,10 +101,96 @@ uint WalkLarge(Kernels& k, uint i, vec4 pi, uint lowest, uint begin, uint end, b
   return kk;
 }
 
-// The walk's text again with its rows and large bucket in lanes: the shared text's functions as
-// members that hide Kernels' own, so walk_neighbours calls WalkRow and WalkLarge directly.
+// The walk's wall tests (walls.h wall_within_skin) of the spheres in slots [first, first + lanes)
+// against the walls every sphere tests (the wall grid's list, or every wall without a grid; the
+// first 32 of them), in lanes where lane_wall takes the wall: plane_contact and cylinder_contact,
+// the text the scalar test runs, so the same answers. Rectangles' edges and triangles stay
+// scalar. A falling fill is rebuilt every few steps, and these tests, one sphere and wall at a
+// time, were a tenth of the large heap's pour (the cylinder's root and division most of it).
+struct WallsNear {
+  uint first = 0;
+  uint listed = 0;             // the walls every sphere tests, at most 32
+  const uint* list = nullptr;  // their ids (null: walls 0 .. listed - 1)
+  uint32_t tested[HWY_LANES(float)] = {}, near[HWY_LANES(float)] = {};
+
+  explicit WallsNear(const Kernels& k) {
+    const uint t = k.PC.wall_table_size;
+    if (t == 0u) {
+      listed = std::min(k.PC.n_walls, 32u);
+    } else {
+      list = k.B_wall_grid + k.B_wall_grid[t];
+      listed = std::min(k.B_wall_grid[t + 1u] - k.B_wall_grid[t], 32u);
+    }
+  }
+
+  // The spheres from slot i (those past the last slot take its row, and are never asked for).
+  void measure(Kernels& k, uint i) {
+    const size_t L = hn::Lanes(D());
+    const uint last = k.PC.n_particles - 1u;
+    alignas(64) vec4 at[HWY_LANES(float)];
+    for (size_t l = 0; l < L; ++l) at[l] = k.B_pos[std::min(i + uint(l), last)];
+    V4 x;
+    hn::LoadInterleaved4(D(), &at[0].x, x.x, x.y, x.z, x.w);
+    first = i;
+    std::fill(tested, tested + L, 0u);
+    std::fill(near, near + L, 0u);
+    LaneLaw law;
+    for (uint j = 0; j < listed; ++j) {
+      const WallState ws = k.wall_at(list != nullptr ? list[j] : j);
+      uint64_t lanes = 0;
+      LaneWall kind = LaneWall::None;
+      for (size_t l = 0; l < L; ++l) {
+        const LaneWall lane = lane_wall(k, ws, vec3(at[l]));
+        if (lane != LaneWall::None) lanes |= uint64_t(1) << l, kind = lane;
+      }
+      if (lanes == 0) continue;
+      real overlap;
+      cond hit;
+      if (kind == LaneWall::Cylinder) {
+        real3 n;
+        hit = law.cylinder_contact(x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1).xyz(), real(ws.p1.w),
+                                   real(ws.vel.w), k.PC.skin, n, overlap);
+      } else {
+        hit = law.plane_contact(x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1).xyz(), k.PC.skin, overlap);
+      }
+      uint8_t bits[8] = {};
+      hn::StoreMaskBits(D(), hit.m, bits);
+      uint64_t hits = 0;
+      std::memcpy(&hits, bits, (L + 7) / 8);
+      for (uint64_t b = lanes; b != 0; b &= b - 1) {
+        const size_t l = __builtin_ctzll(b);
+        tested[l] |= 1u << j;
+        near[l] |= uint32_t((hits >> l) & 1u) << j;
+      }
+    }
+  }
+
+  // 1 or 0 where wall w was measured for the sphere in slot i, else -1.
+  int answer(uint i, uint w) const {
+    if (i - first >= hn::Lanes(D())) return -1;
+    uint j = w;
+    if (list != nullptr) {
+      for (j = 0; j < listed && list[j] != w; ++j) {
+      }
+    }
+    if (j >= listed || ((tested[i - first] >> j) & 1u) == 0u) return -1;
+    return int((near[i - first] >> j) & 1u);
+  }
+};
+
+// The walk's text again with its rows, large bucket and walls in lanes: the shared text's
+// functions as members that hide Kernels' own, so walk_neighbours calls WalkRow, WalkLarge and
+// the walls' answers directly.
+// (In a namespace of its own, where the text's min, max and abs are the twin's scalar ones, not the
+// lanes' of lane_dialect.h, which take reals.)
+namespace scalar_text {
+using gpu::abs;
+using gpu::floor;
+using gpu::max;
+using gpu::min;
 struct LaneWalk : Kernels {
-  explicit LaneWalk(const Kernels& k) : Kernels(k) {}
+  WallsNear walls;
+  explicit LaneWalk(const Kernels& k) : Kernels(k), walls(k) {}
   uint walk_row(uint i, vec4 pi, int x0, int x1, ivec3 c, uint begin, uint end, uint lowest, bool i_fixed, bool fill,
                 uint base, uint k, uint old_begin, uint old_end) {
     return WalkRow(*this, i, pi, x0, x1, c, begin, end, lowest, i_fixed, fill, base, k, old_begin, old_end);
@@ -112,13 +199,36 @@ struct LaneWalk : Kernels {
                          uint old_begin, uint old_end) {
     return WalkLarge(*this, i, pi, lowest, begin, end, fill, base, k, old_begin, old_end);
   }
+  bool wall_within_skin(uint i, vec4 pi, uint w) {
+    const int answer = walls.answer(i, w);
+    return answer >= 0 ? answer != 0 : Kernels::wall_within_skin(i, pi, w);
+  }
 #undef REPOSE_KERNELS_NEIGHBOUR_H  // its guard is set: Kernels has the text already
 #include "kernels/neighbour.h"
 };
+}  // namespace scalar_text
 
+// The wall grid's buckets of spheres [i, end) (walk_walls), asked for ahead of their walks: the
+// hash scatters neighbouring cells over the table, and its first load was walk_walls' longest wait.
+HWY_INLINE void prefetch_wall_buckets(scalar_text::LaneWalk& w, uint i, uint end) {
+  const uint t = w.PC.wall_table_size;
+  for (; i < end; ++i) {
+    const ivec3 c = w.cell_of_position(vec3(w.B_pos[i]), w.PC.inv_cell);
+    __builtin_prefetch(&w.B_wall_grid[w.cell_hash(c.x, c.y, c.z, t)]);
+  }
+}
+
+// contact_count for slots [begin, end), the walls of each run of Lanes(D()) slots measured first.
 void CountLanes(Kernels& k, uint64_t begin, uint64_t end) {
-  LaneWalk w(k);
-  for (uint64_t i = begin; i < end; ++i) w.k_contact_count(uint(i));
+  scalar_text::LaneWalk w(k);
+  const uint64_t L = hn::Lanes(D()), spheres = std::min<uint64_t>(end, k.PC.n_particles);
+  for (uint64_t i = begin; i < end; ++i) {
+    if ((i - begin) % L == 0u && i < spheres) {
+      if (w.walls.listed != 0u) w.walls.measure(w, uint(i));
+      if (k.PC.wall_table_size != 0u) prefetch_wall_buckets(w, uint(i), uint(std::min(i + L, spheres)));
+    }
+    w.k_contact_count(uint(i));
+  }
 }
 
 }  // namespace repose::gpu::HWY_NAMESPACE

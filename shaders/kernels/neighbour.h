@@ -385,9 +385,7 @@ uint walk_large(uint i, vec4 pi, uint lowest, uint begin, uint end, bool fill, u
 uint wall_candidate(uint i, vec4 pi, uint w, uint near_walls, bool fill, uint base, uint k, uint old_begin,
                     uint old_end) {
   if (w < 32u && (near_walls & (1u << w)) == 0u) return k;  // out of reach of i's part
-  vec3 n;
-  float overlap;
-  if (!wall_contact(wall_at(w), xyz(pi), pi.w, PC.skin, n, overlap)) return k;
+  if (!wall_within_skin(i, pi, w)) return k;
   emit_candidate(fill, base, k, i, PC.n_particles + w, old_begin, old_end);
   return k + 1u;
 }

@@ -141,6 +141,14 @@ bool wall_contact(WallState ws, vec3 x, float r, float margin, OUT(vec3) n, OUT(
   return wall_contact_feature(ws, x, r, margin, n, overlap, feature);
 }
 
+// The neighbour walk's test of wall w for sphere i at pi: within the skin of touching it. The cpu
+// backend's walk answers it for a run of spheres at once where it can (kernels_ref/walk_lanes.cpp).
+bool wall_within_skin(uint i, vec4 pi, uint w) {
+  vec3 n;
+  float overlap;
+  return wall_contact(wall_at(w), xyz(pi), pi.w, PC.skin, n, overlap);
+}
+
 bool shares_vertex(uvec4 a, uvec4 b) {
   return a.x == b.x || a.x == b.y || a.x == b.z || a.y == b.x || a.y == b.y || a.y == b.z ||
          a.z == b.x || a.z == b.y || a.z == b.z;

@@ -31,6 +31,9 @@ struct WalkScene {
   float large_radius = 1e9f;
   std::vector<vec4> pos, vel, pos_at_build;
   std::vector<uint> ids;
+  std::vector<WallState> walls;
+  std::vector<uint> wall_grid;  // B_wall_grid, its table wall_table buckets long (0: every sphere tests every wall)
+  uint wall_table = 0;
   explicit WalkScene(uint32_t seed, bool large = false) {
     std::mt19937 rng{seed};
     std::uniform_real_distribution<float> u(-6.0f, 6.0f);
@@ -46,6 +49,41 @@ struct WalkScene {
     for (uint s = 0; s < n; ++s) ids[n + ids[s]] = s;
   }
 };
+
+// Walls of every kind across the scene: two planes, a cylinder shorter than the scene (centres
+// beyond its ends), a plate smaller than the scene (faces, edges and corners), a triangle; then
+// planes up to 34 walls, past the 32 the lanes measure. With `grid`, a wall grid of `table`
+// empty buckets whose list every sphere tests holds some of them out of order, the triangle and
+// a wall past the 32nd among them.
+void add_walls(WalkScene& s, bool grid, uint table) {
+  auto wall = [](uint type, vec4 p0, vec4 p1, vec4 p2 = vec4(0.0f), vec4 p3 = vec4(0.0f), float height = 0.0f) {
+    WallState w{};
+    w.p0 = p0;
+    w.p1 = p1;
+    w.p2 = p2;
+    w.p3 = p3;
+    w.vel = vec4(0.0f, 0.0f, 0.0f, height);
+    w.info = uvec4(type, 0u, 0u, 0u);
+    return w;
+  };
+  const float k = 0.70710677f;  // 1 / sqrt(2)
+  s.walls = {wall(kWallPlane, vec4(0.0f, 0.0f, -5.5f, 0.0f), vec4(0.0f, 0.0f, 1.0f, 0.0f)),
+             wall(kWallPlane, vec4(0.3f, 0.0f, 0.0f, 0.0f), vec4(k, k, 0.0f, 0.0f)),
+             wall(kWallCylinder, vec4(0.0f, 0.0f, -4.0f, 0.0f), vec4(0.0f, 0.0f, 1.0f, 5.5f), vec4(0.0f), vec4(0.0f), 8.0f),
+             wall(kWallRectangle, vec4(0.0f, 0.0f, 2.0f, 0.0f), vec4(0.0f, 0.0f, 1.0f, 0.0f), vec4(1.0f, 0.0f, 0.0f, 3.0f),
+                  vec4(0.0f, 1.0f, 0.0f, 3.0f)),
+             wall(kWallTriangle, vec4(-5.0f, -5.0f, -1.0f, 0.0f), vec4(5.0f, -5.0f, -1.0f, 0.0f),
+                  vec4(0.0f, 5.0f, -1.0f, 0.0f), vec4(0.0f, 0.0f, 1.0f, 0.0f))};
+  for (uint w = uint(s.walls.size()); w < 34u; ++w)
+    s.walls.push_back(wall(kWallPlane, vec4(0.0f, 0.0f, -6.0f + 0.35f * float(w), 0.0f), vec4(0.0f, 0.0f, 1.0f, 0.0f)));
+  s.wall_grid.clear();
+  s.wall_table = grid ? table : 0u;
+  if (!grid) return;
+  const std::vector<uint> listed = {3u, 0u, 33u, 4u, 2u, 1u};
+  s.wall_grid.assign(table + 1u, table + 2u);  // every bucket empty, and [T]: the list's start
+  s.wall_grid.push_back(table + 2u + uint(listed.size()));  // [T + 1]: its end
+  s.wall_grid.insert(s.wall_grid.end(), listed.begin(), listed.end());
+}
 
 // `count` floats that end where an inaccessible page begins, so that a lane loading past the
 // walk rows' padding crashes the test (on the heap such a load reads a neighbour's bytes unseen).
@@ -92,6 +130,12 @@ Found walk_in_order(const WalkScene& s, uint table, bool lanes) {
   k.PC.inv_cell = 1.0f / 1.2f;
   k.PC.skin = 0.2f;
   k.PC.large_radius = s.large_radius;
+  std::vector<WallState> walls = s.walls;
+  std::vector<uint> wall_grid = s.wall_grid;
+  k.B_walls = walls.data();
+  k.B_wall_grid = wall_grid.data();
+  k.PC.n_walls = uint(walls.size());
+  k.PC.wall_table_size = s.wall_table;
   for (uint i = 0; i < s.n; ++i) k.k_bucket_count(i);
   uint sum = 0;  // the scan of the bucket counts
   for (uint b = 0; b <= table + 1; ++b) std::swap(sum, cell_start[b]), sum += cell_start[b];
@@ -163,6 +207,28 @@ TEST_CASE("neighbour walk in SIMD lanes: the scalar walk's candidates in its ord
           INFO("target " << target << ", seed " << seed << ", large spheres " << large << ", table " << table);
           CHECK(walk_in_order(s, table, true) == walk_in_order(s, table, false));
         }
+      }
+  }
+  pin_contact_lanes_target(0);
+}
+
+TEST_CASE("neighbour walk in SIMD lanes: walls measured in lanes give the scalar walk's candidates, on every SIMD target",
+          "[engine]") {
+  for (int64_t target : contact_lanes_targets()) {
+    pin_contact_lanes_target(target);
+    for (uint32_t seed : {1u, 2u})
+      for (bool grid : {false, true}) {
+        WalkScene s(seed, seed == 2u);
+        add_walls(s, grid, 16u);
+        INFO("target " << target << ", seed " << seed << ", wall grid " << grid);
+        const Found lanes = walk_in_order(s, 64u, true);
+        CHECK(lanes == walk_in_order(s, 64u, false));
+        std::vector<uint> by_wall(s.walls.size(), 0u);  // each wall kind found near some spheres
+        for (const auto& [count, row] : lanes)
+          for (uint j : row)
+            if (j >= s.n) by_wall[j - s.n] += 1u;
+        for (uint w : {0u, 1u, 2u, 3u, 4u}) CHECK(by_wall[w] > 0u);
+        CHECK(by_wall[33] > 0u);
       }
   }
   pin_contact_lanes_target(0);
