@@ -10,7 +10,7 @@ enum class LaneKernels {
   Contacts,  // contact_forces (contact_lanes.h)
   Kick,      // kick_drift and gather_kick's kick (kick_lanes.h)
   Bodies,    // body_place and body_gather_kick (body_lanes.h)
-  Neighbours,  // contact_count's walk (walk_lanes.h) and the transposed rows filled in order (cpu_kernels.cpp)
+  Neighbours,  // contact_count's walk and contact_fill (walk_lanes.h), the transposed rows filled in order (cpu_kernels.cpp)
 };
 
 void set_lanes(LaneKernels which, bool on);

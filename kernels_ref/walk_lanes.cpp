@@ -231,6 +231,58 @@ void CountLanes(Kernels& k, uint64_t begin, uint64_t end) {
   }
 }
 
+// contact_fill (neighbour.h) for slots [begin, end): each candidate's place in its row counted in
+// lanes (how many keys come before its own: write_candidate's insertion, equal keys in the order
+// found) and its old entry found by one comparison with the old row's partners (write_candidate's
+// pick: the last match). The insertion's and the search's branches mispredicted at nearly every
+// step (9 % of the large heap's pour). Rows the count walk did not keep whole, rows past the
+// list's capacity and old rows longer than kCandidateSlots take the kernel's way. Same bytes.
+void FillRows(Kernels& k, uint64_t begin, uint64_t end) {
+  const DI di;
+  const size_t L = hn::Lanes(di);
+  constexpr size_t kSlots = ((kCandidateSlots + HWY_LANES(float) - 1) / HWY_LANES(float)) * HWY_LANES(float);
+  const bool springs = (k.PC.flags & kFlagRollingSpring) != 0u;
+  const uint old_used = k.B_control[kCtlOldContacts];
+  alignas(64) int32_t keys[kSlots], old[kSlots];
+  for (uint i = uint(begin); i < std::min<uint64_t>(end, k.PC.n_particles); ++i) {
+    const uint base = k.B_row_start[i], count = k.B_row_start[i + 1u] - base;
+    const uint old_begin = k.B_old_row_start[i], old_end = std::min(k.B_old_row_start[i + 1u], old_used);
+    const uint olds = old_end > old_begin ? old_end - old_begin : 0u;
+    if (count > kCandidateSlots || olds > kSlots || uint64_t(base) + count > k.PC.capacity) {
+      k.k_contact_fill(i);
+      continue;
+    }
+    const uint* found = k.B_candidates + size_t(i) * kCandidateSlots;
+    for (uint q = 0; q < kSlots; ++q) {  // keys with the top bit flipped, so that a signed compare orders
+      // them as unsigned; a padding key sorts after every key
+      keys[q] = q < count ? int32_t(k.partner_key(found[q]) ^ 0x80000000u) : int32_t(0x7fffffff);
+      old[q] = q < olds ? int32_t(k.B_old_partner[old_begin + q]) : -1;  // no partner is ~0u
+    }
+    for (uint q = 0; q < count; ++q) {
+      const VI key = hn::Set(di, keys[q]), p = hn::Set(di, int32_t(found[q]));
+      size_t rank = 0;
+      uint64_t match = 0;
+      for (size_t b = 0; b < kSlots; b += L) {
+        const VI chunk = hn::Load(di, keys + b);
+        const auto before = hn::And(hn::Eq(chunk, key), hn::FirstN(di, q > b ? q - b : 0));
+        rank += hn::CountTrue(di, hn::Or(hn::Lt(chunk, key), before));
+        uint8_t bits[8] = {};
+        hn::StoreMaskBits(di, hn::Eq(hn::Load(di, old + b), p), bits);
+        uint64_t lanes = 0;
+        std::memcpy(&lanes, bits, (L + 7) / 8);
+        match |= lanes << b;
+      }
+      const uint slot = base + uint(rank);
+      const bool kept = match != 0u;
+      const uint from = kept ? old_begin + 63u - uint(__builtin_clzll(match)) : 0u;
+      k.B_owner[slot] = i;
+      k.B_partner[slot] = found[q];
+      k.B_history[slot] = kept ? k.B_old_history[from] : vec4(0.0f);
+      if (springs) k.B_rolling_spring[slot] = kept ? k.B_rolling_spring[k.PC.capacity + from] : vec4(0.0f);
+    }
+  }
+}
+
 }  // namespace repose::gpu::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -239,6 +291,7 @@ namespace repose::gpu {
 
 HWY_EXPORT(FillWalkRows);
 HWY_EXPORT(CountLanes);
+HWY_EXPORT(FillRows);
 
 // The padding after the ids: a whole vector of the widest target Highway has (256 B, SVE's and
 // RVV's at most; AVX-512's is 64) may load from the last slot. HWY_MAX_BYTES here is the last
@@ -248,6 +301,8 @@ size_t walk_rows_floats(size_t n) { return 5 * n + 256 / sizeof(float); }
 void fill_walk_rows(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(FillWalkRows)(k, begin, end); }
 
 void contact_count_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(CountLanes)(k, begin, end); }
+
+void contact_fill_lanes(Kernels& k, uint64_t begin, uint64_t end) { HWY_DYNAMIC_DISPATCH(FillRows)(k, begin, end); }
 
 }  // namespace repose::gpu
 #endif

@@ -21,5 +21,7 @@ size_t walk_rows_floats(size_t n);
 void fill_walk_rows(Kernels& k, uint64_t begin, uint64_t end);
 // k_contact_count(i) for every i in [begin, end), each row of cells walked in lanes.
 void contact_count_lanes(Kernels& k, uint64_t begin, uint64_t end);
+// k_contact_fill(i) for every i in [begin, end), each row placed and its histories found in lanes.
+void contact_fill_lanes(Kernels& k, uint64_t begin, uint64_t end);
 
 }  // namespace repose::gpu

@@ -106,7 +106,15 @@ struct GuardedFloats {
 // Each slot's count of candidates and the first kCandidateSlots of them in the order
 // contact_count finds them with a hash table of `table` buckets, by the scalar walk or in lanes.
 using Found = std::vector<std::pair<uint, std::vector<uint>>>;
-Found walk_in_order(const WalkScene& s, uint table, bool lanes) {
+// What contact_fill wrote: each entry's owner, partner, history and rolling spring.
+struct Filled {
+  std::vector<uint> owner, partner;
+  std::vector<vec4> history, spring;
+  bool operator==(const Filled&) const = default;
+};
+void fill_rows(Kernels& k, uint n, bool lanes, Filled& out);
+// With `filled`, contact_fill then runs too (by the kernel or in lanes) from made-up old rows.
+Found walk_in_order(const WalkScene& s, uint table, bool lanes, Filled* filled = nullptr) {
   std::vector<vec4> pos = s.pos, vel = s.vel, at_build = s.pos_at_build;
   std::vector<uint> ids = s.ids, cell_of(s.n), cell_start(table + 2, 0u), cell_fill(table + 1, 0u), sorted(s.n);
   std::vector<uint> row_start(s.n + 1), trans_start(s.n + 1), trans_fill(s.n), candidates(s.n * kCandidateSlots);
@@ -154,7 +162,54 @@ Found walk_in_order(const WalkScene& s, uint table, bool lanes) {
     auto first = candidates.begin() + i * kCandidateSlots;
     found[i] = {row_start[i], std::vector<uint>(first, first + std::min(row_start[i], kCandidateSlots))};
   }
+  if (filled != nullptr) fill_rows(k, s.n, lanes, *filled);
   return found;
+}
+
+// The rows scanned, then old rows made up from each sphere's candidates and others, in no order,
+// some partners twice (the last one's history is the one kept), some rows longer than a vector;
+// the list's capacity a few entries short of the rows, so that the last rows are cut.
+void fill_rows(Kernels& k, uint n, bool lanes, Filled& out) {
+  uint total = 0;
+  for (uint i = 0; i <= n; ++i) std::swap(total, k.B_row_start[i]), total += k.B_row_start[i];
+  total = k.B_row_start[n];
+  const uint capacity = total > 8u ? total - 5u : total;
+  std::mt19937 rng{7u};
+  std::vector<uint> old_start(n + 1, 0u), old_partner;
+  std::vector<vec4> old_history;
+  for (uint i = 0; i < n; ++i) {
+    old_start[i] = uint(old_partner.size());
+    const uint kept = std::min(k.B_row_start[i + 1u] - k.B_row_start[i], kCandidateSlots);
+    const uint length = rng() % 21u;  // up to 20: past kCandidateSlots
+    for (uint o = 0; o < length; ++o) {
+      const bool theirs = kept > 0u && rng() % 3u != 0u;
+      old_partner.push_back(theirs ? k.B_candidates[i * kCandidateSlots + rng() % kept] : uint(rng() % (n + 40u)));
+      old_history.push_back(vec4(float(old_partner.size()), float(i), 1.0f, 2.0f));
+    }
+  }
+  old_start[n] = uint(old_partner.size());
+  std::vector<vec4> springs(capacity + old_partner.size(), vec4(0.0f));  // the new ones, then the old ones
+  for (size_t o = 0; o < old_partner.size(); ++o) springs[capacity + o] = vec4(3.0f, float(o), 0.0f, 1.0f);
+  std::vector<uint> control(k.B_control, k.B_control + kControlWords);
+  control[kCtlOldContacts] = uint(old_partner.size()) - 3u;  // the old list's last entries not used
+  out.owner.assign(total + 16, 0u);
+  out.partner.assign(total + 16, 0u);
+  out.history.assign(total + 16, vec4(-1.0f));
+  out.spring = springs;
+  k.B_old_row_start = old_start.data();
+  k.B_old_partner = old_partner.data();
+  k.B_old_history = old_history.data();
+  k.B_owner = out.owner.data();
+  k.B_partner = out.partner.data();
+  k.B_history = out.history.data();
+  k.B_rolling_spring = out.spring.data();
+  k.B_control = control.data();
+  k.PC.capacity = capacity;
+  k.PC.flags |= kFlagRollingSpring;
+  if (lanes)
+    contact_fill_lanes(k, 0, n + 3u);  // past n: as a workgroup's last invocations
+  else
+    for (uint i = 0; i < n + 3u; ++i) k.k_contact_fill(i);
 }
 
 std::vector<std::set<uint>> walk(const WalkScene& s, uint table) {
@@ -208,6 +263,25 @@ TEST_CASE("neighbour walk in SIMD lanes: the scalar walk's candidates in its ord
           CHECK(walk_in_order(s, table, true) == walk_in_order(s, table, false));
         }
       }
+  }
+  pin_contact_lanes_target(0);
+}
+
+TEST_CASE("contact_fill in SIMD lanes: the kernel's rows, histories and springs, on every SIMD target", "[engine]") {
+  for (int64_t target : contact_lanes_targets()) {
+    pin_contact_lanes_target(target);
+    for (uint32_t seed : {1u, 2u, 3u}) {
+      WalkScene s(seed, seed == 3u);
+      if (seed == 2u) add_walls(s, false, 0u);  // some rows past kCandidateSlots: walked again
+      INFO("target " << target << ", seed " << seed);
+      Filled lanes, kernel;
+      walk_in_order(s, 64u, true, &lanes);
+      walk_in_order(s, 64u, false, &kernel);
+      CHECK(lanes == kernel);
+      size_t carried = 0;  // histories carried from old rows: the test tests something
+      for (const vec4& h : kernel.history) carried += h.w == 2.0f ? 1u : 0u;
+      CHECK(carried > 100u);
+    }
   }
   pin_contact_lanes_target(0);
 }
