@@ -252,20 +252,23 @@ void FillRows(Kernels& k, uint64_t begin, uint64_t end) {
       k.k_contact_fill(i);
       continue;
     }
+    if (count == 0u) continue;  // a falling fill's spheres mostly: nothing to write
     const uint* found = k.B_candidates + size_t(i) * kCandidateSlots;
-    for (uint q = 0; q < kSlots; ++q) {  // keys with the top bit flipped, so that a signed compare orders
-      // them as unsigned; a padding key sorts after every key
+    const size_t key_lanes = (count + L - 1) / L * L, old_lanes = (olds + L - 1) / L * L;
+    for (uint q = 0; q < key_lanes; ++q)  // keys with the top bit flipped, so that a signed compare
+      // orders them as unsigned; a padding key sorts after every key
       keys[q] = q < count ? int32_t(k.partner_key(found[q]) ^ 0x80000000u) : int32_t(0x7fffffff);
-      old[q] = q < olds ? int32_t(k.B_old_partner[old_begin + q]) : -1;  // no partner is ~0u
-    }
+    for (uint q = 0; q < old_lanes; ++q) old[q] = q < olds ? int32_t(k.B_old_partner[old_begin + q]) : -1;  // no partner is ~0u
     for (uint q = 0; q < count; ++q) {
       const VI key = hn::Set(di, keys[q]), p = hn::Set(di, int32_t(found[q]));
       size_t rank = 0;
       uint64_t match = 0;
-      for (size_t b = 0; b < kSlots; b += L) {
+      for (size_t b = 0; b < key_lanes; b += L) {
         const VI chunk = hn::Load(di, keys + b);
         const auto before = hn::And(hn::Eq(chunk, key), hn::FirstN(di, q > b ? q - b : 0));
         rank += hn::CountTrue(di, hn::Or(hn::Lt(chunk, key), before));
+      }
+      for (size_t b = 0; b < old_lanes; b += L) {
         uint8_t bits[8] = {};
         hn::StoreMaskBits(di, hn::Eq(hn::Load(di, old + b), p), bits);
         uint64_t lanes = 0;
