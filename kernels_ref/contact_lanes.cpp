@@ -375,10 +375,7 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
   alignas(64) uint partner[HWY_LANES(float)];
   hn::Store(hn::IfThenElse(wall_lanes, hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_owner + c)), partners), di,
             reinterpret_cast<int32_t*>(partner));
-  uint8_t bits[8] = {};
-  hn::StoreMaskBits(di, wall_lanes, bits);
-  uint64_t lanes = 0, in_lanes = 0, cylinders = 0;
-  std::memcpy(&lanes, bits, (L + 7) / 8);
+  uint64_t lanes = lane_bits(di, wall_lanes), in_lanes = 0, cylinders = 0;
   uint row[HWY_LANES(float)];
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
     const size_t l = __builtin_ctzll(b);

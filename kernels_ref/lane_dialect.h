@@ -144,6 +144,16 @@ inline V4 body_rows(const Kernels& k, const uint* b, uint field) {
   return rows(reinterpret_cast<const vec4*>(k.B_bodies), at);
 }
 
+// The lanes of mask m (of tag d) as bits, lane 0 the lowest.
+template <class DM>
+HWY_INLINE uint64_t lane_bits(DM d, hn::Mask<DM> m) {
+  uint8_t bits[8] = {};
+  hn::StoreMaskBits(d, m, bits);
+  uint64_t lanes = 0;
+  std::memcpy(&lanes, bits, (hn::Lanes(d) + 7) / 8);
+  return lanes;
+}
+
 // A vec4 row the same in every lane.
 inline V4 same_row(const vec4& r) { return {hn::Set(D(), r.x), hn::Set(D(), r.y), hn::Set(D(), r.z), hn::Set(D(), r.w)}; }
 

@@ -61,11 +61,7 @@ struct NearSlots {
     const auto owned = hn::RebindMask(d, hn::Not(hn::Lt(hn::Xor(hn::LoadU(di, ID + s), flip), low)));
     const auto pass = hn::And(hn::And(hn::Lt(dd, hn::Mul(reach, reach)), owned), hn::FirstN(d, end - s));
     if (hn::AllFalse(d, pass)) return 0;
-    uint8_t bits[8] = {};
-    hn::StoreMaskBits(d, pass, bits);
-    uint64_t lanes = 0;
-    __builtin_memcpy(&lanes, bits, (hn::Lanes(d) + 7) / 8);
-    return lanes;
+    return lane_bits(d, pass);
   }
 };
 
@@ -153,10 +149,7 @@ struct WallsNear {
       } else {
         hit = law.plane_contact(x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1).xyz(), k.PC.skin, overlap);
       }
-      uint8_t bits[8] = {};
-      hn::StoreMaskBits(D(), hit.m, bits);
-      uint64_t hits = 0;
-      std::memcpy(&hits, bits, (L + 7) / 8);
+      const uint64_t hits = lane_bits(D(), hit.m);
       for (uint64_t b = lanes; b != 0; b &= b - 1) {
         const size_t l = __builtin_ctzll(b);
         tested[l] |= 1u << j;
@@ -269,11 +262,7 @@ void FillRows(Kernels& k, uint64_t begin, uint64_t end) {
         rank += hn::CountTrue(di, hn::Or(hn::Lt(chunk, key), before));
       }
       for (size_t b = 0; b < old_lanes; b += L) {
-        uint8_t bits[8] = {};
-        hn::StoreMaskBits(di, hn::Eq(hn::Load(di, old + b), p), bits);
-        uint64_t lanes = 0;
-        std::memcpy(&lanes, bits, (L + 7) / 8);
-        match |= lanes << b;
+        match |= lane_bits(di, hn::Eq(hn::Load(di, old + b), p)) << b;
       }
       const uint slot = base + uint(rank);
       const bool kept = match != 0u;
