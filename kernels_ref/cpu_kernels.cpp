@@ -70,7 +70,8 @@ void run_kernel(KernelId id, Buffers& buf, uint64_t invocations, ThreadPool& poo
     run_lanes<fill_walk_rows>(k, buf.cell_start[buf.push.table_size + 1u], pool);  // the slots bucket_scatter filled
     return run_lanes<contact_count_lanes>(k, invocations, pool);
   }
-  if (id == KernelId::ContactFill && lanes_enabled(LaneKernels::Neighbours)) return run_lanes<contact_fill_lanes>(k, invocations, pool);
+  if (id == KernelId::ContactFill && lanes_enabled(LaneKernels::Neighbours))
+    return run_lanes<contact_fill_lanes>(k, invocations, pool);
   if (id == KernelId::TransposeCount && lanes_enabled(LaneKernels::Neighbours)) return count_transposed(k);
   if (id == KernelId::TransposeFill && lanes_enabled(LaneKernels::Neighbours)) return fill_transposed_in_order(k);
   if (id == KernelId::TransposeSort && lanes_enabled(LaneKernels::Neighbours)) return;  // in order already

@@ -102,7 +102,7 @@ uint WalkLarge(Kernels& k, uint i, vec4 pi, uint lowest, uint begin, uint end, b
 // first 32 of them), in lanes where lane_wall takes the wall: plane_contact and cylinder_contact,
 // the text the scalar test runs, so the same answers. Rectangles' edges and triangles stay
 // scalar. A falling fill is rebuilt every few steps, and these tests, one sphere and wall at a
-// time, were a tenth of the large heap's pour (the cylinder's root and division most of it).
+// time, were a tenth of the large heap's falling fill (the cylinder's root and division most of it).
 struct WallsNear {
   uint first = 0;
   uint listed = 0;             // the walls every sphere tests, at most 32
@@ -161,11 +161,7 @@ struct WallsNear {
   // 1 or 0 where wall w was measured for the sphere in slot i, else -1.
   int answer(uint i, uint w) const {
     if (i - first >= hn::Lanes(D())) return -1;
-    uint j = w;
-    if (list != nullptr) {
-      for (j = 0; j < listed && list[j] != w; ++j) {
-      }
-    }
+    const uint j = list != nullptr ? uint(std::find(list, list + listed, w) - list) : w;
     if (j >= listed || ((tested[i - first] >> j) & 1u) == 0u) return -1;
     return int((near[i - first] >> j) & 1u);
   }
@@ -228,30 +224,32 @@ void CountLanes(Kernels& k, uint64_t begin, uint64_t end) {
 // lanes (how many keys come before its own: write_candidate's insertion, equal keys in the order
 // found) and its old entry found by one comparison with the old row's partners (write_candidate's
 // pick: the last match). The insertion's and the search's branches mispredicted at nearly every
-// step (9 % of the large heap's pour). Rows the count walk did not keep whole, rows past the
-// list's capacity and old rows longer than kCandidateSlots take the kernel's way. Same bytes.
+// step (9 % of the large heap's pour). Rows the count walk did not keep whole (more than
+// kCandidateSlots), rows past the list's capacity and old rows longer than kCandidateSlots take
+// the kernel's way. Same bytes.
 void FillRows(Kernels& k, uint64_t begin, uint64_t end) {
   const DI di;
   const size_t L = hn::Lanes(di);
-  constexpr size_t kSlots = ((kCandidateSlots + HWY_LANES(float) - 1) / HWY_LANES(float)) * HWY_LANES(float);
+  static_assert(kCandidateSlots % HWY_LANES(float) == 0, "a row's keys fill whole vectors");
   const bool springs = (k.PC.flags & kFlagRollingSpring) != 0u;
   const uint old_used = k.B_control[kCtlOldContacts];
-  alignas(64) int32_t keys[kSlots], old[kSlots];
+  alignas(64) int32_t keys[kCandidateSlots], old[kCandidateSlots];
   for (uint i = uint(begin); i < std::min<uint64_t>(end, k.PC.n_particles); ++i) {
     const uint base = k.B_row_start[i], count = k.B_row_start[i + 1u] - base;
     const uint old_begin = k.B_old_row_start[i], old_end = std::min(k.B_old_row_start[i + 1u], old_used);
     const uint olds = old_end > old_begin ? old_end - old_begin : 0u;
-    if (count > kCandidateSlots || olds > kSlots || uint64_t(base) + count > k.PC.capacity) {
+    if (count > kCandidateSlots || olds > kCandidateSlots || uint64_t(base) + count > k.PC.capacity) {
       k.k_contact_fill(i);
       continue;
     }
     if (count == 0u) continue;  // a falling fill's spheres mostly: nothing to write
     const uint* found = k.B_candidates + size_t(i) * kCandidateSlots;
     const size_t key_lanes = (count + L - 1) / L * L, old_lanes = (olds + L - 1) / L * L;
-    for (uint q = 0; q < key_lanes; ++q)  // keys with the top bit flipped, so that a signed compare
-      // orders them as unsigned; a padding key sorts after every key
+    // The keys with the top bit flipped, so that a signed compare orders them as unsigned; a
+    // padding key sorts after every key, a padding partner (~0u) matches none.
+    for (uint q = 0; q < key_lanes; ++q)
       keys[q] = q < count ? int32_t(k.partner_key(found[q]) ^ 0x80000000u) : int32_t(0x7fffffff);
-    for (uint q = 0; q < old_lanes; ++q) old[q] = q < olds ? int32_t(k.B_old_partner[old_begin + q]) : -1;  // no partner is ~0u
+    for (uint q = 0; q < old_lanes; ++q) old[q] = q < olds ? int32_t(k.B_old_partner[old_begin + q]) : -1;
     for (uint q = 0; q < count; ++q) {
       const VI key = hn::Set(di, keys[q]), p = hn::Set(di, int32_t(found[q]));
       size_t rank = 0;
@@ -261,9 +259,7 @@ void FillRows(Kernels& k, uint64_t begin, uint64_t end) {
         const auto before = hn::And(hn::Eq(chunk, key), hn::FirstN(di, q > b ? q - b : 0));
         rank += hn::CountTrue(di, hn::Or(hn::Lt(chunk, key), before));
       }
-      for (size_t b = 0; b < old_lanes; b += L) {
-        match |= lane_bits(di, hn::Eq(hn::Load(di, old + b), p)) << b;
-      }
+      for (size_t b = 0; b < old_lanes; b += L) match |= lane_bits(di, hn::Eq(hn::Load(di, old + b), p)) << b;
       const uint slot = base + uint(rank);
       const bool kept = match != 0u;
       const uint from = kept ? old_begin + 63u - uint(__builtin_clzll(match)) : 0u;
