@@ -171,18 +171,9 @@ HWY_INLINE cond no_lanes() { return {hn::FirstN(D(), 0)}; }
 HWY_INLINE void measure_walls(LaneLaw& law, const LaneWalls& q, const LaneLaw::SphereState& si, uint flags,
                               LaneLaw::ContactGeometry& g, real3& v_rel, cond& t) {
   real overlap;
-  real3 n = q.normal.xyz();
-  cond near = law.plane_contact(si.x, si.radius, q.point.xyz(), n, 0.0f, overlap);
-  if (q.any_cylinder) {
-    real3 n_c;
-    real overlap_c;
-    const cond near_c = law.cylinder_contact(si.x, si.radius, q.point.xyz(), q.normal.xyz(), real(q.normal.w),
-                                             real(q.vel.w), 0.0f, n_c, overlap_c);
-    const cond cylinder{q.cylinder};
-    n = pick(cylinder, n_c, n);
-    overlap = pick(cylinder, overlap_c, overlap);
-    near = (cylinder && near_c) || (!cylinder && near);
-  }
+  real3 n;
+  const cond near = lane_wall_contact(law, si.x, si.radius, q.point.xyz(), q.normal, real(q.vel.w), q.cylinder,
+                                      q.any_cylinder, 0.0f, n, overlap);
   LaneLaw::ContactGeometry gw;
   real3 vw;
   law.wall_geometry(si, n, overlap, q.vel.xyz(), q.omega.xyz(), q.centre.xyz(), flags, gw, vw);

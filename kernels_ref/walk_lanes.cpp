@@ -140,15 +140,11 @@ struct WallsNear {
         if (lane != LaneWall::None) lanes |= uint64_t(1) << l, kind = lane;
       }
       if (lanes == 0) continue;
+      const bool cylinder = kind == LaneWall::Cylinder;  // one wall: every lane's kind alike
+      real3 n;
       real overlap;
-      cond hit;
-      if (kind == LaneWall::Cylinder) {
-        real3 n;
-        hit = law.cylinder_contact(x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1).xyz(), real(ws.p1.w),
-                                   real(ws.vel.w), k.PC.skin, n, overlap);
-      } else {
-        hit = law.plane_contact(x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1).xyz(), k.PC.skin, overlap);
-      }
+      const cond hit = lane_wall_contact(law, x.xyz(), x.w, same_row(ws.p0).xyz(), same_row(ws.p1), real(ws.vel.w),
+                                         hn::FirstN(D(), cylinder ? L : 0), cylinder, k.PC.skin, n, overlap);
       const uint64_t hits = lane_bits(D(), hit.m);
       for (uint64_t b = lanes; b != 0; b &= b - 1) {
         const size_t l = __builtin_ctzll(b);
