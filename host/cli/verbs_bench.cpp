@@ -187,8 +187,9 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
   sim.take_profile();
   sim.advance(steps);
   RunProfile p = sim.take_profile();
-  std::printf("         %s, every kernel timed:\n%s         per step: %s\n", sim.backend().describe().c_str(),
-              format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str());
+  std::printf("         %s, every kernel timed:\n%s         per step: %s\n         %s\n", sim.backend().describe().c_str(),
+              format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str(),
+              format_host_times(p).c_str());
   if (backend == "cpu") {
     TrafficCounts counts{n, double(sim.contacts()), double(sim.contacts()), double(model.table_size) + 2};
     CopyBandwidth copy = measure_copies(sim.backend().memory_bytes(), threads);

@@ -74,6 +74,15 @@ struct HostState {
 // Seconds spent per kernel, summed over the dispatches timed.
 using KernelTimes = std::map<std::string, double>;
 
+// A timed execute's seconds: each kernel's, and on a device what its batch spent besides them:
+// recording the commands on the host, and the device's time from its first kernel's start to its
+// last one's end that no kernel took (the barriers between kernels and each launch).
+struct ExecuteTimes {
+  KernelTimes kernels;
+  double recording = 0;
+  double between_kernels = 0;
+};
+
 class Backend {
  public:
   virtual ~Backend() = default;
@@ -96,8 +105,8 @@ class Backend {
   // at each step of a batch, step-major (first n_walls).
   virtual void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) = 0;
   // Runs the dispatches in order, each seeing the previous one's writes, and waits.
-  // With `times`, adds each kernel's duration (for `repose bench`).
-  virtual void execute(const std::vector<Dispatch>& program, KernelTimes* times = nullptr) = 0;
+  // With `times`, adds to it each kernel's duration and the batch's other times (ExecuteTimes).
+  virtual void execute(const std::vector<Dispatch>& program, ExecuteTimes* times = nullptr) = 0;
   virtual std::vector<uint32_t> read_control() = 0;
   // Force on each named wall from the current contact forces.
   virtual std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) = 0;

@@ -105,7 +105,7 @@ void CpuBackend::upload_walls(const std::vector<gpu::WallState>& rows, size_t fi
   std::memcpy(block.data() + offset, rows.data(), std::min(rows.size() * sizeof(gpu::WallState), block.size() - offset));
 }
 
-void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
+void CpuBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* times) {
   for (const Dispatch& d : program) {
     auto t0 = std::chrono::steady_clock::now();
     // Indirect arguments hold rows of workgroups (gpu::dispatch_rows): x times y groups.
@@ -122,7 +122,7 @@ void CpuBackend::execute(const std::vector<Dispatch>& program, KernelTimes* time
       gpu::run_kernel(d.kernel, buf_, uint64_t(groups) * d.sim.workgroup, pool_);
     }
     if (times)
-      (*times)[kernel_shader_name(d.kernel)] +=
+      times->kernels[kernel_shader_name(d.kernel)] +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
 }

@@ -14,6 +14,16 @@ void RunProfile::add(const RunProfile& o) {
   contact_steps += o.contact_steps;
   reorders += o.reorders;
   reorder_seconds += o.reorder_seconds;
+  batch_seconds += o.batch_seconds;
+  recording_seconds += o.recording_seconds;
+  between_kernels_seconds += o.between_kernels_seconds;
+  transfer_seconds += o.transfer_seconds;
+}
+
+void RunProfile::add(const ExecuteTimes& batch) {
+  for (const auto& [k, t] : batch.kernels) kernels[k] += t;
+  recording_seconds += batch.recording;
+  between_kernels_seconds += batch.between_kernels;
 }
 
 double RunProfile::kernel_seconds() const {
@@ -28,6 +38,11 @@ const char* kernel_stage(const std::string& k) {
   if (k.rfind("body_", 0) == 0) return "bodies";
   if (k == "wall_reduce") return "other";
   return "neighbours";  // rebuild_args, save_old_*, buckets, scans, contact_count/fill, transpose_*
+}
+
+// The wall time that neither the kernels nor the reorders took.
+static double host_seconds(const RunProfile& p) {
+  return std::max(0.0, p.wall_seconds - p.kernel_seconds() - p.reorder_seconds);
 }
 
 std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>>& rows, double dt) {
@@ -59,8 +74,8 @@ std::string format_profiles(const std::vector<std::pair<std::string, RunProfile>
       std::snprintf(line, sizeof line, " %*.3f", int(std::strlen(s)), 1e3 * t / steps);
       out += line;
     }
-    double host = p.wall_seconds - p.kernel_seconds() - p.reorder_seconds;
-    std::snprintf(line, sizeof line, " %7.3f %4.3f\n", 1e3 * p.reorder_seconds / steps, 1e3 * std::max(0.0, host) / steps);
+    double host = host_seconds(p);
+    std::snprintf(line, sizeof line, " %7.3f %4.3f\n", 1e3 * p.reorder_seconds / steps, 1e3 * host / steps);
     out += line;
   }
   return out;
@@ -85,6 +100,23 @@ std::string format_kernel_times(const RunProfile& p) {
     out += item;
   }
   return out;
+}
+
+std::string format_host_times(const RunProfile& p) {
+  if (p.kernels.empty() || p.steps == 0) return "";
+  const double ms = 1e3 / double(p.steps);
+  const double beyond = std::max(0.0, p.batch_seconds - p.kernel_seconds());
+  const double named = p.recording_seconds + p.between_kernels_seconds;
+  const double rest = std::max(0.0, host_seconds(p) - beyond - p.transfer_seconds);
+  char line[512];
+  int n = std::snprintf(line, sizeof line, "host %.3f ms per step: running the batches besides their kernels %.3f",
+                        host_seconds(p) * ms, beyond * ms);
+  if (named > 0)  // a device's batches: recording, the device's gaps, and the rest (submit, wait, timestamps read)
+    n += std::snprintf(line + n, sizeof line - n,
+                       " (recording the commands %.3f, the device between kernels %.3f, submitting and waiting %.3f)",
+                       p.recording_seconds * ms, p.between_kernels_seconds * ms, std::max(0.0, beyond - named) * ms);
+  std::snprintf(line + n, sizeof line - n, ", transfers %.3f, between batches %.3f", p.transfer_seconds * ms, rest * ms);
+  return line;
 }
 
 }  // namespace repose

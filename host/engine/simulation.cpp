@@ -144,13 +144,29 @@ void Simulation::replay_unread(std::vector<uint32_t> batches) {
   uint64_t first = step_;
   for (uint32_t k : batches) first -= k;
   for (uint32_t k : batches) {
-    upload_walls(first, wall_time_offset(), k);
-    backend_->execute(batch_program(first, k), profiling_ ? &profile_.kernels : nullptr);
+    run_batch(first, k);
     first += k;
   }
   unread_batches_ = std::move(batches);
-  control_ = backend_->read_control();
+  {
+    ProfileClock clock(transfer_clock());
+    control_ = backend_->read_control();
+  }
   if (control_[gpu::kCtlOverflow]) throw std::logic_error("a batch run again on a larger contact list overflowed it");
+}
+
+void Simulation::run_batch(uint64_t first, uint32_t steps) {
+  {
+    ProfileClock clock(transfer_clock());
+    upload_walls(first, wall_time_offset(), steps);
+  }
+  if (!profiling_) return backend_->execute(batch_program(first, steps));
+  ExecuteTimes times;
+  {
+    ProfileClock clock(&profile_.batch_seconds);
+    backend_->execute(batch_program(first, steps), &times);
+  }
+  profile_.add(times);
 }
 
 // The moving walls' rows for `steps` steps from step `first`, each at (first + s + offset) dt
@@ -251,9 +267,12 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     }
     auto batch_start = std::chrono::steady_clock::now();
     uint32_t k = static_cast<uint32_t>(std::min<uint64_t>(layout_.batch_steps, target - step_));
-    upload_walls(step_, wall_time_offset(), k);
-    backend_->execute(batch_program(step_, k), profiling_ ? &profile_.kernels : nullptr);
-    auto ctl = backend_->read_control();  // a few words: the state stays until someone reads it
+    run_batch(step_, k);
+    std::vector<uint32_t> ctl;
+    {
+      ProfileClock clock(transfer_clock());
+      ctl = backend_->read_control();  // a few words: the state stays until someone reads it
+    }
     if (ctl[gpu::kCtlOverflow]) {
       // Redo the batch from its start with a larger list: nothing of it is kept.
       ++retries_;
@@ -267,7 +286,10 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     control_ = std::move(ctl);
     unread_batches_.push_back(k);
     positions_current_ = false;
-    if (unread_batches_.size() >= kMostUnreadBatches) download();  // an overflow replays no more
+    if (unread_batches_.size() >= kMostUnreadBatches) {  // an overflow replays no more
+      ProfileClock clock(transfer_clock());
+      download();
+    }
     if (summing_walls_) add_batch_wall_sums();
     step_ += k;
     profile_.steps += k;

@@ -119,6 +119,10 @@ class Simulation {
   void grow(uint32_t needed);
   void replay_unread(std::vector<uint32_t> batches);
   void upload_walls(uint64_t first, double offset, uint32_t steps);
+  // The walls of steps [first, first + steps) uploaded and the batch run; timed when profiling.
+  void run_batch(uint64_t first, uint32_t steps);
+  // Where profiling puts the time of a transfer (nullptr: not profiling).
+  double* transfer_clock() { return profiling_ ? &profile_.transfer_seconds : nullptr; }
   // Where in a step the walls' rows are taken: velocity Verlet evaluates forces at its end (1),
   // symplectic Euler at its start (0).
   double wall_time_offset() const { return model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0; }

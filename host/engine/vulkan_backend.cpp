@@ -1,6 +1,7 @@
 #include "engine/vulkan_backend.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "engine/buffer_table.h"
 #include "engine/step_program.h"
@@ -99,7 +100,7 @@ void VulkanBackend::upload_walls(const std::vector<WallState>& rows, size_t firs
   dst.upload(rows.data(), std::min(rows.size() * sizeof(WallState), dst.size() - offset), offset);
 }
 
-void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* times) {
+void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
   if (times && needed > query_capacity_) {
     if (queries_) vkDestroyQueryPool(ctx_->device(), queries_, nullptr);
@@ -111,6 +112,7 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* t
   }
   VkBuffer control = b(kBindControl).handle();
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
+    const auto record_start = std::chrono::steady_clock::now();
     if (times) vkCmdResetQueryPool(cb, queries_, 0, needed);
     uint32_t q = 0;
     for (const Dispatch& d : program) {
@@ -125,6 +127,7 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* t
       vk::KernelSet::barrier(cb);
       if (times) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, q++);
     }
+    if (times) times->recording += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count();
   });
   if (times) {
     std::vector<uint64_t> stamps(needed);
@@ -133,10 +136,13 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, KernelTimes* t
                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
     VkPhysicalDeviceProperties props;
     vkGetPhysicalDeviceProperties(ctx_->physical(), &props);
-    double period = props.limits.timestampPeriod * 1e-9;
-    for (size_t i = 0; i < program.size(); ++i)
-      (*times)[kernel_shader_name(program[i].kernel)] +=
-          double(stamps[2 * i + 1] - stamps[2 * i]) * period;
+    double period = props.limits.timestampPeriod * 1e-9, in_kernels = 0;
+    for (size_t i = 0; i < program.size(); ++i) {
+      double seconds = double(stamps[2 * i + 1] - stamps[2 * i]) * period;
+      times->kernels[kernel_shader_name(program[i].kernel)] += seconds;
+      in_kernels += seconds;
+    }
+    if (needed > 0) times->between_kernels += std::max(0.0, double(stamps[needed - 1] - stamps[0]) * period - in_kernels);
   }
 }
 

@@ -402,7 +402,10 @@ std::vector<std::string> profile_lines(const std::string& backend, const ReposeR
     lines.push_back(table.substr(start, end - start));
   }
   for (const auto& [name, p] : r.phases)
-    if (p.steps) lines.push_back("  " + name + " kernels per step: " + format_kernel_times(p));
+    if (p.steps) {
+      lines.push_back("  " + name + " kernels per step: " + format_kernel_times(p));
+      lines.push_back("  " + name + " " + format_host_times(p));
+    }
   return lines;
 }
 
