@@ -75,10 +75,12 @@ struct HostState {
 using KernelTimes = std::map<std::string, double>;
 
 // A timed execute's seconds: each kernel's, and on a device what its batch spent besides them:
-// recording the commands on the host, and the device's time from its first kernel's start to its
-// last one's end that no kernel took (the barriers between kernels and each launch).
+// creating pipelines (the driver compiling each kernel on its first use), the rest of recording
+// the commands on the host, and the device's time from its first kernel's start to its last
+// one's end that no kernel took (the barriers between kernels and each launch).
 struct ExecuteTimes {
   KernelTimes kernels;
+  double pipelines = 0;
   double recording = 0;
   double between_kernels = 0;
 };

@@ -113,6 +113,7 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* 
   VkBuffer control = b(kBindControl).handle();
   ctx_->submit_and_wait([&](VkCommandBuffer cb) {
     const auto record_start = std::chrono::steady_clock::now();
+    kernels_.take_creation_seconds();  // pipelines created before (untimed) are not this batch's
     if (times) vkCmdResetQueryPool(cb, queries_, 0, needed);
     uint32_t q = 0;
     for (const Dispatch& d : program) {
@@ -127,7 +128,11 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* 
       vk::KernelSet::barrier(cb);
       if (times) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queries_, q++);
     }
-    if (times) times->recording += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count();
+    if (times) {
+      const double created = kernels_.take_creation_seconds();
+      times->pipelines += created;
+      times->recording += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count() - created;
+    }
   });
   if (times) {
     std::vector<uint64_t> stamps(needed);

@@ -131,6 +131,7 @@ OrderedJson profile_json(const RunProfile& p) {
           {"reorders", p.reorders},
           {"reorder_seconds", p.reorder_seconds},
           {"batch_seconds", p.batch_seconds},
+          {"pipeline_seconds", p.pipeline_seconds},
           {"recording_seconds", p.recording_seconds},
           {"between_kernels_seconds", p.between_kernels_seconds},
           {"transfer_seconds", p.transfer_seconds},
@@ -145,7 +146,8 @@ RunProfile profile_from_json(const OrderedJson& j) {
   p.contact_steps = j.at("contact_steps").get<double>();
   p.reorders = j.value("reorders", uint64_t(0));  // absent before they were timed
   p.reorder_seconds = j.value("reorder_seconds", 0.0);
-  p.batch_seconds = j.value("batch_seconds", 0.0);  // these four absent before they were timed
+  p.batch_seconds = j.value("batch_seconds", 0.0);  // these five absent before they were timed
+  p.pipeline_seconds = j.value("pipeline_seconds", 0.0);
   p.recording_seconds = j.value("recording_seconds", 0.0);
   p.between_kernels_seconds = j.value("between_kernels_seconds", 0.0);
   p.transfer_seconds = j.value("transfer_seconds", 0.0);

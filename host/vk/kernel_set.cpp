@@ -1,5 +1,6 @@
 #include "vk/kernel_set.h"
 
+#include <chrono>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
@@ -90,7 +91,9 @@ VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall
   ci.stage.pSpecializationInfo = &spec;
   ci.layout = layout_;
   VkPipeline p;
+  const auto start = std::chrono::steady_clock::now();
   VK_CHECK(vkCreateComputePipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p));
+  creation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipelines_.emplace(key, p);
   return p;
 }

@@ -8,6 +8,7 @@
 #include <array>
 #include <map>
 #include <tuple>
+#include <utility>
 #include <vector>
 #include <vulkan/vulkan.h>
 
@@ -36,6 +37,9 @@ class KernelSet {
   // A full memory barrier between dependent dispatches (shader writes -> reads, indirect args).
   static void barrier(VkCommandBuffer cb);
   uint32_t workgroup() const { return workgroup_; }
+  // Seconds spent creating pipelines (the driver compiling a kernel on its first use) since the
+  // last call.
+  double take_creation_seconds() { return std::exchange(creation_seconds_, 0.0); }
 
  private:
   Context& ctx_;
@@ -48,6 +52,7 @@ class KernelSet {
   // Created on first use (a run meets two or three flag words per kernel).
   VkPipeline pipeline(KernelId id, uint32_t flags, uint32_t absent_wall_kinds);
   std::map<std::tuple<uint32_t, uint32_t, uint32_t>, VkPipeline> pipelines_;
+  double creation_seconds_ = 0;
 };
 
 }  // namespace repose::vk

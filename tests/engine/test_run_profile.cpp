@@ -1,6 +1,6 @@
 // A timed run names where its host time goes (RunProfile, format_host_times): its batches beyond
-// their kernels (on a device: recording, the device's gaps between kernels, submit and wait) and
-// the transfers around them; a checkpoint keeps those times.
+// their kernels (on a device: pipelines created, recording, the device's gaps between kernels,
+// submit and wait) and the transfers around them; a checkpoint keeps those times.
 #include <catch2/catch.hpp>
 
 #include "engine/run_profile.h"
@@ -12,11 +12,16 @@ using namespace repose::test;
 
 namespace {
 
-RunProfile timed_run(const std::string& backend) {
+RunProfile timed_run(const std::string& backend, RunProfile* later = nullptr) {
   auto sim = simulate(seeded_cloud(200, 5, 2.3, 0.2), backend, 1, {}, 20);
   sim->set_profiling(true);
   sim->advance(100);  // five batches, each with its control words read back
-  return sim->take_profile();
+  RunProfile first = sim->take_profile();
+  if (later) {
+    sim->advance(100);
+    *later = sim->take_profile();
+  }
+  return first;
 }
 
 }  // namespace
@@ -24,7 +29,8 @@ RunProfile timed_run(const std::string& backend) {
 TEST_CASE("a timed run names its host time: batches beyond their kernels and transfers", "[profile]") {
   for (const std::string backend : {"cpu", "vulkan"}) {
     INFO(backend);
-    RunProfile p = timed_run(backend);
+    RunProfile later;
+    RunProfile p = timed_run(backend, &later);
     REQUIRE(p.steps == 100);
     REQUIRE(!p.kernels.empty());
     CHECK(p.transfer_seconds > 0);  // a batch's control words come back after it
@@ -32,17 +38,23 @@ TEST_CASE("a timed run names its host time: batches beyond their kernels and tra
     // A batch waits for its kernels: on a device, their timestamps lie within its submit and wait.
     CHECK(p.batch_seconds >= p.kernel_seconds());
     if (backend == "cpu") {  // the host runs the kernels itself: nothing to record, no device
+      CHECK(p.pipeline_seconds == 0);
       CHECK(p.recording_seconds == 0);
       CHECK(p.between_kernels_seconds == 0);
     } else {
+      CHECK(p.pipeline_seconds > 0);  // the rebuild's kernels meet their first use in a batch
       CHECK(p.recording_seconds > 0);
       CHECK(p.between_kernels_seconds > 0);  // a barrier after every kernel
-      CHECK(p.recording_seconds + p.between_kernels_seconds <= p.batch_seconds - p.kernel_seconds());
+      CHECK(p.pipeline_seconds + p.recording_seconds + p.between_kernels_seconds <= p.batch_seconds - p.kernel_seconds());
+      CHECK(later.pipeline_seconds == 0);  // created once: the next batches reuse them
+      CHECK(later.recording_seconds > 0);
     }
     const std::string line = format_host_times(p);
     CHECK(line.find("ms per step: running the batches besides their kernels") != std::string::npos);
     CHECK(line.find(", transfers ") != std::string::npos);
     CHECK((line.find("recording the commands") != std::string::npos) == (backend == "vulkan"));
+    CHECK((line.find("creating pipelines") != std::string::npos) == (backend == "vulkan"));
+    CHECK(format_host_times(later).find("creating pipelines") == std::string::npos);
   }
 }
 
@@ -53,16 +65,19 @@ TEST_CASE("an untimed profile has no host line; a checkpoint keeps the host time
   CHECK(format_host_times(untimed).empty());
 
   RunProfile p = timed_run("cpu");
-  p.recording_seconds = 0.25;  // as a device's would be
+  p.pipeline_seconds = 0.5;  // as a device's would be
+  p.recording_seconds = 0.25;
   p.between_kernels_seconds = 0.125;
   RunProfile back = profile_from_json(profile_json(p));
   CHECK(back.batch_seconds == p.batch_seconds);
+  CHECK(back.pipeline_seconds == 0.5);
   CHECK(back.recording_seconds == 0.25);
   CHECK(back.between_kernels_seconds == 0.125);
   CHECK(back.transfer_seconds == p.transfer_seconds);
 
   OrderedJson older = profile_json(p);  // a checkpoint written before these were timed
-  for (const char* key : {"batch_seconds", "recording_seconds", "between_kernels_seconds", "transfer_seconds"})
+  for (const char* key :
+       {"batch_seconds", "pipeline_seconds", "recording_seconds", "between_kernels_seconds", "transfer_seconds"})
     older.erase(key);
   RunProfile read = profile_from_json(older);
   CHECK(read.batch_seconds == 0);
