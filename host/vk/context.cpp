@@ -12,6 +12,7 @@
 #include "repose_shared.h"
 #include "util/env_setting.h"
 #include "vk/buffer.h"
+#include "vk/kernel_set.h"
 #include "vk/vk_check.h"
 
 namespace repose::vk {
@@ -269,6 +270,7 @@ Context::~Context() { release(); }
 void Context::release() {
   if (device_) {
     vkDeviceWaitIdle(device_);
+    pipelines_.reset();
     upload_staging_.reset();
     download_staging_.reset();
     if (fence_) vkDestroyFence(device_, fence_, nullptr);
@@ -314,6 +316,12 @@ Buffer& Context::staging(Memory direction, size_t bytes) {
     kept = std::make_unique<Buffer>(*this, staging_size_for(bytes), 0, direction);
   }
   return *kept;
+}
+
+PipelineLibrary& Context::pipelines() {
+  std::lock_guard<std::recursive_mutex> hold(mutex_);
+  if (!pipelines_) pipelines_ = std::make_unique<PipelineLibrary>(*this);
+  return *pipelines_;
 }
 
 VkCommandBuffer Context::begin_commands() {

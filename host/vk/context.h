@@ -12,6 +12,7 @@
 namespace repose::vk {
 
 class Buffer;
+class PipelineLibrary;
 enum class Memory;
 
 struct DeviceInfo {
@@ -98,6 +99,8 @@ class Context {
   // A host buffer for transfers one way (Memory::Upload or Memory::Download) of min(`bytes`,
   // staging_bytes()) or more, kept and grown up to staging_bytes(): a transfer allocates nothing.
   Buffer& staging(Memory direction, size_t bytes);
+  // The device's compute pipelines (kernel_set.h), made on first call and kept with the device.
+  PipelineLibrary& pipelines();
 
  private:
   void release();
@@ -112,6 +115,7 @@ class Context {
   bool validation_ = false;
   uint32_t rounding_ = 0;
   std::unique_ptr<Buffer> upload_staging_, download_staging_;
+  std::unique_ptr<PipelineLibrary> pipelines_;
   VkPhysicalDeviceMemoryProperties memory_{};
   std::recursive_mutex mutex_;
 };

@@ -15,7 +15,7 @@ namespace repose::vk {
 
 static constexpr uint32_t kPushBytes = 128;
 
-KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(workgroup) {
+PipelineLibrary::PipelineLibrary(Context& ctx) : ctx_(ctx) {
   VkDevice dev = ctx.device();
   if (ctx.info().max_storage_buffers < gpu::kBindingCount)
     throw VulkanError("device '" + ctx.info().name + "' allows " +
@@ -42,18 +42,6 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
   pli.pPushConstantRanges = &range;
   VK_CHECK(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_));
 
-  VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, gpu::kBindingCount};
-  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  pi.maxSets = 1;
-  pi.poolSizeCount = 1;
-  pi.pPoolSizes = &ps;
-  VK_CHECK(vkCreateDescriptorPool(dev, &pi, nullptr, &pool_));
-  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  ai.descriptorPool = pool_;
-  ai.descriptorSetCount = 1;
-  ai.pSetLayouts = &set_layout_;
-  VK_CHECK(vkAllocateDescriptorSets(dev, &ai, &set_));
-
   for (uint32_t k = 0; k < static_cast<uint32_t>(KernelId::Count); ++k) {
     const EmbeddedShader& spv = embedded_shader(kernel_shader_name(static_cast<KernelId>(k)));
     std::vector<uint32_t> patched;
@@ -67,14 +55,24 @@ KernelSet::KernelSet(Context& ctx, uint32_t workgroup) : ctx_(ctx), workgroup_(w
   }
 }
 
-VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall_kinds) {
-  auto key = std::make_tuple(static_cast<uint32_t>(id), flags, absent_wall_kinds);
-  auto found = pipelines_.find(key);
-  if (found != pipelines_.end()) return found->second;
+PipelineLibrary::~PipelineLibrary() {
+  VkDevice dev = ctx_.device();
+  for (auto& p : pipelines_) vkDestroyPipeline(dev, p.second, nullptr);
+  for (auto m : modules_) vkDestroyShaderModule(dev, m, nullptr);
+  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+}
+
+VkPipeline PipelineLibrary::pipeline(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds,
+                                     double& created_seconds) {
   // The scan and the wall reduction are written for their own fixed workgroup size.
   uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
                 : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
-                                             : workgroup_;
+                                             : workgroup;
+  auto key = std::make_tuple(static_cast<uint32_t>(id), wg, flags, absent_wall_kinds);
+  std::lock_guard<std::mutex> hold(mutex_);  // simulations on several threads share the library
+  auto found = pipelines_.find(key);
+  if (found != pipelines_.end()) return found->second;
   // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds; 3: how / and
   // sqrt are rounded (kernels/glsl_prelude.glsl).
   const uint32_t values[4] = {wg, flags, absent_wall_kinds, ctx_.rounding()};
@@ -93,18 +91,35 @@ VkPipeline KernelSet::pipeline(KernelId id, uint32_t flags, uint32_t absent_wall
   VkPipeline p;
   const auto start = std::chrono::steady_clock::now();
   VK_CHECK(vkCreateComputePipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p));
-  creation_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  created_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipelines_.emplace(key, p);
   return p;
 }
 
+size_t PipelineLibrary::size() {
+  std::lock_guard<std::mutex> hold(mutex_);
+  return pipelines_.size();
+}
+
+KernelSet::KernelSet(Context& ctx, uint32_t workgroup)
+    : ctx_(ctx), library_(ctx.pipelines()), workgroup_(workgroup) {
+  VkDevice dev = ctx.device();
+  VkDescriptorPoolSize ps{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, gpu::kBindingCount};
+  VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  pi.maxSets = 1;
+  pi.poolSizeCount = 1;
+  pi.pPoolSizes = &ps;
+  VK_CHECK(vkCreateDescriptorPool(dev, &pi, nullptr, &pool_));
+  VkDescriptorSetLayout set_layout = library_.set_layout();
+  VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  ai.descriptorPool = pool_;
+  ai.descriptorSetCount = 1;
+  ai.pSetLayouts = &set_layout;
+  VK_CHECK(vkAllocateDescriptorSets(dev, &ai, &set_));
+}
+
 KernelSet::~KernelSet() {
-  VkDevice dev = ctx_.device();
-  for (auto& p : pipelines_) vkDestroyPipeline(dev, p.second, nullptr);
-  for (auto m : modules_) vkDestroyShaderModule(dev, m, nullptr);
-  if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
-  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
-  if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+  if (pool_) vkDestroyDescriptorPool(ctx_.device(), pool_, nullptr);
 }
 
 void KernelSet::bind(const std::array<const Buffer*, gpu::kBindingCount>& buffers) {
@@ -134,9 +149,10 @@ void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_
     std::memcpy(&absent_wall_kinds, bytes + offsetof(gpu::SimPush, absent_wall_kinds), sizeof absent_wall_kinds);
     std::memcpy(&max_x, bytes + offsetof(gpu::SimPush, max_groups_x), sizeof max_x);
   }
-  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline(k, flags, absent_wall_kinds));
-  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_, 0, 1, &set_, 0, nullptr);
-  vkCmdPushConstants(cb, layout_, VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
+  VkPipeline pipeline = library_.pipeline(k, workgroup_, flags, absent_wall_kinds, creation_seconds_);
+  vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+  vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, library_.layout(), 0, 1, &set_, 0, nullptr);
+  vkCmdPushConstants(cb, library_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);
   if (indirect != VK_NULL_HANDLE)
     vkCmdDispatchIndirect(cb, indirect, indirect_offset);
   else if (groups > 0)  // in rows of at most max_x groups (invocation_index() counts across them)

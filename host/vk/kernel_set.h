@@ -1,12 +1,13 @@
-// The compute pipelines of one simulation and their shared descriptor set: every kernel sees
-// the same storage-buffer bindings (shaders/repose_shared.h) and one push-constant block.
-// Workgroup size is a specialisation constant, so a variant changes it without a new shader; so
-// are the push constants' flags word and absent wall kinds, so that lavapipe does not run the
-// code of switched-off features (docs/engineering.md, "lavapipe speed"): one pipeline per kernel
-// and pair of words.
+// The compute pipelines and the descriptor set of one simulation: every kernel sees the same
+// storage-buffer bindings (shaders/repose_shared.h) and one push-constant block. Workgroup size is
+// a specialisation constant, so a variant changes it without a new shader; so are the push
+// constants' flags word and absent wall kinds, so that lavapipe does not run the code of
+// switched-off features (docs/engineering.md, "lavapipe speed"): one pipeline per kernel and pair
+// of words. The pipelines are the device's (PipelineLibrary), created once per process.
 #pragma once
 #include <array>
 #include <map>
+#include <mutex>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -19,6 +20,33 @@ namespace repose::vk {
 
 class Context;
 class Buffer;
+
+// The pipelines of one device, created on first use and kept for every simulation the process
+// runs on it: the driver compiles each (lavapipe took 1.2 s for a run's 19, 0.5 s the longest),
+// and a test binary or a calibration builds many simulations. Thread-safe.
+class PipelineLibrary {
+ public:
+  explicit PipelineLibrary(Context& ctx);
+  ~PipelineLibrary();
+  PipelineLibrary(const PipelineLibrary&) = delete;
+  PipelineLibrary& operator=(const PipelineLibrary&) = delete;
+
+  VkDescriptorSetLayout set_layout() const { return set_layout_; }
+  VkPipelineLayout layout() const { return layout_; }
+  // Kernel `id` at `workgroup` invocations (the scan and the wall reduction: their own), specialised
+  // for the two words; the seconds spent creating it, when this call does, go into created_seconds.
+  VkPipeline pipeline(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds,
+                      double& created_seconds);
+  size_t size();  // pipelines created so far
+
+ private:
+  Context& ctx_;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  std::vector<VkShaderModule> modules_;
+  std::mutex mutex_;
+  std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>, VkPipeline> pipelines_;
+};
 
 class KernelSet {
  public:
@@ -37,21 +65,16 @@ class KernelSet {
   // A full memory barrier between dependent dispatches (shader writes -> reads, indirect args).
   static void barrier(VkCommandBuffer cb);
   uint32_t workgroup() const { return workgroup_; }
-  // Seconds spent creating pipelines (the driver compiling a kernel on its first use) since the
-  // last call.
+  // Seconds spent creating pipelines (the driver compiling a kernel on its first use in the
+  // process) since the last call.
   double take_creation_seconds() { return std::exchange(creation_seconds_, 0.0); }
 
  private:
   Context& ctx_;
+  PipelineLibrary& library_;
   uint32_t workgroup_;
-  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
-  VkPipelineLayout layout_ = VK_NULL_HANDLE;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   VkDescriptorSet set_ = VK_NULL_HANDLE;
-  std::vector<VkShaderModule> modules_;
-  // Created on first use (a run meets two or three flag words per kernel).
-  VkPipeline pipeline(KernelId id, uint32_t flags, uint32_t absent_wall_kinds);
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t>, VkPipeline> pipelines_;
   double creation_seconds_ = 0;
 };
 
