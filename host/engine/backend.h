@@ -74,15 +74,26 @@ struct HostState {
 // Seconds spent per kernel, summed over the dispatches timed.
 using KernelTimes = std::map<std::string, double>;
 
-// A timed execute's seconds: each kernel's, and on a device what its batch spent besides them:
-// creating pipelines (the driver compiling each kernel on its first use), the rest of recording
-// the commands on the host, and the device's time from its first kernel's start to its last
-// one's end that no kernel took (the barriers between kernels and each launch).
-struct ExecuteTimes {
-  KernelTimes kernels;
+// What a device's batches spent besides their kernels, in seconds: creating pipelines (the driver
+// compiling each kernel on its first use), the rest of recording the commands on the host, and the
+// device's time from a batch's first kernel's start to its last one's end that no kernel took (the
+// barriers between kernels and each launch). Zeros on the cpu backend, which has no device.
+struct DeviceOverheads {
   double pipelines = 0;
   double recording = 0;
   double between_kernels = 0;
+  double total() const { return pipelines + recording + between_kernels; }
+  void add(const DeviceOverheads& o) {
+    pipelines += o.pipelines;
+    recording += o.recording;
+    between_kernels += o.between_kernels;
+  }
+};
+
+// A timed execute's seconds: each kernel's, and the batch's device overheads.
+struct ExecuteTimes {
+  KernelTimes kernels;
+  DeviceOverheads device;
 };
 
 class Backend {

@@ -15,17 +15,13 @@ void RunProfile::add(const RunProfile& o) {
   reorders += o.reorders;
   reorder_seconds += o.reorder_seconds;
   batch_seconds += o.batch_seconds;
-  pipeline_seconds += o.pipeline_seconds;
-  recording_seconds += o.recording_seconds;
-  between_kernels_seconds += o.between_kernels_seconds;
+  device.add(o.device);
   transfer_seconds += o.transfer_seconds;
 }
 
 void RunProfile::add(const ExecuteTimes& batch) {
   for (const auto& [k, t] : batch.kernels) kernels[k] += t;
-  pipeline_seconds += batch.pipelines;
-  recording_seconds += batch.recording;
-  between_kernels_seconds += batch.between_kernels;
+  device.add(batch.device);
 }
 
 double RunProfile::kernel_seconds() const {
@@ -108,21 +104,23 @@ std::string format_host_times(const RunProfile& p) {
   if (p.kernels.empty() || p.steps == 0) return "";
   const double ms = 1e3 / double(p.steps);
   const double beyond = std::max(0.0, p.batch_seconds - p.kernel_seconds());
-  const double named = p.pipeline_seconds + p.recording_seconds + p.between_kernels_seconds;
   const double rest = std::max(0.0, host_seconds(p) - beyond - p.transfer_seconds);
-  char line[512];
-  int n = std::snprintf(line, sizeof line, "host %.3f ms per step: running the batches besides their kernels %.3f",
-                        host_seconds(p) * ms, beyond * ms);
-  if (named > 0) {  // a device's batches: pipelines, recording, the device's gaps, the rest (submit, wait)
-    n += std::snprintf(line + n, sizeof line - n, " (");
-    if (p.pipeline_seconds > 0)  // the first use of each kernel: a one-off a short run shows
-      n += std::snprintf(line + n, sizeof line - n, "creating pipelines %.3f, ", p.pipeline_seconds * ms);
-    n += std::snprintf(line + n, sizeof line - n,
-                       "recording the commands %.3f, the device between kernels %.3f, submitting and waiting %.3f)",
-                       p.recording_seconds * ms, p.between_kernels_seconds * ms, std::max(0.0, beyond - named) * ms);
+  auto per_step = [ms](const char* name, double seconds) {
+    char number[32];
+    std::snprintf(number, sizeof number, " %.3f", seconds * ms);
+    return name + std::string(number);
+  };
+  std::string out = per_step("host", host_seconds(p)) + " ms per step: " +
+                    per_step("running the batches besides their kernels", beyond);
+  const DeviceOverheads& d = p.device;
+  if (d.total() > 0) {  // a device's batches; what is left of them is the submit and the wait
+    out += " (";
+    if (d.pipelines > 0) out += per_step("creating pipelines", d.pipelines) + ", ";  // a one-off
+    out += per_step("recording the commands", d.recording) + ", " +
+           per_step("the device between kernels", d.between_kernels) + ", " +
+           per_step("submitting and waiting", std::max(0.0, beyond - d.total())) + ")";
   }
-  std::snprintf(line + n, sizeof line - n, ", transfers %.3f, between batches %.3f", p.transfer_seconds * ms, rest * ms);
-  return line;
+  return out + ", " + per_step("transfers", p.transfer_seconds) + ", " + per_step("between batches", rest);
 }
 
 }  // namespace repose

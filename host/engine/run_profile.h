@@ -21,13 +21,10 @@ struct RunProfile {
   uint64_t reorders = 0;       // cell orderings on the host (download, sort, upload) and their time
   double reorder_seconds = 0;
   // What a timed run can name of the host's share (the wall time no kernel nor reorder took): the
-  // backend's batches (their kernels included), and of them the pipelines created, the rest of
-  // recording the commands and the device's time between its kernels (ExecuteTimes); the
-  // transfers around them (walls up, control words and the state down).
+  // backend's batches (their kernels included) and their device overheads; the transfers around
+  // them (walls up, control words and the state down).
   double batch_seconds = 0;
-  double pipeline_seconds = 0;
-  double recording_seconds = 0;
-  double between_kernels_seconds = 0;
+  DeviceOverheads device;
   double transfer_seconds = 0;
   void add(const RunProfile& other);
   void add(const ExecuteTimes& batch);

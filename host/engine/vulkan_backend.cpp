@@ -130,8 +130,9 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* 
     }
     if (times) {
       const double created = kernels_.take_creation_seconds();
-      times->pipelines += created;
-      times->recording += std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count() - created;
+      times->device.pipelines += created;
+      times->device.recording +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - record_start).count() - created;
     }
   });
   if (times) {
@@ -147,7 +148,7 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* 
       times->kernels[kernel_shader_name(program[i].kernel)] += seconds;
       in_kernels += seconds;
     }
-    if (needed > 0) times->between_kernels += std::max(0.0, double(stamps[needed - 1] - stamps[0]) * period - in_kernels);
+    if (needed > 0) times->device.between_kernels += std::max(0.0, double(stamps[needed - 1] - stamps[0]) * period - in_kernels);
   }
 }
 

@@ -131,9 +131,9 @@ OrderedJson profile_json(const RunProfile& p) {
           {"reorders", p.reorders},
           {"reorder_seconds", p.reorder_seconds},
           {"batch_seconds", p.batch_seconds},
-          {"pipeline_seconds", p.pipeline_seconds},
-          {"recording_seconds", p.recording_seconds},
-          {"between_kernels_seconds", p.between_kernels_seconds},
+          {"pipeline_seconds", p.device.pipelines},
+          {"recording_seconds", p.device.recording},
+          {"between_kernels_seconds", p.device.between_kernels},
           {"transfer_seconds", p.transfer_seconds},
           {"kernels", kernels}};
 }
@@ -147,9 +147,9 @@ RunProfile profile_from_json(const OrderedJson& j) {
   p.reorders = j.value("reorders", uint64_t(0));  // absent before they were timed
   p.reorder_seconds = j.value("reorder_seconds", 0.0);
   p.batch_seconds = j.value("batch_seconds", 0.0);  // these five absent before they were timed
-  p.pipeline_seconds = j.value("pipeline_seconds", 0.0);
-  p.recording_seconds = j.value("recording_seconds", 0.0);
-  p.between_kernels_seconds = j.value("between_kernels_seconds", 0.0);
+  p.device.pipelines = j.value("pipeline_seconds", 0.0);
+  p.device.recording = j.value("recording_seconds", 0.0);
+  p.device.between_kernels = j.value("between_kernels_seconds", 0.0);
   p.transfer_seconds = j.value("transfer_seconds", 0.0);
   for (const auto& [name, seconds] : j.at("kernels").items()) p.kernels[name] = seconds.get<double>();
   return p;
