@@ -117,6 +117,9 @@ class Backend {
   // Wall rows from row `first` (walls.h wall_at): every wall's (first 0), or the moving walls'
   // at each step of a batch, step-major (first n_walls).
   virtual void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) = 0;
+  // Gets ready to run these dispatches (a device compiles their kernels, several at once), so that
+  // the batches do not wait for it one kernel at a time; optional.
+  virtual void prepare(const std::vector<Dispatch>& /*program*/) {}
   // Runs the dispatches in order, each seeing the previous one's writes, and waits.
   // With `times`, adds to it each kernel's duration and the batch's other times (ExecuteTimes).
   virtual void execute(const std::vector<Dispatch>& program, ExecuteTimes* times = nullptr) = 0;

@@ -42,6 +42,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
   state_.trans_start.assign(model_.n_particles + 1, 0u);
   state_.bodies = model_.bodies;
   allocate(first_capacity ? first_capacity : first_contact_capacity(model_));
+  backend_->prepare(dispatches_of_run());
   if (layout_.n_bodies) {
     backend_->execute(body_place_program(model_, layout_, variant_));
     download();
@@ -196,6 +197,22 @@ bool walls_move_during(const Model& m, uint64_t first, uint32_t steps) {
 }
 
 }  // namespace
+
+std::vector<Dispatch> Simulation::dispatches_of_run() const {
+  std::vector<Dispatch> all;
+  auto append = [&](const std::vector<Dispatch>& program) { all.insert(all.end(), program.begin(), program.end()); };
+  if (layout_.n_bodies) append(body_place_program(model_, layout_, variant_));
+  if (model_.integrator == Integrator::VelocityVerlet) append(initial_forces_program(model_, layout_, variant_, 0));
+  for (bool walls_still : {true, false}) append(step_program(model_, layout_, variant_, 0, walls_still));
+  if (layout_.n_wall_groups) {  // the walls' sums (batch_program, wall_forces)
+    Dispatch d;
+    d.kernel = KernelId::WallReduce;
+    d.groups = layout_.n_wall_groups;
+    d.sim = base_push(model_, layout_, variant_);
+    all.push_back(d);
+  }
+  return all;
+}
 
 std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) const {
   // A batch in which no wall moves forces no rebuilds for walls: the skin check alone suffices.

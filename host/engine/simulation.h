@@ -127,6 +127,9 @@ class Simulation {
   // symplectic Euler at its start (0).
   double wall_time_offset() const { return model_.integrator == Integrator::VelocityVerlet ? 1.0 : 0.0; }
   std::vector<Dispatch> batch_program(uint64_t first, uint32_t steps) const;
+  // The dispatches a run may make (the setup's, a step's with the walls still and moving, the
+  // walls' sums), for the backend to prepare at once (Backend::prepare).
+  std::vector<Dispatch> dispatches_of_run() const;
   void add_batch_wall_sums();
   Model model_;
   std::unique_ptr<Backend> backend_;

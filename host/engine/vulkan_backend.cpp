@@ -100,6 +100,17 @@ void VulkanBackend::upload_walls(const std::vector<WallState>& rows, size_t firs
   dst.upload(rows.data(), std::min(rows.size() * sizeof(WallState), dst.size() - offset), offset);
 }
 
+// A dispatch's push constants: a scan's ScanPush, every other kernel's SimPush.
+static const void* push_of(const Dispatch& d) {
+  return d.kernel == KernelId::Scan ? static_cast<const void*>(&d.scan) : static_cast<const void*>(&d.sim);
+}
+
+void VulkanBackend::prepare(const std::vector<Dispatch>& program) {
+  std::vector<std::pair<KernelId, const void*>> dispatches;
+  for (const Dispatch& d : program) dispatches.push_back({d.kernel, push_of(d)});
+  kernels_.prepare(dispatches);
+}
+
 void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* times) {
   uint32_t needed = times ? uint32_t(program.size()) * 2 : 0;
   if (times && needed > query_capacity_) {
@@ -118,8 +129,7 @@ void VulkanBackend::execute(const std::vector<Dispatch>& program, ExecuteTimes* 
     uint32_t q = 0;
     for (const Dispatch& d : program) {
       if (times) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queries_, q++);
-      const void* push = d.kernel == KernelId::Scan ? static_cast<const void*>(&d.scan)
-                                                    : static_cast<const void*>(&d.sim);
+      const void* push = push_of(d);
       uint32_t bytes = d.kernel == KernelId::Scan ? sizeof(ScanPush) : sizeof(SimPush);
       if (d.indirect_word >= 0)
         kernels_.record(cb, d.kernel, push, bytes, 0, control, d.indirect_word * sizeof(uint32_t));

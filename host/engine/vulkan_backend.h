@@ -27,6 +27,7 @@ class VulkanBackend : public Backend {
   void upload_state(const HostState& s) override;
   void download_positions(std::vector<gpu::vec4>& pos) override;
   void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) override;
+  void prepare(const std::vector<Dispatch>& program) override;
   void execute(const std::vector<Dispatch>& program, ExecuteTimes* times) override;
   std::vector<uint32_t> read_control() override;
   std::vector<gpu::vec4> wall_forces(const gpu::SimPush& push) override;

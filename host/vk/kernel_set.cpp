@@ -1,9 +1,13 @@
 #include "vk/kernel_set.h"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstring>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 
 #include "vk/buffer.h"
 #include "vk/context.h"
@@ -63,16 +67,16 @@ PipelineLibrary::~PipelineLibrary() {
   if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
 }
 
-VkPipeline PipelineLibrary::pipeline(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds,
-                                     double& created_seconds) {
+PipelineLibrary::Key PipelineLibrary::key(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds) {
   // The scan and the wall reduction are written for their own fixed workgroup size.
   uint32_t wg = id == KernelId::Scan         ? gpu::kScanWorkgroup
                 : id == KernelId::WallReduce ? gpu::kWallReduceWorkgroup
                                              : workgroup;
-  auto key = std::make_tuple(static_cast<uint32_t>(id), wg, flags, absent_wall_kinds);
-  std::lock_guard<std::mutex> hold(mutex_);  // simulations on several threads share the library
-  auto found = pipelines_.find(key);
-  if (found != pipelines_.end()) return found->second;
+  return {static_cast<uint32_t>(id), wg, flags, absent_wall_kinds};
+}
+
+VkPipeline PipelineLibrary::create(const Key& key) const {
+  const auto [id, wg, flags, absent_wall_kinds] = key;
   // constant_id 0: the workgroup size; 1: the flags word; 2: the absent wall kinds; 3: how / and
   // sqrt are rounded (kernels/glsl_prelude.glsl).
   const uint32_t values[4] = {wg, flags, absent_wall_kinds, ctx_.rounding()};
@@ -84,16 +88,59 @@ VkPipeline PipelineLibrary::pipeline(KernelId id, uint32_t workgroup, uint32_t f
   VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   ci.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
   ci.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  ci.stage.module = modules_[static_cast<uint32_t>(id)];
+  ci.stage.module = modules_[id];
   ci.stage.pName = "main";
   ci.stage.pSpecializationInfo = &spec;
   ci.layout = layout_;
   VkPipeline p;
-  const auto start = std::chrono::steady_clock::now();
   VK_CHECK(vkCreateComputePipelines(ctx_.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &p));
+  return p;
+}
+
+VkPipeline PipelineLibrary::pipeline(const Key& key, double& created_seconds) {
+  std::lock_guard<std::mutex> hold(mutex_);  // simulations on several threads share the library
+  auto found = pipelines_.find(key);
+  if (found != pipelines_.end()) return found->second;
+  const auto start = std::chrono::steady_clock::now();
+  VkPipeline p = create(key);
   created_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   pipelines_.emplace(key, p);
   return p;
+}
+
+void PipelineLibrary::prepare(std::vector<Key> keys) {
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  {
+    std::lock_guard<std::mutex> hold(mutex_);
+    keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const Key& k) { return pipelines_.count(k) > 0; }),
+               keys.end());
+  }
+  // Each thread takes the next key not yet taken; the driver compiles them side by side (the
+  // Vulkan device is not externally synchronised for pipeline creation).
+  std::vector<VkPipeline> made(keys.size(), VK_NULL_HANDLE);
+  std::atomic<size_t> next{0};
+  std::exception_ptr failed;
+  std::mutex failed_mutex;
+  auto work = [&] {
+    for (size_t i; (i = next++) < keys.size();) try {
+        made[i] = create(keys[i]);
+      } catch (...) {
+        std::lock_guard<std::mutex> hold(failed_mutex);
+        failed = std::current_exception();
+      }
+  };
+  const size_t threads = std::min<size_t>(keys.size(), std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> helpers;
+  for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+  work();
+  for (auto& h : helpers) h.join();
+  std::lock_guard<std::mutex> hold(mutex_);
+  for (size_t i = 0; i < keys.size(); ++i) {
+    if (made[i] == VK_NULL_HANDLE) continue;
+    if (!pipelines_.emplace(keys[i], made[i]).second) vkDestroyPipeline(ctx_.device(), made[i], nullptr);
+  }
+  if (failed) std::rethrow_exception(failed);
 }
 
 size_t PipelineLibrary::size() {
@@ -138,18 +185,38 @@ void KernelSet::bind(const std::array<const Buffer*, gpu::kBindingCount>& buffer
   vkUpdateDescriptorSets(ctx_.device(), gpu::kBindingCount, writes.data(), 0, nullptr);
 }
 
+// The words of a kernel's push constants that specialise its pipeline or shape its dispatch (a
+// scan's push has none of them).
+struct PushWords {
+  uint32_t flags = 0, absent_wall_kinds = 0, max_x = gpu::kMaxGroupsX;
+};
+static PushWords push_words(KernelId k, const void* push) {
+  PushWords w;
+  if (k == KernelId::Scan) return w;
+  const char* bytes = static_cast<const char*>(push);
+  std::memcpy(&w.flags, bytes + offsetof(gpu::SimPush, flags), sizeof w.flags);
+  std::memcpy(&w.absent_wall_kinds, bytes + offsetof(gpu::SimPush, absent_wall_kinds), sizeof w.absent_wall_kinds);
+  std::memcpy(&w.max_x, bytes + offsetof(gpu::SimPush, max_groups_x), sizeof w.max_x);
+  return w;
+}
+
+void KernelSet::prepare(const std::vector<std::pair<KernelId, const void*>>& dispatches) {
+  std::vector<PipelineLibrary::Key> keys;
+  for (const auto& [k, push] : dispatches) {
+    const PushWords w = push_words(k, push);
+    keys.push_back(PipelineLibrary::key(k, workgroup_, w.flags, w.absent_wall_kinds));
+  }
+  library_.prepare(std::move(keys));
+}
+
 void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
                        uint32_t groups, VkBuffer indirect, VkDeviceSize indirect_offset) {
   if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
   // The pipeline specialised for the push's own words, so the two never disagree.
-  uint32_t flags = 0, absent_wall_kinds = 0, max_x = gpu::kMaxGroupsX;
-  if (k != KernelId::Scan) {
-    const char* bytes = static_cast<const char*>(push);
-    std::memcpy(&flags, bytes + offsetof(gpu::SimPush, flags), sizeof flags);
-    std::memcpy(&absent_wall_kinds, bytes + offsetof(gpu::SimPush, absent_wall_kinds), sizeof absent_wall_kinds);
-    std::memcpy(&max_x, bytes + offsetof(gpu::SimPush, max_groups_x), sizeof max_x);
-  }
-  VkPipeline pipeline = library_.pipeline(k, workgroup_, flags, absent_wall_kinds, creation_seconds_);
+  const PushWords w = push_words(k, push);
+  const uint32_t max_x = w.max_x;
+  VkPipeline pipeline =
+      library_.pipeline(PipelineLibrary::key(k, workgroup_, w.flags, w.absent_wall_kinds), creation_seconds_);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
   vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, library_.layout(), 0, 1, &set_, 0, nullptr);
   vkCmdPushConstants(cb, library_.layout(), VK_SHADER_STAGE_COMPUTE_BIT, 0, push_bytes, push);

@@ -33,19 +33,25 @@ class PipelineLibrary {
 
   VkDescriptorSetLayout set_layout() const { return set_layout_; }
   VkPipelineLayout layout() const { return layout_; }
+  // A pipeline: kernel id, workgroup size, flags word, absent wall kinds.
+  using Key = std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>;
   // Kernel `id` at `workgroup` invocations (the scan and the wall reduction: their own), specialised
-  // for the two words; the seconds spent creating it, when this call does, go into created_seconds.
-  VkPipeline pipeline(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds,
-                      double& created_seconds);
+  // for the two words.
+  static Key key(KernelId id, uint32_t workgroup, uint32_t flags, uint32_t absent_wall_kinds);
+  // The pipeline of `key`; the seconds spent creating it, when this call does, go into created_seconds.
+  VkPipeline pipeline(const Key& key, double& created_seconds);
+  // Creates those of `keys` not made yet, several at once (one thread per processor).
+  void prepare(std::vector<Key> keys);
   size_t size();  // pipelines created so far
 
  private:
+  VkPipeline create(const Key& key) const;
   Context& ctx_;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
   VkPipelineLayout layout_ = VK_NULL_HANDLE;
   std::vector<VkShaderModule> modules_;
   std::mutex mutex_;
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t>, VkPipeline> pipelines_;
+  std::map<Key, VkPipeline> pipelines_;
 };
 
 class KernelSet {
@@ -62,6 +68,9 @@ class KernelSet {
   // `indirect` when it is non-null. push is copied into the push-constant block.
   void record(VkCommandBuffer cb, KernelId k, const void* push, uint32_t push_bytes,
               uint32_t groups, VkBuffer indirect = VK_NULL_HANDLE, VkDeviceSize indirect_offset = 0);
+  // Creates the pipelines of these dispatches (kernel and push constants) that the device has not
+  // made yet, side by side, so that the batches find them made.
+  void prepare(const std::vector<std::pair<KernelId, const void*>>& dispatches);
   // A full memory barrier between dependent dispatches (shader writes -> reads, indirect args).
   static void barrier(VkCommandBuffer cb);
   uint32_t workgroup() const { return workgroup_; }

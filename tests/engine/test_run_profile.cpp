@@ -101,3 +101,23 @@ TEST_CASE("the device's pipelines are created once per process: a second simulat
     if (run == 1) CHECK(p.device.pipelines == 0);  // the first simulation made every one it needs
   }
 }
+
+// Under ctest each test case is a process of its own, so the device's library starts empty here:
+// a pipeline that Simulation::dispatches_of_run() missed would be made in a batch and fail this.
+TEST_CASE("a simulation's setup makes every pipeline its batches use, several at once", "[profile]") {
+  vk::PipelineLibrary& library = vk::Context::open()->pipelines();
+  const std::vector<std::pair<const char*, CaseSpec>> cases = {
+      {"spheres by two walls", seeded_cloud(200, 5, 2.3, 0.2)},
+      {"clumps", clump_pile()},
+      {"clumps, symplectic Euler", wide_skin_pile(Integrator::SymplecticEuler)}};
+  for (const auto& [name, spec] : cases) {
+    INFO(name);
+    auto sim = simulate(spec, "vulkan", 1, {}, 20);
+    const size_t made = library.size();
+    CHECK(made > 0);
+    sim->sum_wall_forces();
+    sim->advance(60);
+    sim->wall_forces();
+    CHECK(library.size() == made);
+  }
+}
