@@ -123,12 +123,14 @@ void PipelineLibrary::prepare(std::vector<Key> keys) {
   std::exception_ptr failed;
   std::mutex failed_mutex;
   auto work = [&] {
-    for (size_t i; (i = next++) < keys.size();) try {
+    for (size_t i = next++; i < keys.size(); i = next++) {
+      try {
         made[i] = create(keys[i]);
       } catch (...) {
         std::lock_guard<std::mutex> hold(failed_mutex);
         failed = std::current_exception();
       }
+    }
   };
   const size_t threads = std::min<size_t>(keys.size(), std::max(1u, std::thread::hardware_concurrency()));
   std::vector<std::thread> helpers;
@@ -214,7 +216,6 @@ void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_
   if (push_bytes > kPushBytes) throw std::logic_error("push constants too large");
   // The pipeline specialised for the push's own words, so the two never disagree.
   const PushWords w = push_words(k, push);
-  const uint32_t max_x = w.max_x;
   VkPipeline pipeline =
       library_.pipeline(PipelineLibrary::key(k, workgroup_, w.flags, w.absent_wall_kinds), creation_seconds_);
   vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -223,7 +224,7 @@ void KernelSet::record(VkCommandBuffer cb, KernelId k, const void* push, uint32_
   if (indirect != VK_NULL_HANDLE)
     vkCmdDispatchIndirect(cb, indirect, indirect_offset);
   else if (groups > 0)  // in rows of at most max_x groups (invocation_index() counts across them)
-    vkCmdDispatch(cb, gpu::dispatch_columns(groups, max_x), gpu::dispatch_rows(groups, max_x), 1);
+    vkCmdDispatch(cb, gpu::dispatch_columns(groups, w.max_x), gpu::dispatch_rows(groups, w.max_x), 1);
 }
 
 void KernelSet::barrier(VkCommandBuffer cb) {
