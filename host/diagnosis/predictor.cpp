@@ -1,14 +1,13 @@
 #include "diagnosis/predictor.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <stdexcept>
-#include <thread>
 
 #include "case/case_loader.h"
 #include "experiments/registry.h"
+#include "util/parallel_each.h"
 
 namespace repose {
 
@@ -169,25 +168,10 @@ Prediction Predictor::predict(const ModelExtension* extension, const std::vector
   for (size_t c = 0; c < nc; ++c)
     if (use[c])
       for (int r = 0; r < reps; ++r) pending.push_back({c, r});
-  std::atomic<size_t> next{0};
-  std::exception_ptr error;
-  std::mutex error_mutex;
-  auto worker = [&] {
-    for (size_t k = next++; k < pending.size(); k = next++) {
-      try {
-        auto [c, r] = pending[k];
-        results[c][size_t(r)] = simulate(c, extension, params, first + r);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(error_mutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<size_t>(threads_, pending.size()); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
-  if (error) std::rethrow_exception(error);
+  parallel_each(pending.size(), threads_, [&](size_t k) {
+    auto [c, r] = pending[k];
+    results[c][size_t(r)] = simulate(c, extension, params, first + r);
+  });
   Prediction out;
   out.replicates = reps;
   out.mean.assign(obs_.groups.size(), 0.0);

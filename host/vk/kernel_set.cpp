@@ -1,14 +1,13 @@
 #include "vk/kernel_set.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <cstring>
-#include <exception>
 #include <stdexcept>
 #include <thread>
 
+#include "util/parallel_each.h"
 #include "vk/buffer.h"
 #include "vk/context.h"
 #include "vk/embedded_shaders.h"
@@ -116,33 +115,24 @@ void PipelineLibrary::prepare(std::vector<Key> keys) {
     keys.erase(std::remove_if(keys.begin(), keys.end(), [&](const Key& k) { return pipelines_.count(k) > 0; }),
                keys.end());
   }
-  // Each thread takes the next key not yet taken; the driver compiles them side by side (the
-  // Vulkan device is not externally synchronised for pipeline creation).
+  // The driver compiles them side by side (the Vulkan device is not externally synchronised for
+  // pipeline creation); those made are kept even if one fails.
   std::vector<VkPipeline> made(keys.size(), VK_NULL_HANDLE);
-  std::atomic<size_t> next{0};
-  std::exception_ptr failed;
-  std::mutex failed_mutex;
-  auto work = [&] {
-    for (size_t i = next++; i < keys.size(); i = next++) {
-      try {
-        made[i] = create(keys[i]);
-      } catch (...) {
-        std::lock_guard<std::mutex> hold(failed_mutex);
-        failed = std::current_exception();
-      }
+  auto keep_made = [&] {
+    std::lock_guard<std::mutex> hold(mutex_);
+    for (size_t i = 0; i < keys.size(); ++i) {
+      if (made[i] == VK_NULL_HANDLE) continue;
+      if (!pipelines_.emplace(keys[i], made[i]).second) vkDestroyPipeline(ctx_.device(), made[i], nullptr);
     }
   };
-  const size_t threads = std::min<size_t>(keys.size(), std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> helpers;
-  for (size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
-  work();
-  for (auto& h : helpers) h.join();
-  std::lock_guard<std::mutex> hold(mutex_);
-  for (size_t i = 0; i < keys.size(); ++i) {
-    if (made[i] == VK_NULL_HANDLE) continue;
-    if (!pipelines_.emplace(keys[i], made[i]).second) vkDestroyPipeline(ctx_.device(), made[i], nullptr);
+  try {
+    parallel_each(keys.size(), std::max(1u, std::thread::hardware_concurrency()),
+                  [&](size_t i) { made[i] = create(keys[i]); });
+  } catch (...) {
+    keep_made();
+    throw;
   }
-  if (failed) std::rethrow_exception(failed);
+  keep_made();
 }
 
 size_t PipelineLibrary::size() {

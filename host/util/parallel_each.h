@@ -1,0 +1,38 @@
+// Independent jobs over a few threads: each thread takes the next index not yet taken, so long
+// and short jobs share out evenly; the caller's thread is one of them.
+#pragma once
+#include <algorithm>
+#include <atomic>
+#include <cstddef>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace repose {
+
+// Calls body(i) for every i in [0, n) on up to `threads` threads. When all have finished, rethrows
+// the first exception a call threw (the other calls still ran).
+template <class Body>
+void parallel_each(size_t n, unsigned threads, Body body) {
+  std::atomic<size_t> next{0};
+  std::exception_ptr error;
+  std::mutex error_mutex;
+  auto worker = [&] {
+    for (size_t i = next++; i < n; i = next++) {
+      try {
+        body(i);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> helpers;
+  for (size_t t = 1; t < std::min<size_t>(threads, n); ++t) helpers.emplace_back(worker);
+  worker();
+  for (auto& h : helpers) h.join();
+  if (error) std::rethrow_exception(error);
+}
+
+}  // namespace repose
