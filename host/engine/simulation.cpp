@@ -204,14 +204,16 @@ std::vector<Dispatch> Simulation::dispatches_of_run() const {
   if (layout_.n_bodies) append(body_place_program(model_, layout_, variant_));
   if (model_.integrator == Integrator::VelocityVerlet) append(initial_forces_program(model_, layout_, variant_, 0));
   for (bool walls_still : {true, false}) append(step_program(model_, layout_, variant_, 0, walls_still));
-  if (layout_.n_wall_groups) {  // the walls' sums (batch_program, wall_forces)
-    Dispatch d;
-    d.kernel = KernelId::WallReduce;
-    d.groups = layout_.n_wall_groups;
-    d.sim = base_push(model_, layout_, variant_);
-    all.push_back(d);
-  }
+  if (layout_.n_wall_groups) all.push_back(wall_sums_dispatch());
   return all;
+}
+
+Dispatch Simulation::wall_sums_dispatch() const {
+  Dispatch d;
+  d.kernel = KernelId::WallReduce;
+  d.groups = layout_.n_wall_groups;
+  d.sim = base_push(model_, layout_, variant_);
+  return d;
 }
 
 std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) const {
@@ -223,10 +225,7 @@ std::vector<Dispatch> Simulation::batch_program(uint64_t first, uint32_t steps) 
     program.insert(program.end(), one.begin(), one.end());
     if (summing_walls_) {
       // After the step's forces: each named wall's, summed over the batch from its first step.
-      Dispatch d;
-      d.kernel = KernelId::WallReduce;
-      d.groups = layout_.n_wall_groups;
-      d.sim = base_push(model_, layout_, variant_);
+      Dispatch d = wall_sums_dispatch();
       d.sim.wall_sums = s == 0 ? 2u : 1u;
       program.push_back(d);
     }

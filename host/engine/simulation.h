@@ -130,6 +130,8 @@ class Simulation {
   // The dispatches a run may make (the setup's, a step's with the walls still and moving, the
   // walls' sums), for the backend to prepare at once (Backend::prepare).
   std::vector<Dispatch> dispatches_of_run() const;
+  // wall_reduce over the named walls, with the run's push constants (batch_program sets its sums).
+  Dispatch wall_sums_dispatch() const;
   void add_batch_wall_sums();
   Model model_;
   std::unique_ptr<Backend> backend_;
