@@ -112,8 +112,9 @@ class Backend {
     read_state(s);
   }
   uint64_t state_downloads() const { return state_downloads_; }
-  // The positions alone (pos, 16 B per particle, in the device's slots): what an escape check reads.
-  virtual void download_positions(std::vector<gpu::vec4>& pos) = 0;
+  // The first `bytes` of one buffer, alone (rows in the device's slots): what a check whose answer
+  // does not depend on the order reads (Simulation::rows_in_any_order), and the twin tests.
+  virtual void read_binding(uint32_t binding, void* dst, size_t bytes) = 0;
   // Wall rows from row `first` (walls.h wall_at): every wall's (first 0), or the moving walls'
   // at each step of a batch, step-major (first n_walls).
   virtual void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) = 0;

@@ -87,8 +87,8 @@ void CpuBackend::upload_state(const HostState& s) {
   for_each_kept(s, [&](const BufferSpec& b, const auto& v) { put(b.binding, v); });
 }
 
-void CpuBackend::download_positions(std::vector<gpu::vec4>& pos) {
-  pos.assign(buf_.pos, buf_.pos + layout_.n_particles);
+void CpuBackend::read_binding(uint32_t binding, void* dst, size_t bytes) {
+  std::memcpy(dst, storage_[binding].data(), std::min(bytes, storage_[binding].size()));
 }
 
 void CpuBackend::read_state(HostState& s) {

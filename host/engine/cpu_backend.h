@@ -20,7 +20,7 @@ class CpuBackend : public Backend {
   void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
-  void download_positions(std::vector<gpu::vec4>& pos) override;
+  void read_binding(uint32_t binding, void* dst, size_t bytes) override;
   void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) override;
   void execute(const std::vector<Dispatch>& program, ExecuteTimes* times) override;
   std::vector<uint32_t> read_control() override;

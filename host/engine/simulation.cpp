@@ -5,6 +5,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "engine/buffer_table.h"
+
 namespace repose {
 
 uint32_t first_contact_capacity(const Model& m) {
@@ -87,12 +89,12 @@ void Simulation::upload() {
   backend_->upload_state(state_);
   unread_batches_.clear();
   control_ = state_.control;
-  positions_current_ = false;
+  rows_current_.reset();
 }
 
 void Simulation::download() const {
-  std::vector<gpu::vec4>().swap(positions_);  // state_.pos holds them from now on
-  positions_current_ = false;
+  rows_ = HostState();  // state_ holds them from now on
+  rows_current_.reset();
   backend_->download_state(state_);
   state_in_slots_ = !stored_by_id_;
   unread_batches_.clear();
@@ -107,14 +109,26 @@ const HostState& Simulation::state() const {
   return state_;
 }
 
-const std::vector<gpu::vec4>& Simulation::positions_in_any_order() const {
-  if (unread_batches_.empty()) return state_.pos;
-  if (!positions_current_) {
-    backend_->download_positions(positions_);
-    positions_current_ = true;
+template <class T>
+const std::vector<T>& Simulation::rows_in_any_order(std::vector<T> HostState::*row) const {
+  if (unread_batches_.empty()) return state_.*row;
+  std::vector<T>& rows = rows_.*row;
+  const BufferSpec* spec = nullptr;
+  for_each_kept(rows_, [&](const BufferSpec& b, const auto& v) {
+    if (static_cast<const void*>(&v) == static_cast<const void*>(&rows)) spec = &b;
+  });
+  // A contact list's rows mean nothing without the rest of it.
+  if (spec->count != BufferCount::Particles && spec->count != BufferCount::Bodies)
+    throw std::logic_error(std::string("rows_in_any_order: ") + spec->name + " is not a row of every particle or body");
+  if (!rows_current_[spec->binding]) {
+    rows.resize(buffer_elements(*spec, layout_));
+    backend_->read_binding(spec->binding, rows.data(), rows.size() * sizeof(T));
+    rows_current_.set(spec->binding);
   }
-  return positions_;
+  return rows;
 }
+template const std::vector<gpu::vec4>& Simulation::rows_in_any_order(std::vector<gpu::vec4> HostState::*) const;
+template const std::vector<gpu::Body>& Simulation::rows_in_any_order(std::vector<gpu::Body> HostState::*) const;
 
 void Simulation::store_in_order(ParticleOrder order) {
   if (order.size() != model_.n_particles)
@@ -301,7 +315,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
     uint32_t rebuilds_before = rebuilds();
     control_ = std::move(ctl);
     unread_batches_.push_back(k);
-    positions_current_ = false;
+    rows_current_.reset();
     if (unread_batches_.size() >= kMostUnreadBatches) {  // an overflow replays no more
       ProfileClock clock(transfer_clock());
       download();

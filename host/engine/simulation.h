@@ -5,6 +5,7 @@
 // order (ParticleOrder), renewed between batches as they move; the host's state is by global id
 // whenever anyone reads it, so nothing outside sees the slots.
 #pragma once
+#include <bitset>
 #include <functional>
 #include <memory>
 #include <string>
@@ -66,11 +67,13 @@ class Simulation {
   // downloaded. The reference stays valid, and by global id, until the next advance(),
   // set_state(), restore() or store_in_order() (each of which may leave it in slots again).
   const HostState& state() const;
-  // The positions after the last batch in the order the device stores them, downloaded alone
-  // (16 B per particle) unless the whole state is here already: for checks whose answer does not
-  // depend on the order (any particle out of the domain?). Valid until the next advance() or
-  // state().
-  const std::vector<gpu::vec4>& positions_in_any_order() const;
+  // One row of every particle (&HostState::pos, vel, omega, ...) or of every body (bodies) after
+  // the last batch, in the order the device stores them, downloaded alone (16 B per particle for a
+  // vec4 row) unless the whole state is here already: for checks whose answer does not depend on
+  // the order (any particle out of the domain? the largest kinetic energy?), which would otherwise
+  // download the contact list and turn it to global ids. Valid until the next advance() or state().
+  template <class T>
+  const std::vector<T>& rows_in_any_order(std::vector<T> HostState::*row) const;
   uint64_t step() const { return step_; }
   double time() const { return double(step_) * model_.dt; }
   uint32_t contacts() const { return control_.empty() ? 0 : control_[gpu::kCtlContacts]; }
@@ -149,8 +152,9 @@ class Simulation {
   // run replays at most these (~1,600 steps at 50 per batch) at 1/32 of the downloads it saves.
   static constexpr size_t kMostUnreadBatches = 32;
   std::vector<uint32_t> control_;  // the device's control words after the last batch or upload
-  mutable std::vector<gpu::vec4> positions_;  // downloaded alone after the last batch (slots)
-  mutable bool positions_current_ = false;
+  // Rows downloaded alone after the last batch (in slots; rows_in_any_order), and which are.
+  mutable HostState rows_;
+  mutable std::bitset<gpu::kBindingCount> rows_current_;
   ParticleOrder order_;
   bool stored_by_id_ = true;          // order_ is the identity
   ReorderSchedule reorder_;

@@ -92,8 +92,6 @@ void VulkanBackend::read_state(HostState& s) {
   for_each_kept(s, [&](const BufferSpec& spec, auto& v) { down(b(spec.binding), v, used_elements(spec, layout_, s)); });
 }
 
-void VulkanBackend::download_positions(std::vector<vec4>& pos) { down(b(kBindPos), pos, layout_.n_particles); }
-
 void VulkanBackend::upload_walls(const std::vector<WallState>& rows, size_t first) {
   vk::Buffer& dst = b(kBindWalls);
   size_t offset = std::min(first * sizeof(WallState), dst.size());

@@ -25,7 +25,7 @@ class VulkanBackend : public Backend {
   void allocate(const Layout& layout, const ConstantData& constants) override;
   void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
-  void download_positions(std::vector<gpu::vec4>& pos) override;
+  void read_binding(uint32_t binding, void* dst, size_t bytes) override { buffers_[binding].download(dst, bytes); }
   void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) override;
   void prepare(const std::vector<Dispatch>& program) override;
   void execute(const std::vector<Dispatch>& program, ExecuteTimes* times) override;
@@ -36,8 +36,7 @@ class VulkanBackend : public Backend {
   size_t memory_bytes() const override;
 
   vk::Context& context() { return *ctx_; }
-  // The first `bytes` of binding b's buffer (kernel tests compare raw buffers with the twin).
-  void read_binding(uint32_t binding, void* dst, size_t bytes) { buffers_[binding].download(dst, bytes); }
+  // The first `bytes` of binding b's buffer (kernel tests set raw buffers from the twin's).
   void write_binding(uint32_t binding, const void* src, size_t bytes) { buffers_[binding].upload(src, bytes); }
   uint64_t validation_messages() const { return ctx_->validation_messages(); }
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "engine/largest_energy.h"
 #include "engine/model.h"
 #include "experiments/body_frame.h"
 #include "experiments/experiment_simulation.h"
@@ -20,25 +21,6 @@ namespace {
 // half its radius (one that sits in the opening still belongs to the slope).
 bool in_box(const gpu::vec4& p, double floor_z) { return double(p.z) - p.w >= floor_z - 0.5 * p.w; }
 
-// The largest kinetic energy of a particle (or body) still in the box: those that drained keep
-// falling or bouncing below it and do not belong to the slope.
-double largest_energy_in_box(const HostState& st, double floor_z) {
-  auto sq = [](const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; };
-  double most = 0;
-  if (!st.bodies.empty()) {
-    for (const auto& b : st.bodies) {
-      if (b.pos.w == 0.0f || !in_box(gpu::vec4(b.pos.x, b.pos.y, b.pos.z, 0.0f), floor_z)) continue;
-      double rot = double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z;
-      most = std::max(most, 0.5 / b.pos.w * sq(b.vel) + 0.5 * rot);
-    }
-    return most;
-  }
-  for (size_t i = 0; i < st.vel.size(); ++i)
-    if (st.vel[i].w != 0.0f && in_box(st.pos[i], floor_z))
-      most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
-  return most;
-}
-
 // Runs, sampled every 0.05 s, until the gate has opened and no particle in the box has had more
 // than settle_energy at two samples running; the energies go into r.
 void run_until_drained(const CaseSpec& spec, const ExperimentRunOptions& options, const WallSpec& gate,
@@ -50,7 +32,8 @@ void run_until_drained(const CaseSpec& spec, const ExperimentRunOptions& options
   bool calm_before = false;
   while (true) {
     sim.advance(sample_steps);
-    double e = largest_energy_in_box(sim.state(), r.floor_z);
+    // The particles still in the box: those that drained keep falling or bouncing below it.
+    double e = largest_kinetic_energy(sim, [&](const gpu::vec4& centre) { return in_box(centre, r.floor_z); });
     r.energy.push_back({sim.time(), e});
     progress.update(sim.step(), "max E " + std::to_string(e).substr(0, 8) + " J");
     bool calm = sim.time() > gate.motion.start_time && e < ex.settle_energy;

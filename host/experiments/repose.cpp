@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "engine/backend_factory.h"
+#include "engine/largest_energy.h"
 #include "engine/model.h"
 #include "case/case_error.h"
 #include "case/particle_factory.h"
@@ -26,24 +27,6 @@
 namespace repose {
 
 namespace {
-
-// The largest kinetic energy of any free sphere or body: the heap has settled when every
-// particle has (the seeds waited until nothing moved).
-double max_kinetic_energy(const HostState& st) {
-  double most = 0;
-  auto sq = [](const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; };
-  if (!st.bodies.empty()) {
-    for (const auto& b : st.bodies) {
-      if (b.pos.w == 0.0f) continue;  // fixed: never moves
-      double rot = double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z;
-      most = std::max(most, 0.5 / b.pos.w * sq(b.vel) + 0.5 * rot);
-    }
-    return most;
-  }
-  for (size_t i = 0; i < st.vel.size(); ++i)
-    if (st.vel[i].w != 0.0f) most = std::max(most, 0.5 / st.vel[i].w * sq(st.vel[i]) + 0.5 / st.omega[i].w * sq(st.omega[i]));
-  return most;
-}
 
 // Twice the volume-weighted mean height of the grains above the floor (measure/bed_height.h).
 double bed_height(const HostState& st, const std::optional<double>& floor) {
@@ -147,7 +130,7 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
       r.bed_height = bed_height(sim.state(), ex.heap_floor_z);
       bed_measured = true;
     }
-    double e = max_kinetic_energy(sim.state());
+    double e = largest_kinetic_energy(sim);
     r.energy.push_back({sim.time(), e});
     r.wall_forces.sample(sim);
     RunProfile sample = sim.take_profile();

@@ -167,7 +167,7 @@ int step_to_target(Simulation& sim, RunOutput& output, const Schedule& schedule,
     // found is then named by its global id. On the host, not in a kernel: the check stays one
     // double-precision function for both backends, with no twin to keep, and reads the very bytes
     // a full download would give.
-    if (!escape_told && escapes.find(sim.positions_in_any_order(), sim.time()))
+    if (!escape_told && escapes.find(sim.rows_in_any_order(&HostState::pos), sim.time()))
       if (auto e = escapes.find(sim.state().pos, sim.time())) {
         escape_told = true;
         std::fprintf(stderr, "warning: at t = %.6g s particle %u is %s: it passed through (too fast for the time step, "

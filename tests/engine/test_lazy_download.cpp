@@ -1,8 +1,9 @@
 // The state comes back from the device only when something reads it (Simulation::state): runs
-// read after every batch, read by their positions alone after every batch (the escape check of
-// `repose run`) or read only at the end give the same bytes on both backends, through overflow
-// retries (which upload the last state read and run the batches since again) and reorders; a
-// run nobody reads downloads no state at all (Backend::state_downloads).
+// read after every batch, read by rows alone after every batch (the escape check of `repose run`,
+// an experiment's largest kinetic energy) or read only at the end give the same bytes on both
+// backends, through overflow retries (which upload the last state read and run the batches since
+// again) and reorders; a run nobody reads downloads no state at all (Backend::state_downloads).
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include "engine/bench_bed.h"
+#include "engine/largest_energy.h"
 #include "engine_test_support.h"
 #include "io/state_file.h"
 
@@ -28,25 +30,42 @@ std::string state_file_bytes(const Simulation& sim) {
   return bytes;
 }
 
-// True when `any` (positions in the device's slots) holds, slot for slot, the bytes of the
-// state's positions (by global id) of the particles stored there.
-bool same_positions_in_slots(const std::vector<gpu::vec4>& any, const HostState& s, const ParticleOrder& order) {
-  if (any.size() != s.pos.size()) return false;
+// True when `any` (one row of every particle in the device's slots) holds, slot for slot, the
+// bytes of the state's row (by global id) of the particle stored there.
+bool same_row_in_slots(const std::vector<gpu::vec4>& any, const std::vector<gpu::vec4>& by_id,
+                       const ParticleOrder& order) {
+  if (any.size() != by_id.size()) return false;
   for (uint32_t slot = 0; slot < any.size(); ++slot)
-    if (std::memcmp(&any[slot], &s.pos[order.id_of[slot]], sizeof(gpu::vec4)) != 0) return false;
+    if (std::memcmp(&any[slot], &by_id[order.id_of[slot]], sizeof(gpu::vec4)) != 0) return false;
   return true;
 }
 
-enum class Reading { EveryBatch, PositionsEveryBatch, AtTheEnd };
+// The rows a check reads alone (the escape check's positions, the largest kinetic energy's
+// velocities and spins), each in the device's slots and as the state has them.
+constexpr std::vector<gpu::vec4> HostState::*kRowsAlone[] = {&HostState::pos, &HostState::vel, &HostState::omega};
+
+bool same_rows_in_slots(const std::vector<std::vector<gpu::vec4>>& any, const Simulation& sim) {
+  for (size_t r = 0; r < any.size(); ++r)
+    if (!same_row_in_slots(any[r], sim.state().*kRowsAlone[r], sim.particle_order())) return false;
+  return true;
+}
+
+std::vector<std::vector<gpu::vec4>> rows_alone(const Simulation& sim) {
+  std::vector<std::vector<gpu::vec4>> rows;
+  for (auto row : kRowsAlone) rows.push_back(sim.rows_in_any_order(row));
+  return rows;
+}
+
+enum class Reading { EveryBatch, RowsEveryBatch, AtTheEnd };
 
 const char* name_of(Reading r) {
   return r == Reading::EveryBatch ? "state read after every batch"
-         : r == Reading::PositionsEveryBatch ? "positions read after every batch" : "read at the end";
+         : r == Reading::RowsEveryBatch ? "rows read alone after every batch" : "read at the end";
 }
 
 }  // namespace
 
-TEST_CASE("lazy download: runs read after every batch, by their positions or only at the end give the same bytes",
+TEST_CASE("lazy download: runs read after every batch, by rows alone or only at the end give the same bytes",
           "[engine][order][lazy]") {
   // The pile's list of 64 entries overflows in the constructor and, grown, again near step 1000
   // (wide_skin_pile): a run nobody read since step 0 redoes that batch by running its 19 batches
@@ -66,34 +85,35 @@ TEST_CASE("lazy download: runs read after every batch, by their positions or onl
 
   for (const char* backend : {"cpu", "vulkan"})
     for (const char* variant : {"reorder=0", "reorder=1"})
-      for (Reading reading : {Reading::EveryBatch, Reading::PositionsEveryBatch, Reading::AtTheEnd}) {
+      for (Reading reading : {Reading::EveryBatch, Reading::RowsEveryBatch, Reading::AtTheEnd}) {
         INFO(backend << ", " << variant << ", " << name_of(reading));
         auto sim = start(backend, 2, variant, 64);
         uint64_t downloads_before = sim->backend().state_downloads();
-        size_t batches = 0, positions_as_downloaded = 0;
+        size_t batches = 0, rows_as_downloaded = 0;
         sim->advance(steps, [&](const Simulation& s) {
           ++batches;
           if (reading == Reading::AtTheEnd) return;
-          std::vector<gpu::vec4> any = s.positions_in_any_order();
-          if (reading == Reading::EveryBatch)
-            positions_as_downloaded += same_positions_in_slots(any, s.state(), s.particle_order());
+          auto any = rows_alone(s);
+          double largest = largest_kinetic_energy(s);  // the bodies' rows, in the device's order
+          if (reading == Reading::EveryBatch)  // and as the whole state has them, by global id
+            rows_as_downloaded += same_rows_in_slots(any, s) && largest_kinetic_energy(s) == largest;
         });
         uint64_t downloads = sim->backend().state_downloads() - downloads_before;
         CHECK(sim->retries() > 0);
         CHECK(batches == steps / batch);
         if (reading == Reading::EveryBatch) {
-          CHECK(positions_as_downloaded == batches);  // positions alone are the full download's
+          CHECK(rows_as_downloaded == batches);  // rows alone are the full download's
           CHECK(downloads == batches);                // one per batch: neither retries nor reorders add any
         } else if (std::string(variant) == "reorder=0") {
           CHECK(downloads == 0);  // the overflow near step 1000 ran its unread batches again
         } else {
           CHECK(downloads > 0);  // every reorder reads the state
         }
-        // The last positions read alone, then the whole state: the same bytes, slot for slot.
+        // The last rows read alone, then the whole state: the same bytes, slot for slot.
         if (reading != Reading::EveryBatch) {
-          std::vector<gpu::vec4> any = sim->positions_in_any_order();
+          auto any = rows_alone(*sim);
           CHECK(sim->backend().state_downloads() - downloads_before == downloads);
-          CHECK(same_positions_in_slots(any, sim->state(), sim->particle_order()));
+          CHECK(same_rows_in_slots(any, *sim));
         }
         std::string which;
         bool same = same_state(reference->state(), sim->state(), &which);
@@ -118,11 +138,23 @@ TEST_CASE("lazy download: a bench-like run nobody reads downloads no state; a re
     sim.advance(300, [](const Simulation& s) { CHECK(s.contacts() > 0); });
     REQUIRE(sim.rebuilds() < 20);
     CHECK(device.state_downloads() == at_start);
-    std::vector<gpu::vec4> any = sim.positions_in_any_order();  // positions alone: no state
+    auto any = rows_alone(sim);  // rows alone: no state
+    // The largest kinetic energy of all the spheres and of those left of the median.
+    std::vector<float> xs;
+    for (const auto& p : any[0]) xs.push_back(p.x);
+    std::nth_element(xs.begin(), xs.begin() + xs.size() / 2, xs.end());
+    auto left = [mid = xs[xs.size() / 2]](const gpu::vec4& c) { return c.x < mid; };
+    double largest = largest_kinetic_energy(sim), largest_left = largest_kinetic_energy(sim, left);
     CHECK(device.state_downloads() == at_start);
     CHECK(sim.kinetic_energy().total() > 0);  // the first reading downloads the state
     CHECK(device.state_downloads() == at_start + 1);
-    CHECK(same_positions_in_slots(any, sim.state(), sim.particle_order()));
+    CHECK(same_rows_in_slots(any, sim));
+    // From the state by global id: the same largest, to the bit (a largest knows no order).
+    CHECK(largest > 0);
+    CHECK(largest_kinetic_energy(sim) == largest);
+    CHECK((largest_left > 0 && largest_left <= largest));
+    CHECK(largest_kinetic_energy(sim, left) == largest_left);
+    CHECK(largest_kinetic_energy(sim, [](const gpu::vec4&) { return false; }) == 0);
     sim.contact_forces();
     CHECK(device.state_downloads() == at_start + 1);  // read already: not again
     sim.advance(100);
