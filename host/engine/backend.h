@@ -2,9 +2,11 @@
 // (shaders on any Vulkan device, lavapipe included) and the CPU twin (the same kernels in C++).
 // Both execute the same dispatch programs (step_program.h), so they produce the same bytes.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <map>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "kernel_ids.h"
@@ -133,6 +135,9 @@ class Backend {
   virtual std::vector<gpu::vec4> contact_forces(uint32_t contacts) = 0;
   // Bytes of device (or, for the CPU twin, host) memory held by the simulation buffers.
   virtual size_t memory_bytes() const = 0;
+  // Threads the host may give its own work on the state (turning it between slots and global
+  // ids): the cpu backend's, every processor beside a device, which steps without them.
+  virtual unsigned host_threads() const { return std::max(1u, std::thread::hardware_concurrency()); }
 
  protected:
   virtual void read_state(HostState& s) = 0;

@@ -21,6 +21,7 @@ class CpuBackend : public Backend {
   void upload_constants(const ConstantData& constants) override;
   void upload_state(const HostState& s) override;
   void read_binding(uint32_t binding, void* dst, size_t bytes) override;
+  unsigned host_threads() const override { return pool_.size(); }
   void upload_walls(const std::vector<gpu::WallState>& rows, size_t first) override;
   void execute(const std::vector<Dispatch>& program, ExecuteTimes* times) override;
   std::vector<uint32_t> read_control() override;

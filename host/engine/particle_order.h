@@ -40,9 +40,10 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gp
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
 // into the slots the device stores them in under `order`, and back: per-particle rows, the contact
 // lists' rows with their owners (keeping their order) and the indices in them. A row at a time,
-// so a conversion holds one row twice, never a second state (engine/memory_need.cpp).
-void to_stored(HostState& state, const ParticleOrder& order);
-void to_global(HostState& state, const ParticleOrder& order);
+// so a conversion holds one row twice, never a second state (engine/memory_need.cpp); each row in
+// blocks on up to `threads` threads (each block writes its own part: the same bytes on any number).
+void to_stored(HostState& state, const ParticleOrder& order, unsigned threads = 1);
+void to_global(HostState& state, const ParticleOrder& order, unsigned threads = 1);
 // For each contact of the stored list, its index in `global`'s list.
 std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order);
 

@@ -83,7 +83,7 @@ void Simulation::allocate(uint32_t capacity) {
 // until someone reads it: the batch that follows makes it old anyway.
 void Simulation::upload() {
   if (!stored_by_id_ && !state_in_slots_) {
-    to_stored(state_, order_);
+    to_stored(state_, order_, backend_->host_threads());
     state_in_slots_ = true;
   }
   backend_->upload_state(state_);
@@ -103,7 +103,7 @@ void Simulation::download() const {
 const HostState& Simulation::state() const {
   if (!unread_batches_.empty()) download();
   if (state_in_slots_) {
-    to_global(state_, order_);
+    to_global(state_, order_, backend_->host_threads());
     state_in_slots_ = false;
   }
   return state_;

@@ -172,3 +172,59 @@ TEST_CASE("particle order: cell order moves a body's sub-spheres as one run, by 
   ParticleOrder o = cell_order(pos, bodies, 1.0);
   CHECK(o.id_of == std::vector<uint32_t>{3, 4, 5, 0, 1, 2});
 }
+
+TEST_CASE("particle order: a large state turns between slots and global ids in blocks on several threads, "
+          "to the bytes of one thread",
+          "[engine][order]") {
+  // 100,000 particles and ~300,000 contacts: rows of several 64K blocks (for_blocks in
+  // particle_order.cpp), which the simulations of the other tests are too small to reach.
+  const uint32_t n = 100000, walls = 3;
+  HostState by_id;
+  by_id.row_start.push_back(0);
+  for (uint32_t i = 0; i < n; ++i) {
+    by_id.pos.push_back(gpu::vec4(float(i), 1.0f, 2.0f, 0.5f));
+    by_id.vel.push_back(gpu::vec4(0.0f, float(i), 0.0f, 1.0f));
+    for (uint32_t j = 0; j < i % 7; ++j) {  // partners above i, and a wall now and then
+      uint32_t partner = j == 6 ? n + i % walls : (i + 1 + 37 * j) % n;
+      by_id.partner.push_back(partner);
+      by_id.owner.push_back(i);
+      by_id.history.push_back(gpu::vec4(float(i), float(j), 0.0f, 0.0f));
+    }
+    by_id.row_start.push_back(uint32_t(by_id.partner.size()));
+  }
+  // The transposed list: each particle's contacts as the partner, by contact index.
+  std::vector<std::vector<uint32_t>> as_partner(n);
+  for (uint32_t c = 0; c < by_id.partner.size(); ++c)
+    if (by_id.partner[c] < n) as_partner[by_id.partner[c]].push_back(c);
+  by_id.trans_start.push_back(0);
+  for (const auto& row : as_partner) {
+    by_id.trans_list.insert(by_id.trans_list.end(), row.begin(), row.end());
+    by_id.trans_start.push_back(uint32_t(by_id.trans_list.size()));
+  }
+  ParticleOrder order = scrambled(n, 11);
+
+  HostState one = by_id, several = by_id;
+  to_stored(one, order, 1);
+  to_stored(several, order, 3);
+  std::string which;
+  bool same = same_state(one, several, &which);
+  INFO("first difference in " << which);
+  CHECK(same);
+  // Slot s holds particle id_of[s], its contacts in their order, partners and owners as slots.
+  for (uint32_t s : {0u, 1u, 65535u, 65536u, n - 1}) {
+    uint32_t g = order.id_of[s];
+    CHECK(one.pos[s].x == float(g));
+    REQUIRE(one.row_start[s + 1] - one.row_start[s] == by_id.row_start[g + 1] - by_id.row_start[g]);
+    for (uint32_t k = 0; k < one.row_start[s + 1] - one.row_start[s]; ++k) {
+      uint32_t c = one.row_start[s] + k, c_id = by_id.row_start[g] + k;
+      CHECK(one.owner[c] == s);
+      CHECK(one.history[c].y == by_id.history[c_id].y);
+      uint32_t p = by_id.partner[c_id];
+      CHECK(one.partner[c] == (p < n ? order.slot_of[p] : p));
+    }
+  }
+  to_global(several, order, 3);
+  bool back = same_state(several, by_id, &which);
+  INFO("back by global id; first difference in " << which);
+  CHECK(back);
+}
