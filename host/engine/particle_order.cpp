@@ -46,6 +46,11 @@ std::vector<uint32_t> ParticleOrder::table() const {
 }
 
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell) {
+  return cell_order(pos, {}, bodies, cell);
+}
+
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<uint32_t>& id_of_row,
+                         const std::vector<gpu::Body>& bodies, double cell) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
   for (const gpu::vec4& p : pos) {
     lo[0] = std::min(lo[0], double(p.x));
@@ -60,7 +65,7 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gp
   std::vector<uint32_t> ids(pos.size());
   if (bodies.empty()) {
     std::vector<std::pair<uint64_t, uint32_t>> keys(pos.size());
-    for (size_t g = 0; g < pos.size(); ++g) keys[g] = {key(pos[g]), uint32_t(g)};
+    for (size_t r = 0; r < pos.size(); ++r) keys[r] = {key(pos[r]), id_of_row.empty() ? uint32_t(r) : id_of_row[r]};
     std::sort(keys.begin(), keys.end());
     for (size_t s = 0; s < keys.size(); ++s) ids[s] = keys[s].second;
     return ParticleOrder::from_ids(std::move(ids));
@@ -200,6 +205,17 @@ void to_stored(HostState& state, const ParticleOrder& order, unsigned threads) {
 
 void to_global(HostState& state, const ParticleOrder& order, unsigned threads) {
   if (!order.is_identity()) move_particles(state, order.slot_of, order.id_of, threads);
+}
+
+void to_other_slots(HostState& state, const ParticleOrder& from, const ParticleOrder& to, unsigned threads) {
+  size_t n = to.size();
+  if (from.size() != n) throw std::invalid_argument("to_other_slots: orders of different numbers of particles");
+  std::vector<uint32_t> old_of_new(n), new_of_old(n);
+  for (size_t s = 0; s < n; ++s) {
+    old_of_new[s] = from.slot_of[to.id_of[s]];
+    new_of_old[s] = to.slot_of[from.id_of[s]];
+  }
+  move_particles(state, old_of_new, new_of_old, threads);
 }
 
 std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order) {

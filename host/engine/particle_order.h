@@ -36,6 +36,10 @@ struct ParticleOrder {
 // per-body gather (body_gather_kick) reads a run of slots, not one scattered row per sub-sphere
 // (docs/engineering.md, particle order).
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell);
+// The same order from positions held in any order, pos[r] being particle id_of_row[r]'s (the
+// slots of a state as the device stores it): sorted by cell, then by global id, as above.
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<uint32_t>& id_of_row,
+                         const std::vector<gpu::Body>& bodies, double cell);
 
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
 // into the slots the device stores them in under `order`, and back: per-particle rows, the contact
@@ -44,6 +48,8 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gp
 // blocks on up to `threads` threads (each block writes its own part: the same bytes on any number).
 void to_stored(HostState& state, const ParticleOrder& order, unsigned threads = 1);
 void to_global(HostState& state, const ParticleOrder& order, unsigned threads = 1);
+// A state stored under `from` moved into the slots of `to`: to_global and to_stored in one pass.
+void to_other_slots(HostState& state, const ParticleOrder& from, const ParticleOrder& to, unsigned threads = 1);
 // For each contact of the stored list, its index in `global`'s list.
 std::vector<uint32_t> stored_contact_ids(const HostState& global, const ParticleOrder& order);
 

@@ -134,6 +134,21 @@ void Simulation::store_in_order(ParticleOrder order) {
   if (order.size() != model_.n_particles)
     throw std::invalid_argument("a particle order for another number of particles");
   state();  // by global id before the slots change
+  use_order(std::move(order));
+}
+
+// A state still in the old slots moves straight into the new ones: one conversion, not one to
+// global ids and one back.
+void Simulation::renew_cell_order() {
+  if (!unread_batches_.empty()) download();
+  if (!state_in_slots_) return store_in_order(cell_order(state_.pos, state_.bodies, model_.cell));
+  ParticleOrder next = cell_order(state_.pos, order_.id_of, state_.bodies, model_.cell);
+  to_other_slots(state_, order_, next, backend_->host_threads());
+  state_in_slots_ = !next.is_identity();
+  use_order(std::move(next));
+}
+
+void Simulation::use_order(ParticleOrder order) {
   order_ = std::move(order);
   stored_by_id_ = order_.is_identity();
   // The constants and the state anew, in the new slots (the scratch rows need no zeroing: a
@@ -289,7 +304,7 @@ void Simulation::advance(uint64_t steps, const std::function<void(const Simulati
   while (step_ < target) {
     auto t0 = std::chrono::steady_clock::now();
     if (reorder_.due(rebuilds())) {
-      store_in_order(cell_order(state().pos, state().bodies, model_.cell));
+      renew_cell_order();
       double seconds = since(t0);
       reorder_.reordered(rebuilds(), seconds);
       profile_.reorders += 1;

@@ -119,6 +119,11 @@ class Simulation {
   void allocate(uint32_t capacity);
   void upload();
   void download() const;
+  // The particles in cell order again, from the state as the device stores it (a reorder).
+  void renew_cell_order();
+  // From now on the device stores the particles under `order`: the constants and state_ (by
+  // global id, or in the new order's slots already) uploaded anew.
+  void use_order(ParticleOrder order);
   void grow(uint32_t needed);
   void replay_unread(std::vector<uint32_t> batches);
   void upload_walls(uint64_t first, double offset, uint32_t steps);

@@ -228,3 +228,28 @@ TEST_CASE("particle order: a large state turns between slots and global ids in b
   INFO("back by global id; first difference in " << which);
   CHECK(back);
 }
+
+TEST_CASE("particle order: a reorder from the device's slots gives the order and the state of one from global ids",
+          "[engine][order]") {
+  // The settled clump pile (bodies) and the spheres of a cloud: cell order computed from the
+  // positions in scrambled slots, and the state moved straight from those slots into the new ones.
+  for (const CaseSpec& spec : {clump_pile(), seeded_cloud(300, 5, 0.02, 0.3)}) {
+    auto sim = simulate(spec, "cpu", 1, KernelVariant::parse("reorder=0"));
+    sim->advance(300);
+    const HostState& by_id = sim->state();
+    const double cell = sim->model().cell;
+    ParticleOrder before = scrambled(uint32_t(by_id.pos.size()), 7);
+    HostState in_slots = by_id;
+    to_stored(in_slots, before);
+    ParticleOrder from_ids = cell_order(by_id.pos, by_id.bodies, cell);
+    ParticleOrder from_slots = cell_order(in_slots.pos, before.id_of, in_slots.bodies, cell);
+    CHECK(from_slots.id_of == from_ids.id_of);
+    HostState straight = in_slots, through_ids = by_id;
+    to_other_slots(straight, before, from_slots, 2);
+    to_stored(through_ids, from_ids);
+    std::string which;
+    bool same = same_state(straight, through_ids, &which);
+    INFO("first difference in " << which);
+    CHECK(same);
+  }
+}
