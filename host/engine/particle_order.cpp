@@ -84,8 +84,8 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<ui
 namespace {
 
 // body(begin, end) over [0, n) in blocks of 64K, on up to `threads` threads: a million particles'
-// rows and their contact list's move several times faster on a GPU machine's host cores, and a
-// small state stays on the caller's thread (one block).
+// rows and their contact list's move on all the host's cores, a small state on the caller's
+// thread alone (one block).
 template <class Body>
 void for_blocks(size_t n, unsigned threads, Body body) {
   constexpr size_t kBlock = size_t(1) << 16;

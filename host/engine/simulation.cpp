@@ -396,25 +396,30 @@ void Simulation::restore(const HostState& s, uint64_t step) {
 
 EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state()); }
 
+static double squared(const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; }
+
+EnergySummary kinetic_energy_of(const gpu::vec4& vel, const gpu::vec4& omega) {
+  if (vel.w == 0.0f) return {};  // fixed
+  return {0.5 / vel.w * squared(vel), 0.5 / omega.w * squared(omega)};
+}
+
+EnergySummary kinetic_energy_of(const gpu::Body& b) {
+  if (b.pos.w == 0.0f) return {};  // fixed: infinite mass at rest
+  return {0.5 / b.pos.w * squared(b.vel),
+          0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z)};
+}
+
 EnergySummary kinetic_energy(const HostState& state) {
   EnergySummary e;
+  auto add = [&e](const EnergySummary& one) {
+    e.translational += one.translational;
+    e.rotational += one.rotational;
+  };
   if (!state.bodies.empty()) {
-    for (const gpu::Body& b : state.bodies) {
-      if (b.pos.w == 0.0f) continue;  // fixed: infinite mass at rest
-      const auto& v = b.vel;
-      e.translational += 0.5 / b.pos.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
-      e.rotational += 0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y +
-                             double(b.omega.z) * b.ang_mom.z);
-    }
+    for (const gpu::Body& b : state.bodies) add(kinetic_energy_of(b));
     return e;
   }
-  for (size_t i = 0; i < state.vel.size(); ++i) {
-    const auto& v = state.vel[i];
-    const auto& w = state.omega[i];
-    if (v.w == 0.0f) continue;  // fixed
-    e.translational += 0.5 / v.w * (double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z);
-    e.rotational += 0.5 / w.w * (double(w.x) * w.x + double(w.y) * w.y + double(w.z) * w.z);
-  }
+  for (size_t i = 0; i < state.vel.size(); ++i) add(kinetic_energy_of(state.vel[i], state.omega[i]));
   return e;
 }
 
