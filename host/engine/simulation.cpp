@@ -396,33 +396,6 @@ void Simulation::restore(const HostState& s, uint64_t step) {
 
 EnergySummary Simulation::kinetic_energy() const { return repose::kinetic_energy(state()); }
 
-static double squared(const gpu::vec4& v) { return double(v.x) * v.x + double(v.y) * v.y + double(v.z) * v.z; }
-
-EnergySummary kinetic_energy_of(const gpu::vec4& vel, const gpu::vec4& omega) {
-  if (vel.w == 0.0f) return {};  // fixed
-  return {0.5 / vel.w * squared(vel), 0.5 / omega.w * squared(omega)};
-}
-
-EnergySummary kinetic_energy_of(const gpu::Body& b) {
-  if (b.pos.w == 0.0f) return {};  // fixed: infinite mass at rest
-  return {0.5 / b.pos.w * squared(b.vel),
-          0.5 * (double(b.omega.x) * b.ang_mom.x + double(b.omega.y) * b.ang_mom.y + double(b.omega.z) * b.ang_mom.z)};
-}
-
-EnergySummary kinetic_energy(const HostState& state) {
-  EnergySummary e;
-  auto add = [&e](const EnergySummary& one) {
-    e.translational += one.translational;
-    e.rotational += one.rotational;
-  };
-  if (!state.bodies.empty()) {
-    for (const gpu::Body& b : state.bodies) add(kinetic_energy_of(b));
-    return e;
-  }
-  for (size_t i = 0; i < state.vel.size(); ++i) add(kinetic_energy_of(state.vel[i], state.omega[i]));
-  return e;
-}
-
 std::vector<WallForce> Simulation::wall_forces() {
   gpu::SimPush push = base_push(model_, layout_, variant_);
   auto f = backend_->wall_forces(push);  // one per named wall, a mesh's triangles in one sum

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "engine/backend.h"
+#include "engine/kinetic_energy.h"
 #include "engine/model.h"
 #include "engine/particle_order.h"
 #include "engine/reorder_schedule.h"
@@ -32,18 +33,6 @@ struct WallImpulse {
   double jx = 0, jy = 0, jz = 0;
   double peak = 0;
 };
-
-struct EnergySummary {
-  double translational = 0;
-  double rotational = 0;
-  double total() const { return translational + rotational; }
-};
-
-// Translational and rotational kinetic energy of the spheres, or of the bodies when there are.
-EnergySummary kinetic_energy(const HostState& state);
-// One sphere's (vel.w its 1/mass, omega.w its 1/I) and one body's; none for a fixed one (1/mass 0).
-EnergySummary kinetic_energy_of(const gpu::vec4& vel, const gpu::vec4& omega);
-EnergySummary kinetic_energy_of(const gpu::Body& body);
 
 // The contact-list capacity a simulation starts with: room for ~6 contacts per particle plus
 // walls (a settled bed of equal spheres holds ~4.6 per particle with the default skin); it grows

@@ -5,7 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
-#include "engine/largest_energy.h"
+#include "engine/kinetic_energy.h"
 #include "engine/model.h"
 #include "experiments/body_frame.h"
 #include "experiments/experiment_simulation.h"

@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "engine/backend_factory.h"
-#include "engine/largest_energy.h"
+#include "engine/kinetic_energy.h"
 #include "engine/model.h"
 #include "case/case_error.h"
 #include "case/particle_factory.h"

@@ -11,7 +11,7 @@
 #include <unistd.h>
 
 #include "engine/bench_bed.h"
-#include "engine/largest_energy.h"
+#include "engine/kinetic_energy.h"
 #include "engine_test_support.h"
 #include "io/state_file.h"
 
