@@ -6,7 +6,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-tools vulkan-validationlayers
   glslc glslang-tools spirv-tools
   libeigen3-dev libglm-dev catch2 libtomlplusplus-dev libcli11-dev libstb-dev
-  libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev libhwy-dev
+  libsqlite3-dev libopenmpi-dev openmpi-bin nlohmann-json3-dev libhwy-dev libxxhash-dev python3-xxhash
   git
 )
 missing=()

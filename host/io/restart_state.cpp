@@ -13,7 +13,7 @@ RestartPoint read_restart_state(const std::string& path, const Model& model, con
   const StateFileInfo& info = start.info;
   if (!info.restartable())
     refuse("a version " + std::to_string(info.version) + " state file, without the checksum and case identity of "
-           "version " + std::to_string(kStateVersion) + ": it reads (for cmp), but a run cannot continue from it");
+           "version " + std::to_string(kRestartableStateVersion) + " on: it reads (for cmp), but a run cannot continue from it");
   if (info.case_hash != case_hash)
     refuse("written by a run of case " + (info.case_hash.empty() ? std::string("(not recorded)") : info.case_hash) +
            ", not of this case (" + case_hash + ", with its --set values): continue with the case and --set values "

@@ -3,6 +3,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 #include "engine/buffer_table.h"
@@ -12,9 +13,30 @@
 #include "util/input_error.h"
 #include "util/input_file.h"
 
+#define XXH_INLINE_ALL  // xxhash.h's functions compiled here: no library to link or bundle
+#include <xxhash.h>
+
 namespace repose {
 
 namespace {
+
+// The checksum of a restartable version, fed in pieces (state_checksum).
+class Checksum {
+ public:
+  explicit Checksum(int version) : fnv_(version < 6) {
+    if (!fnv_) XXH3_64bits_reset(&xxh_);
+  }
+  void add(const void* data, size_t bytes) {
+    if (fnv_) fnv1a_.add(data, bytes);
+    else XXH3_64bits_update(&xxh_, data, bytes);
+  }
+  uint64_t value() const { return fnv_ ? fnv1a_.value() : XXH3_64bits_digest(&xxh_); }
+
+ private:
+  bool fnv_;
+  Fnv1a fnv1a_;
+  XXH3_state_t xxh_;
+};
 
 // The File rows of the buffer table, in binding order, each with its count from the header:
 // particles N (N + 1 for row starts), contacts C, bodies B, and R for contact state that only
@@ -51,7 +73,7 @@ size_t restart_count(const BufferSpec& b, uint32_t n, uint32_t c, uint32_t bodie
 }
 
 int version_of(const char magic[8]) {
-  for (auto [version, m] : {std::pair{5, kStateMagic}, {4, kStateMagicV4}, {3, kStateMagicV3}, {2, kStateMagicV2}})
+  for (auto [version, m] : {std::pair{6, kStateMagic}, {5, kStateMagicV5}, {4, kStateMagicV4}, {3, kStateMagicV3}, {2, kStateMagicV2}})
     if (std::memcmp(magic, m, 8) == 0) return version;
   return 0;
 }
@@ -98,8 +120,13 @@ class StateReader {
     if (bytes > left_) fail("truncated: " + std::to_string(left_) + " bytes left where " + std::to_string(bytes) + " are needed");
     in_.read(static_cast<char*>(data), std::streamsize(bytes));
     if (!in_) fail("cannot read the state file");
-    hash_.add(data, bytes);
+    if (sum_) sum_->add(data, bytes);
     left_ -= bytes;
+  }
+  // From here on, and `first` read before, hashed by `version`'s checksum.
+  void start_checksum(int version, const void* first, uint64_t bytes) {
+    sum_.emplace(version);
+    sum_->add(first, bytes);
   }
   template <class T>
   void value(T& v) { raw(&v, sizeof v); }
@@ -110,13 +137,13 @@ class StateReader {
     v.resize(count);
     raw(v.data(), count * sizeof(T));
   }
-  uint64_t hash() const { return hash_.value(); }
+  uint64_t hash() const { return sum_ ? sum_->value() : 0; }
 
  private:
   std::string path_;
   std::ifstream in_;
   uint64_t left_ = 0;
-  Fnv1a hash_;
+  std::optional<Checksum> sum_;  // in a file of a restartable version
 };
 
 Header read_header(StateReader& in, StateFileInfo& info) {
@@ -126,6 +153,7 @@ Header read_header(StateReader& in, StateFileInfo& info) {
   in.raw(magic, 8);
   h.version = version_of(magic);
   if (!h.version) in.fail("not a Repose state file (bad magic)");
+  if (h.version >= kRestartableStateVersion) in.start_checksum(h.version, magic, sizeof magic);
   in.value(h.n);
   in.value(h.c);
   in.value(h.b);
@@ -187,6 +215,12 @@ void read_arrays(StateReader& in, const Header& h, uint64_t file_bytes, HostStat
 
 }  // namespace
 
+uint64_t state_checksum(int version, const void* data, size_t bytes) {
+  Checksum sum(version);
+  sum.add(data, bytes);
+  return sum.value();
+}
+
 void write_state_file(const std::string& path, const HostState& s, uint64_t step, double time,
                       const std::string& case_hash) {
   if (s.control.size() < kRestartControlWords || s.pos_at_build.size() != s.pos.size() ||
@@ -196,7 +230,7 @@ void write_state_file(const std::string& path, const HostState& s, uint64_t step
   char hash_field[kStateCaseHashBytes] = {0};
   std::memcpy(hash_field, case_hash.data(), std::min(case_hash.size(), sizeof hash_field));
   write_file_atomically(path, [&](std::ostream& out) {
-    Fnv1a sum;
+    Checksum sum(kStateVersion);
     auto put = [&](const void* data, size_t bytes) {
       out.write(static_cast<const char*>(data), std::streamsize(bytes));
       sum.add(data, bytes);

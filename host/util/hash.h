@@ -1,5 +1,6 @@
 // FNV-1a 64: the content hash of identities (case and plan hashes, as 16 hex digits) and the
-// checksum of state files (docs/state-format.md). Not cryptographic: it tells edits and damage
+// checksum of version 5 state files (docs/state-format.md; version 6 takes XXH3-64, which is
+// faster on files of hundreds of MB: io/state_file.cpp). Not cryptographic: it tells edits and damage
 // apart (any one changed byte changes it), it does not resist forgery.
 #pragma once
 #include <cstddef>

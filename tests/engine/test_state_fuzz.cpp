@@ -18,7 +18,6 @@
 #include "engine_test_support.h"
 #include "io/restart_state.h"
 #include "tests/cli_support.h"
-#include "util/hash.h"
 #include "util/input_error.h"
 
 using namespace repose;
@@ -63,11 +62,9 @@ std::vector<Region> regions_of(const HostState& s, size_t file_bytes) {
   return regions;
 }
 
-// The checksum a writer would give these bytes (FNV-1a of all but the last 8).
+// The checksum a writer would give these bytes (of all but the last 8).
 std::string forge(std::string bytes) {
-  Fnv1a h;
-  h.add(bytes.data(), bytes.size() - 8);
-  uint64_t sum = h.value();
+  uint64_t sum = state_checksum(kStateVersion, bytes.data(), bytes.size() - 8);
   std::memcpy(&bytes[bytes.size() - 8], &sum, 8);
   return bytes;
 }
@@ -191,6 +188,40 @@ TEST_CASE("checkpoint fuzz: every changed file is refused, forged ones are refus
               << " refused, " << t.forged_stepped << " with possible values restored and stepped; " << seconds << " s");
   CHECK(t.raw > 2500);
   CHECK(t.forged > 500);
+  fs::remove(scratch("mutant.state"));
+}
+
+TEST_CASE("a version 5 checkpoint (FNV-1a checksum) still restarts; version 6 ends with XXH3-64", "[engine][io][restart]") {
+  CaseSpec spec = seeded_cloud(40, 5, 2.3, 0.2);
+  spec.identity = "cloud";
+  Base b = make_base("versions", spec, 120);
+  REQUIRE(b.bytes.compare(0, 8, std::string(kStateMagic, 8)) == 0);
+  uint64_t stored = 0;
+  std::memcpy(&stored, &b.bytes[b.bytes.size() - 8], 8);
+  const size_t body = b.bytes.size() - 8;
+  CHECK(stored == state_checksum(6, b.bytes.data(), body));
+  CHECK(stored != state_checksum(5, b.bytes.data(), body));  // the two kinds differ
+  // The same bytes as version 5 wrote them: its magic, FNV-1a over everything before the sum.
+  std::string v5 = std::string(kStateMagicV5, 8) + b.bytes.substr(8, body - 8);
+  uint64_t fnv = state_checksum(5, v5.data(), v5.size());
+  v5.append(reinterpret_cast<const char*>(&fnv), 8);
+  RestartPoint p;
+  REQUIRE(load(b, v5, &p) == Verdict::Accepted);
+  CHECK(p.info.version == 5);
+  std::string which;
+  CHECK(same_state(p.state, b.state, &which));
+  INFO(which);
+  // A version 5 file with version 6's checksum, and the reverse, are damaged files.
+  std::string message;
+  std::string v5_with_xxh3 = v5;
+  std::memcpy(&v5_with_xxh3[body], &stored, 8);
+  CHECK(load(b, v5_with_xxh3, nullptr, &message) == Verdict::Refused);
+  CHECK(message.find("checksum mismatch") != std::string::npos);
+  std::string v6_with_fnv = b.bytes;
+  uint64_t fnv6 = state_checksum(5, b.bytes.data(), body);
+  std::memcpy(&v6_with_fnv[body], &fnv6, 8);
+  CHECK(load(b, v6_with_fnv, nullptr, &message) == Verdict::Refused);
+  CHECK(message.find("checksum mismatch") != std::string::npos);
   fs::remove(scratch("mutant.state"));
 }
 

@@ -3,8 +3,9 @@
 
     python3 make_states.py build/repose
 
-Each file is a real state changed in one way (docs/state-format.md, version 5); corpus.txt says
-what `repose run --restart` must answer. Run again after a change of the state format.
+Each file is a real state changed in one way (docs/state-format.md, the version the binary
+writes); corpus.txt says what `repose run --restart` must answer. Run again after a change of the
+state format. Version 6's checksum needs python3-xxhash (scripts/install-deps.sh).
 """
 import os
 import struct
@@ -23,6 +24,14 @@ def fnv1a(data):
     return h
 
 
+def checksum(data):
+    """The checksum a writer ends these bytes with: FNV-1a 64 in version 5, XXH3-64 from 6."""
+    if data[:8] == b"REPOSES5":
+        return fnv1a(data)
+    import xxhash
+    return xxhash.xxh3_64_intdigest(data)
+
+
 def state_of(repose, *sets):
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "s.state")
@@ -35,7 +44,7 @@ def state_of(repose, *sets):
 
 
 def forged(data):
-    return data[:-8] + struct.pack("<Q", fnv1a(data[:-8]))
+    return data[:-8] + struct.pack("<Q", checksum(data[:-8]))
 
 
 def main():
