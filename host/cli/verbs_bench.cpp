@@ -17,6 +17,7 @@
 #include "engine/kernel_traffic.h"
 #include "engine/memory_need.h"
 #include "engine/model.h"
+#include "engine/roofline.h"
 #include "engine/wall_grid.h"
 #include "engine/simulation.h"
 #include "io/state_file.h"
@@ -85,73 +86,8 @@ size_t touching_contacts(const HostState& s) {
   return k;
 }
 
-// The bandwidths the kernels are measured against: a copy with the simulation's own footprint
-// (its buffers, mostly in cache for a small bed) and one far larger than any cache (2 x 256 MiB;
-// a larger simulation's own copy is that one).
-struct CopyBandwidth {
-  size_t own_bytes = 0;
-  double own = 0, dram = 0;
-};
-
-CopyBandwidth measure_copies(size_t buffer_bytes, unsigned threads) {
-  constexpr size_t kDram = size_t(256) << 20;
-  CopyBandwidth c;
-  c.own_bytes = std::min(buffer_bytes, 2 * kDram);
-  c.dram = copy_bandwidth(kDram, threads);
-  c.own = c.own_bytes < 2 * kDram ? copy_bandwidth(c.own_bytes / 2, threads) : c.dram;
-  return c;
-}
-
-// Each kernel's least bytes per step (rebuild kernels shared over the steps) against its time:
-// the bandwidth it reaches, as a fraction of the copies'.
-void print_roofline(const RunProfile& p, const Layout& layout, const TrafficCounts& counts, const CopyBandwidth& copy) {
-  double steps = double(std::max<uint64_t>(1, p.steps));
-  std::printf("         memory roofline: a copy moves %.3g GB/s with the buffers' footprint (%s), %.3g GB/s through "
-              "DRAM (2 x 256 MiB)\n", copy.own / 1e9, format_bytes(double(copy.own_bytes)).c_str(), copy.dram / 1e9);
-  std::printf("         %-18s %9s %11s %8s %12s %12s\n", "kernel", "ms/step", "least MB/step", "GB/s", "of own copy",
-              "of DRAM copy");
-  double all_bytes = 0, all_seconds = 0;
-  std::vector<std::pair<double, std::string>> sorted;
-  for (const auto& [k, t] : p.kernels) sorted.push_back({t, k});
-  std::sort(sorted.rbegin(), sorted.rend());
-  for (const auto& [seconds, kernel] : sorted) {
-    double dispatches = rebuild_kernel(kernel) ? double(p.rebuilds) : steps;
-    double bytes = kernel_min_bytes(kernel, layout, counts) * dispatches / steps;
-    double ms = 1e3 * seconds / steps;
-    if (ms < 0.005 * 1e3 * p.kernel_seconds() / steps) continue;  // under half a percent
-    if (bytes == 0) {
-      std::printf("         %-18s %9.3f %11s\n", kernel.c_str(), ms, "(no model)");
-      continue;
-    }
-    double rate = bytes / (seconds / steps);
-    all_bytes += bytes;
-    all_seconds += seconds / steps;
-    std::printf("         %-18s %9.3f %11.3g %8.3g %12.2f %12.2f\n", kernel.c_str(), ms, bytes / 1e6, rate / 1e9,
-                rate / copy.own, rate / copy.dram);
-  }
-  if (all_seconds > 0)
-    std::printf("         %-18s %9.3f %11.3g %8.3g %12.2f %12.2f\n", "(these together)", 1e3 * all_seconds,
-                all_bytes / 1e6, all_bytes / all_seconds / 1e9, all_bytes / all_seconds / copy.own,
-                all_bytes / all_seconds / copy.dram);
-}
-
-// contact_forces against the arithmetic it cannot avoid: the law alone with its rows in registers
-// (the compute ceiling), and against the larger of that and its bytes at the copy's bandwidth
-// (the roofline of a kernel that both computes and moves data).
-void print_law_ceiling(const RunProfile& p, Simulation& sim, const TrafficCounts& counts, const CopyBandwidth& copy) {
-  auto* cpu = dynamic_cast<CpuBackend*>(&sim.backend());
-  auto kernel = p.kernels.find("contact_forces");
-  if (cpu == nullptr || kernel == p.kernels.end() || p.steps == 0) return;
-  double per_contact = cpu->contact_law_seconds_per_contact();
-  if (per_contact <= 0) return;
-  double ms = 1e3 * kernel->second / double(p.steps);
-  double law_ms = 1e3 * per_contact * counts.contacts;
-  double bytes_ms = 1e3 * kernel_min_bytes("contact_forces", sim.layout(), counts) / copy.own;
-  std::printf("         compute ceiling: the contact law alone (its rows in registers) %.3g ns per contact, %.3f ms "
-              "per step for %.0f entries\n         contact_forces %.3f ms per step: %.2f of it; of its roofline, the "
-              "larger of it and its bytes at the buffers' copy (%.3f ms): %.2f\n",
-              1e9 * per_contact, law_ms, counts.contacts, ms, law_ms / ms, bytes_ms, std::max(law_ms, bytes_ms) / ms);
-}
+// The timed steps run in this many segments on the cpu backend, each followed by its roofs.
+constexpr int kRoofSegments = 8;
 
 // One backend and variant on the settled model: setup, speed, list size and memory, then where
 // the time goes (every kernel timed over the same number of steps) and how close to the
@@ -185,16 +121,16 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
               double(stepping) / n);
   sim.set_profiling(true);
   sim.take_profile();
-  sim.advance(steps);
-  RunProfile p = sim.take_profile();
+  const bool cpu = backend == "cpu";  // the roofs are the host's
+  RooflineRun run = profile_against_roofs(sim, steps, threads, cpu ? kRoofSegments : 0);
+  RunProfile p = run.total();
   std::printf("         %s, every kernel timed:\n%s         per step: %s\n         %s\n", sim.backend().describe().c_str(),
               format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str(),
               format_host_times(p).c_str());
-  if (backend == "cpu") {
+  if (cpu) {
     TrafficCounts counts{n, double(sim.contacts()), double(sim.contacts()), double(model.table_size) + 2};
-    CopyBandwidth copy = measure_copies(sim.backend().memory_bytes(), threads);
-    print_roofline(p, sim.layout(), counts, copy);
-    print_law_ceiling(p, sim, counts, copy);
+    std::printf("%s%s", format_roofline(run, sim.layout(), counts).c_str(),
+                format_law_ceiling(run, sim.layout(), counts).c_str());
   }
   std::fflush(stdout);
 }

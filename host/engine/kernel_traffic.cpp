@@ -94,18 +94,18 @@ double kernel_min_bytes(const std::string& kernel, const Layout& layout, const T
 
 bool rebuild_kernel(const std::string& kernel) { return std::strcmp(kernel_stage(kernel), "neighbours") == 0; }
 
-double copy_bandwidth(size_t bytes, unsigned threads) {
-  size_t words = std::max<size_t>(bytes / sizeof(double), 1024);
-  std::vector<double> from(words, 1.0), to(words, 0.0);
-  ThreadPool pool(threads);
+CopyMeter::CopyMeter(size_t bytes, ThreadPool& pool)
+    : from_(std::max<size_t>(bytes / sizeof(double), 1024), 1.0), to_(from_.size(), 0.0), pool_(pool) {}
+
+double CopyMeter::bandwidth(int passes) {
   double best = 0;
-  for (int pass = 0; pass < 5; ++pass) {
+  for (int pass = 0; pass < passes; ++pass) {
     auto t0 = std::chrono::steady_clock::now();
-    pool.parallel_for(words, [&](uint64_t begin, uint64_t end) {
-      std::memcpy(to.data() + begin, from.data() + begin, (end - begin) * sizeof(double));
+    pool_.parallel_for(from_.size(), [&](uint64_t begin, uint64_t end) {
+      std::memcpy(to_.data() + begin, from_.data() + begin, (end - begin) * sizeof(double));
     });
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    best = std::max(best, 2.0 * double(words * sizeof(double)) / seconds);
+    best = std::max(best, 2.0 * double(from_.size() * sizeof(double)) / seconds);
   }
   return best;
 }

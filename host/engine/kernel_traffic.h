@@ -9,10 +9,13 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "engine/backend.h"
 
 namespace repose {
+
+class ThreadPool;
 
 // What the kernels run over.
 struct TrafficCounts {
@@ -29,9 +32,17 @@ double kernel_min_bytes(const std::string& kernel, const Layout& layout, const T
 // True for the kernels that run only in a step that rebuilds the list.
 bool rebuild_kernel(const std::string& kernel);
 
-// Bytes per second of a copy between two arrays of `bytes` each, on `threads` threads (as the
-// cpu backend splits its kernels), counting the read and the write (STREAM's convention); the
-// best of several passes.
-double copy_bandwidth(size_t bytes, unsigned threads);
+// A copy between two arrays of `bytes` each, split over `pool`'s threads as the cpu backend splits
+// its kernels, kept to be timed again: bandwidth() counts the read and the write (STREAM's
+// convention), the best of `passes`.
+class CopyMeter {
+ public:
+  CopyMeter(size_t bytes, ThreadPool& pool);
+  double bandwidth(int passes = 5);
+
+ private:
+  std::vector<double> from_, to_;
+  ThreadPool& pool_;
+};
 
 }  // namespace repose
