@@ -122,7 +122,7 @@ void bench_one(const Model& model, const std::string& backend, const KernelVaria
   sim.set_profiling(true);
   sim.take_profile();
   const bool cpu = backend == "cpu";  // the roofs are the host's
-  RooflineRun run = profile_against_roofs(sim, steps, threads, cpu ? kRoofSegments : 0);
+  RooflineRun run = profile_against_roofs(sim, steps, cpu ? kRoofSegments : 0);
   RunProfile p = run.total();
   std::printf("         %s, every kernel timed:\n%s         per step: %s\n         %s\n", sim.backend().describe().c_str(),
               format_profiles({{"timed", p}}, model.dt).c_str(), format_kernel_times(p).c_str(),

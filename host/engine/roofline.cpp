@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <map>
 #include <memory>
 #include <tuple>
 
@@ -106,7 +105,7 @@ RunProfile RooflineRun::total() const {
   return p;
 }
 
-RooflineRun profile_against_roofs(Simulation& sim, uint32_t steps, unsigned threads, int segments) {
+RooflineRun profile_against_roofs(Simulation& sim, uint32_t steps, int segments) {
   RooflineRun run;
   if (segments <= 0) {
     sim.advance(steps);
@@ -114,7 +113,7 @@ RooflineRun profile_against_roofs(Simulation& sim, uint32_t steps, unsigned thre
     return run;
   }
   run.own_bytes = std::min(sim.backend().memory_bytes(), 2 * kDramBytes);
-  ThreadPool pool(threads);
+  ThreadPool pool(sim.backend().host_threads());  // the copies split as the kernels are
   CopyMeter dram(kDramBytes, pool);
   std::unique_ptr<CopyMeter> own;
   if (run.own_bytes < 2 * kDramBytes) own = std::make_unique<CopyMeter>(run.own_bytes / 2, pool);

@@ -32,9 +32,9 @@ struct RooflineRun {
   RunProfile total() const;
 };
 
-// `steps` timed steps of `sim` (profiling on) in `segments` parts, each followed by its roofs
-// (cpu backend, `threads` as it runs); with segments = 0, one part and no roofs.
-RooflineRun profile_against_roofs(Simulation& sim, uint32_t steps, unsigned threads, int segments);
+// `steps` timed steps of `sim` (profiling on) in `segments` parts, each followed by its roofs (on
+// the backend's host threads); with segments = 0, one part and no roofs.
+RooflineRun profile_against_roofs(Simulation& sim, uint32_t steps, int segments);
 
 // Each kernel's least bytes per step, the bandwidth it reaches and its fractions of the two
 // copies; then contact_forces against the law alone and against the larger of that and its

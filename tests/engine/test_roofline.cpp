@@ -60,7 +60,7 @@ TEST_CASE("roofline: the timed steps run in segments, each followed by its roofs
   sim.advance(50);
   sim.set_profiling(true);
   sim.take_profile();
-  RooflineRun run = profile_against_roofs(sim, 103, 1, 4);
+  RooflineRun run = profile_against_roofs(sim, 103, 4);
   REQUIRE(run.segments.size() == 4);
   double contact_seconds = 0;
   for (const RoofSegment& s : run.segments) {
@@ -79,7 +79,7 @@ TEST_CASE("roofline: the timed steps run in segments, each followed by its roofs
   CHECK(row_of(format_roofline(run, sim.layout(), counts), "contact_forces").size() == 8);
   CHECK(!format_law_ceiling(run, sim.layout(), counts).empty());
   // Without segments: one part, no roofs, no ceiling.
-  RooflineRun plain = profile_against_roofs(sim, 10, 1, 0);
+  RooflineRun plain = profile_against_roofs(sim, 10, 0);
   REQUIRE(plain.segments.size() == 1);
   CHECK(plain.segments[0].profile.steps == 10);
   CHECK(plain.segments[0].roofs.own == 0);
