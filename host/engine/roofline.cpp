@@ -69,9 +69,11 @@ struct Row {
   }
 };
 
-Row kernel_row(const std::string& kernel, const RooflineRun& run, const Layout& layout, const TrafficCounts& counts) {
+// `total`: the run's segments added (RooflineRun::total).
+Row kernel_row(const std::string& kernel, const RooflineRun& run, const RunProfile& total, const Layout& layout,
+               const TrafficCounts& counts) {
   Row r(run.segments.size());
-  std::tie(r.bytes, r.seconds) = per_step(kernel, run.total(), layout, counts);
+  std::tie(r.bytes, r.seconds) = per_step(kernel, total, layout, counts);
   for (size_t k = 0; k < run.segments.size(); ++k)
     std::tie(r.segment_bytes[k], r.segment_seconds[k]) = per_step(kernel, run.segments[k].profile, layout, counts);
   return r;
@@ -151,7 +153,7 @@ std::string format_roofline(const RooflineRun& run, const Layout& layout, const 
   Row together(run.segments.size());
   for (const auto& [seconds, kernel] : sorted) {
     if (seconds < 0.005 * total.kernel_seconds()) continue;  // under half a percent
-    Row r = kernel_row(kernel, run, layout, counts);
+    Row r = kernel_row(kernel, run, total, layout, counts);
     out += row_text(kernel, r, run);
     if (r.bytes > 0) together.add(r);
   }
@@ -171,12 +173,13 @@ std::string format_law_ceiling(const RooflineRun& run, const Layout& layout, con
   }
   if (ns.empty()) return "";
   Spread law = spread(ns);
+  const double median_ms = law.median * 1e-6 * counts.contacts;  // ns per contact to ms per step
   char out[512];
   std::snprintf(out, sizeof out,
                 "         compute ceiling: the contact law alone (its rows in registers) %s ns per contact, %.3f ms "
                 "per step for %.0f entries (the median)\n         contact_forces, per segment: %s of it; of its "
                 "roofline, the larger of it and its bytes at the buffers' copy: %s\n",
-                text(law).c_str(), 1e3 * law.median * 1e-9 * counts.contacts, counts.contacts,
+                text(law).c_str(), median_ms, counts.contacts,
                 text(spread(of_law)).c_str(), text(spread(of_roof)).c_str());
   return out;
 }
