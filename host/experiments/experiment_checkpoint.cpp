@@ -107,7 +107,9 @@ void ExperimentCheckpoints::after_sample(const Simulation& sim, const std::funct
   }
 }
 
-void ExperimentCheckpoints::write(const Simulation& sim, const OrderedJson& progress) const {
+void ExperimentCheckpoints::write(const Simulation& sim, const OrderedJson& progress) {
+  ProfileClock clock(&write_seconds_);
+  ++written_;
   const std::string state = dir_ + "/checkpoint.state";
   OrderedJson j;
   j["experiment"] = id_;

@@ -46,11 +46,17 @@ class ExperimentCheckpoints {
   // After each sample: writes a checkpoint when one is due or a stop was asked for (`progress`
   // gives the experiment's JSON), then throws ExperimentStopped on a stop.
   void after_sample(const Simulation& sim, const std::function<OrderedJson()>& progress);
+  // The checkpoints this object wrote and the wall time they took (the state read back from the
+  // device, put in global order, hashed and written; the progress file).
+  uint64_t written() const { return written_; }
+  double write_seconds() const { return write_seconds_; }
 
  private:
   std::string dir_, restart_, id_, hash_, case_path_;
   uint64_t every_steps_ = 0, next_ = 0;
-  void write(const Simulation& sim, const OrderedJson& progress) const;
+  uint64_t written_ = 0;
+  double write_seconds_ = 0;
+  void write(const Simulation& sim, const OrderedJson& progress);
 };
 
 // What experiments save in their progress: a kernel profile and a wall-force series, exactly

@@ -150,6 +150,8 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
       break;
     }
     checkpoints.after_sample(sim, [&] { return repose_progress(r, bed_measured, clear_before); });
+    r.checkpoints_written = checkpoints.written();
+    r.checkpoint_seconds = checkpoints.write_seconds();
   }
   progress.finish();
   if (!r.settled) {
@@ -389,6 +391,11 @@ std::vector<std::string> profile_lines(const std::string& backend, const ReposeR
       lines.push_back("  " + name + " kernels per step: " + format_kernel_times(p));
       lines.push_back("  " + name + " " + format_host_times(p));
     }
+  if (r.checkpoints_written > 0)
+    lines.push_back(printf_text("  checkpoints (outside the phases): %llu written in %.3g s, %.3g s each (the state "
+                                "read back, put in global order and written)",
+                                (unsigned long long)r.checkpoints_written, r.checkpoint_seconds,
+                                r.checkpoint_seconds / double(r.checkpoints_written)));
   return lines;
 }
 

@@ -61,6 +61,10 @@ struct ReposeResult {
   // Where the time went: "fill" (before the lift starts: pouring and settling), "lift", "run-out"
   // (after the lift until settled); wall time includes the experiment's own sampling.
   std::vector<std::pair<std::string, RunProfile>> phases;
+  // The checkpoints this process wrote and their wall time (outside the phases' times; not kept
+  // in a checkpoint, so a restarted run counts its own).
+  uint64_t checkpoints_written = 0;
+  double checkpoint_seconds = 0;
   double dt = 0;  // s, the time step
 };
 

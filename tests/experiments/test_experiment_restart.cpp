@@ -105,6 +105,24 @@ TEST_CASE("repose experiment: stopped by a signal and restarted, the same result
   }
 }
 
+// --profile counts the checkpoints and their time, which the phases' times leave out: one at
+// every 0.1 s reached by a sample before the last (the last sample ends the run instead).
+TEST_CASE("repose experiment --profile: the checkpoints written and their time", "[experiments][cli][restart]") {
+  fs::path dir = fresh_dir("profile");
+  auto run = repose::test::run_repose("experiment repose " + kBucket + " --backend cpu --threads 1 --quiet --profile --out " +
+                                      (dir / "out").string() + joined(kSets));
+  INFO(run.output);
+  REQUIRE(run.status == 0);
+  double settle = nlohmann::json::parse(slurp(dir / "out" / "repose.json"))["settle_time"].get<double>();
+  int expected = 0;
+  while ((expected + 1) * 0.1 < settle - 0.025) ++expected;  // samples every 0.05 s
+  REQUIRE(expected > 10);
+  std::string line = "checkpoints (outside the phases): " + std::to_string(expected) + " written in ";
+  size_t at = run.output.find(line);
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stod(run.output.substr(at + line.size())) > 0);  // seconds
+}
+
 // A heap still moving at its max_time is measured as it stood (exit 1); --max-time, outside the
 // case's identity, lets its last checkpoint go on to the result of a run given more time.
 TEST_CASE("repose experiment --max-time: a heap not settled by then goes on from its checkpoint to the result of a "
