@@ -150,9 +150,9 @@ void run_until_settled(const CaseSpec& spec, const ExperimentRunOptions& options
       break;
     }
     checkpoints.after_sample(sim, [&] { return repose_progress(r, bed_measured, clear_before); });
-    r.checkpoints_written = checkpoints.written();
-    r.checkpoint_seconds = checkpoints.write_seconds();
   }
+  r.checkpoints_written = checkpoints.written();
+  r.checkpoint_seconds = checkpoints.write_seconds();
   progress.finish();
   if (!r.settled) {
     r.problem = spec.path + ": the heap had not settled (largest kinetic energy " + format_number(r.kinetic_energy) +
