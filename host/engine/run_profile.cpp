@@ -14,6 +14,9 @@ void RunProfile::add(const RunProfile& o) {
   contact_steps += o.contact_steps;
   reorders += o.reorders;
   reorder_seconds += o.reorder_seconds;
+  reorder_parts.download += o.reorder_parts.download;
+  reorder_parts.order += o.reorder_parts.order;
+  reorder_parts.upload += o.reorder_parts.upload;
   batch_seconds += o.batch_seconds;
   device.add(o.device);
   transfer_seconds += o.transfer_seconds;
@@ -93,9 +96,16 @@ std::string format_kernel_times(const RunProfile& p) {
     out += item;
   }
   if (p.reorders) {  // host work, not in the kernels' shares
+    const double ms = 1e3 / double(p.reorders);
     std::snprintf(item, sizeof item, "; %llu reorders on the host, %.1f ms each", (unsigned long long)p.reorders,
-                  1e3 * p.reorder_seconds / double(p.reorders));
+                  ms * p.reorder_seconds);
     out += item;
+    const RunProfile::ReorderParts& r = p.reorder_parts;
+    if (r.download + r.order + r.upload > 0) {  // absent from a checkpoint's profile of before they were timed
+      std::snprintf(item, sizeof item, " (the state down %.1f, into its new slots %.1f, up %.1f)", ms * r.download,
+                    ms * r.order, ms * r.upload);
+      out += item;
+    }
   }
   return out;
 }

@@ -20,6 +20,10 @@ struct RunProfile {
   double contact_steps = 0;  // contacts summed over steps (each batch counts its last list)
   uint64_t reorders = 0;       // cell orderings on the host (download, sort, upload) and their time
   double reorder_seconds = 0;
+  // Of that time: the state down, put in its new slots on the host, and up again (with the constants).
+  struct ReorderParts {
+    double download = 0, order = 0, upload = 0;
+  } reorder_parts;
   // What a timed run can name of the host's share (the wall time no kernel nor reorder took): the
   // backend's batches (their kernels included) and their device overheads; the transfers around
   // them (walls up, control words and the state down).

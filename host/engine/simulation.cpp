@@ -138,13 +138,26 @@ void Simulation::store_in_order(ParticleOrder order) {
 }
 
 // A state still in the old slots moves straight into the new ones: one conversion, not one to
-// global ids and one back.
+// global ids and one back. Each part's time goes to the profile (a GPU's transfers are most of it).
 void Simulation::renew_cell_order() {
-  if (!unread_batches_.empty()) download();
-  if (!state_in_slots_) return store_in_order(cell_order(state_.pos, state_.bodies, model_.cell));
-  ParticleOrder next = cell_order(state_.pos, order_.id_of, state_.bodies, model_.cell);
-  to_other_slots(state_, order_, next, backend_->host_threads());
-  state_in_slots_ = !next.is_identity();
+  RunProfile::ReorderParts& parts = profile_.reorder_parts;
+  {
+    ProfileClock clock(&parts.download);
+    if (!unread_batches_.empty()) download();
+  }
+  ParticleOrder next;
+  {
+    ProfileClock clock(&parts.order);
+    if (state_in_slots_) {
+      next = cell_order(state_.pos, order_.id_of, state_.bodies, model_.cell);
+      to_other_slots(state_, order_, next, backend_->host_threads());
+    } else {  // by global id: something read the state since the last batch
+      next = cell_order(state_.pos, state_.bodies, model_.cell);
+      if (!next.is_identity()) to_stored(state_, next, backend_->host_threads());
+    }
+    state_in_slots_ = !next.is_identity();
+  }
+  ProfileClock clock(&parts.upload);
   use_order(std::move(next));
 }
 

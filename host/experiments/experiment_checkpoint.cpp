@@ -132,6 +132,9 @@ OrderedJson profile_json(const RunProfile& p) {
           {"contact_steps", p.contact_steps},
           {"reorders", p.reorders},
           {"reorder_seconds", p.reorder_seconds},
+          {"reorder_download_seconds", p.reorder_parts.download},
+          {"reorder_order_seconds", p.reorder_parts.order},
+          {"reorder_upload_seconds", p.reorder_parts.upload},
           {"batch_seconds", p.batch_seconds},
           {"pipeline_seconds", p.device.pipelines},
           {"recording_seconds", p.device.recording},
@@ -148,6 +151,9 @@ RunProfile profile_from_json(const OrderedJson& j) {
   p.contact_steps = j.at("contact_steps").get<double>();
   p.reorders = j.value("reorders", uint64_t(0));  // absent before they were timed
   p.reorder_seconds = j.value("reorder_seconds", 0.0);
+  p.reorder_parts.download = j.value("reorder_download_seconds", 0.0);  // these three absent before 2026-11-28
+  p.reorder_parts.order = j.value("reorder_order_seconds", 0.0);
+  p.reorder_parts.upload = j.value("reorder_upload_seconds", 0.0);
   p.batch_seconds = j.value("batch_seconds", 0.0);  // these five absent before they were timed
   p.device.pipelines = j.value("pipeline_seconds", 0.0);
   p.device.recording = j.value("recording_seconds", 0.0);

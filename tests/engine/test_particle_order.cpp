@@ -62,6 +62,13 @@ void check_orders(const CaseSpec& spec, uint64_t steps, const std::string& backe
   CHECK(profile.reorders >= 1);
   CHECK(profile.reorders <= profile.rebuilds);
   CHECK(profile.reorder_seconds > 0);
+  // Its parts (down, into the new slots, up) each took some time, and together no more than the whole.
+  const RunProfile::ReorderParts& parts = profile.reorder_parts;
+  CHECK(parts.download > 0);
+  CHECK(parts.order > 0);
+  CHECK(parts.upload > 0);
+  CHECK(parts.download + parts.order + parts.upload <= profile.reorder_seconds);
+  CHECK(format_kernel_times(profile).find("(the state down ") != std::string::npos);
 
   std::string reference_file = state_file_bytes(*reference, "order_reference.state");
   for (Simulation* sim : {shuffled.get(), cells.get()}) {

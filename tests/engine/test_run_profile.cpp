@@ -69,7 +69,15 @@ TEST_CASE("an untimed profile has no host line; a checkpoint keeps the host time
   p.device.pipelines = 0.5;  // as a device's would be
   p.device.recording = 0.25;
   p.device.between_kernels = 0.125;
+  p.reorders = 2;
+  p.reorder_seconds = 1.0;
+  p.reorder_parts = {0.375, 0.25, 0.3125};
   RunProfile back = profile_from_json(profile_json(p));
+  CHECK(back.reorder_parts.download == 0.375);
+  CHECK(back.reorder_parts.order == 0.25);
+  CHECK(back.reorder_parts.upload == 0.3125);
+  CHECK(format_kernel_times(back).find("2 reorders on the host, 500.0 ms each (the state down 187.5, into its new slots "
+                                       "125.0, up 156.2)") != std::string::npos);
   CHECK(back.batch_seconds == p.batch_seconds);
   CHECK(back.device.pipelines == 0.5);
   CHECK(back.device.recording == 0.25);
@@ -77,10 +85,13 @@ TEST_CASE("an untimed profile has no host line; a checkpoint keeps the host time
   CHECK(back.transfer_seconds == p.transfer_seconds);
 
   OrderedJson older = profile_json(p);  // a checkpoint written before these were timed
-  for (const char* key :
-       {"batch_seconds", "pipeline_seconds", "recording_seconds", "between_kernels_seconds", "transfer_seconds"})
+  for (const char* key : {"batch_seconds", "pipeline_seconds", "recording_seconds", "between_kernels_seconds",
+                          "transfer_seconds", "reorder_download_seconds", "reorder_order_seconds", "reorder_upload_seconds"})
     older.erase(key);
   RunProfile read = profile_from_json(older);
+  CHECK(read.reorder_parts.download + read.reorder_parts.order + read.reorder_parts.upload == 0);
+  CHECK(format_kernel_times(read).find("500.0 ms each") != std::string::npos);
+  CHECK(format_kernel_times(read).find("the state down") == std::string::npos);  // not timed: not named
   CHECK(read.batch_seconds == 0);
   CHECK(read.transfer_seconds == 0);
   CHECK(format_host_times(read).find("transfers 0.000") != std::string::npos);
