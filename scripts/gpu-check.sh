@@ -7,7 +7,7 @@
 # GPU beside the cpu backend on every core, and the scan's block passes against one workgroup.
 # the large heap (cases/large_heap: a million grains poured and their angle measured) on the GPU.
 # Usage: bash scripts/gpu-check.sh [--bundle DIR] [--out DIR] [--sizes "100000 1000000"] [--only REGEX] [--heap N]
-#                                  [--budget SECONDS] [--quick]
+#                                  [--budget SECONDS] [--quick] [--pack DIR]
 #   --bundle: a folder made by scripts/gpu-bundle.sh (a machine without this project's packages);
 #             default: build/ of this checkout.
 #   --out:    where report.md and the raw logs go (default out/gpu-check).
@@ -20,12 +20,14 @@
 #             H200 (the million-grain heap ~6 of them), more than one call of a 15-minute lease
 #             may run (10 minutes): e.g. --budget 540 --sizes 1000000 --heap 100000, then
 #             --only heap --budget 560 for the million.
+#   --pack:   at the end, copy report.md and the logs (one logs.tar.gz, no states nor caches) into DIR:
+#             two files, for a machine that sends back only a few (its --out then holds the rest).
 #   --quick:  a check of this script itself on any Vulkan device (lavapipe through VK_DRIVER_FILES):
 #             the twin tests left out, 2,000-sphere beds, short runs and benches.
 # Each step has a time limit, and a failed step is reported, not fatal: the report is what counts.
 set -u
 cd "$(dirname "$0")/.."
-bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only="" heap=1000000 budget=0
+bundle="" out="out/gpu-check" sizes="100000 1000000 10000000" quick=0 only="" heap=1000000 budget=0 pack=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --bundle) bundle=$2; shift 2 ;;
@@ -35,6 +37,7 @@ while [ $# -gt 0 ]; do
     --heap) heap=$2; shift 2 ;;
     --budget) budget=$2; shift 2 ;;
     --quick) quick=1; shift ;;
+    --pack) pack=$2; shift 2 ;;
     *) echo "gpu-check: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -179,3 +182,10 @@ if [ -d "$out/large_heap" ]; then
 fi
 say ""
 say "Logs: $out"
+if [ -n "$pack" ]; then
+  mkdir -p "$pack"
+  cp "$report" "$pack/report.md"
+  (cd "$out" && find . -type f \( -name '*.log' -o -name '*.csv' -o -name '*.json' \) -size -4M | grep -v bench-cache |
+     tar -czf "$(cd "$pack" && pwd)/logs.tar.gz" -T -)
+  echo "packed: $pack/report.md, $pack/logs.tar.gz"
+fi

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
+#include <cstring>
 #include <exception>
 #include <mutex>
 #include <thread>
@@ -33,6 +34,17 @@ void parallel_each(size_t n, unsigned threads, Body body) {
   worker();
   for (auto& h : helpers) h.join();
   if (error) std::rethrow_exception(error);
+}
+
+// memcpy in blocks of `block` bytes on up to `threads` threads: one thread's memcpy moves ~10 GB/s,
+// less than a server's memory or a GPU's bus (a mapped or staging buffer's transfers, host/vk).
+inline void parallel_copy(void* to, const void* from, size_t bytes, unsigned threads, size_t block = size_t(4) << 20) {
+  const size_t blocks = (bytes + block - 1) / block;
+  if (blocks < 2 || threads < 2) return (void)std::memcpy(to, from, bytes);
+  parallel_each(blocks, threads, [&](size_t b) {
+    const size_t at = b * block;
+    std::memcpy(static_cast<char*>(to) + at, static_cast<const char*>(from) + at, std::min(block, bytes - at));
+  });
 }
 
 }  // namespace repose
