@@ -35,11 +35,13 @@ struct ParticleOrder {
 // of their centres' cells, each body's sub-spheres in consecutive slots by global id, so the
 // per-body gather (body_gather_kick) reads a run of slots, not one scattered row per sub-sphere
 // (docs/engineering.md, particle order).
-ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell);
+// Keyed and sorted on up to `threads` threads (the same order on any number).
+ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gpu::Body>& bodies, double cell,
+                         unsigned threads = 1);
 // The same order from positions held in any order, pos[r] being particle id_of_row[r]'s (the
 // slots of a state as the device stores it): sorted by cell, then by global id, as above.
 ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<uint32_t>& id_of_row,
-                         const std::vector<gpu::Body>& bodies, double cell);
+                         const std::vector<gpu::Body>& bodies, double cell, unsigned threads = 1);
 
 // The host state (rows by global id, contacts as the kernels would list them by global id) moved
 // into the slots the device stores them in under `order`, and back: per-particle rows, the contact

@@ -28,7 +28,7 @@ Simulation::Simulation(Model model, std::unique_ptr<Backend> backend, KernelVari
       reorder_(variant.reorder, variant.reorder_capped) {
   layout_ = model_layout(model_, variant_, max_batch_steps);
   // Cell order from the start (one sort), so the first batch need not store the particles anew.
-  order_ = variant_.reorder ? cell_order(model_.pos, model_.bodies, model_.cell)
+  order_ = variant_.reorder ? cell_order(model_.pos, model_.bodies, model_.cell, backend_->host_threads())
                             : ParticleOrder::identity(model_.n_particles);
   stored_by_id_ = order_.is_identity();
 
@@ -149,10 +149,10 @@ void Simulation::renew_cell_order() {
   {
     ProfileClock clock(&parts.order);
     if (state_in_slots_) {
-      next = cell_order(state_.pos, order_.id_of, state_.bodies, model_.cell);
+      next = cell_order(state_.pos, order_.id_of, state_.bodies, model_.cell, backend_->host_threads());
       to_other_slots(state_, order_, next, backend_->host_threads());
     } else {  // by global id: something read the state since the last batch
-      next = cell_order(state_.pos, state_.bodies, model_.cell);
+      next = cell_order(state_.pos, state_.bodies, model_.cell, backend_->host_threads());
       if (!next.is_identity()) to_stored(state_, next, backend_->host_threads());
     }
     state_in_slots_ = !next.is_identity();

@@ -47,4 +47,19 @@ inline void parallel_copy(void* to, const void* from, size_t bytes, unsigned thr
   });
 }
 
+// std::sort of v on up to `threads` threads: a power of two of parts sorted at once, then merged
+// pairwise, a level at a time. For a total order (no two elements equivalent) the result is
+// std::sort's, whatever the threads.
+template <class T>
+void parallel_sort(std::vector<T>& v, unsigned threads, size_t least_part = size_t(1) << 16) {
+  size_t parts = 1;
+  while (parts * 2 <= threads && v.size() / (parts * 2) >= least_part) parts *= 2;
+  auto bound = [&](size_t i) { return v.begin() + std::ptrdiff_t(i * v.size() / parts); };
+  parallel_each(parts, threads, [&](size_t i) { std::sort(bound(i), bound(i + 1)); });
+  for (size_t width = 1; width < parts; width *= 2)
+    parallel_each(parts / (2 * width), threads, [&](size_t k) {
+      std::inplace_merge(bound(2 * width * k), bound(2 * width * k + width), bound(2 * width * (k + 1)));
+    });
+}
+
 }  // namespace repose
