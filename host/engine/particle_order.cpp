@@ -53,19 +53,19 @@ ParticleOrder cell_order(const std::vector<gpu::vec4>& pos, const std::vector<gp
 
 namespace {
 
-// body(begin, end) over [0, n) in blocks of 64K, on up to `threads` threads: a million particles'
-// rows and their contact list's move on all the host's cores, a small state on the caller's
-// thread alone (one block).
+constexpr size_t kBlock = size_t(1) << 16;
+
+// body(begin, end) over [0, n) in blocks of kBlock, on up to `threads` threads: a million
+// particles' rows and their contact list's move on all the host's cores, a small state on the
+// caller's thread alone (one block).
 template <class Body>
 void for_blocks(size_t n, unsigned threads, Body body) {
-  constexpr size_t kBlock = size_t(1) << 16;
   parallel_each((n + kBlock - 1) / kBlock, threads,
                 [&](size_t b) { body(b * kBlock, std::min(n, (b + 1) * kBlock)); });
 }
 
 // The lowest corner of the positions, each block's on its own thread (a minimum in any order).
 std::array<double, 3> lowest_corner(const std::vector<gpu::vec4>& pos, unsigned threads) {
-  constexpr size_t kBlock = size_t(1) << 16;
   std::vector<std::array<double, 3>> lo((pos.size() + kBlock - 1) / kBlock, {HUGE_VAL, HUGE_VAL, HUGE_VAL});
   for_blocks(pos.size(), threads, [&](size_t begin, size_t end) {
     std::array<double, 3>& l = lo[begin / kBlock];
