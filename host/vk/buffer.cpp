@@ -19,6 +19,27 @@ void copy_bytes(void* to, const void* from, size_t bytes) {
   parallel_copy(to, from, bytes, std::max(1u, std::thread::hardware_concurrency()));
 }
 
+// A transfer larger than its staging buffer goes in pieces through the buffer's two halves in
+// turn: the host fills (or empties) one while the device copies the other, where one buffer used
+// whole made each wait for the other (a million grains' state crosses the bus in ~16 pieces).
+struct StagingSlots {
+  size_t count, size;  // two halves; one slot where the buffer is a single byte (REPOSE_STAGING=1)
+  explicit StagingSlots(size_t staging) : count(staging >= 2 ? 2 : 1), size(staging / count) {}
+};
+
+// The copies a transfer has in flight, one per slot, waited for however the transfer ends (an
+// error while one goes must not leave the device writing into a staging buffer reused next).
+struct InFlight {
+  Context& ctx;
+  Context::Submission slot[2];
+  ~InFlight() {
+    for (auto& s : slot) try {
+        ctx.finish(s);
+      } catch (...) {  // already failing: the first error is the one to report
+      }
+  }
+};
+
 }  // namespace
 
 Buffer::Buffer(Context& ctx, size_t bytes, VkBufferUsageFlags extra_usage, Memory memory)
@@ -89,16 +110,28 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
     return;
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());  // the staging buffer is shared
-  for (size_t done = 0; done < bytes;) {  // in pieces of at most the staging buffer's size
-    Buffer& staging = ctx_->staging(Memory::Upload, bytes - done);
-    size_t piece = std::min(bytes - done, staging.size());
-    copy_bytes(staging.mapped(), static_cast<const char*>(data) + done, piece);
+  Buffer& staging = ctx_->staging(Memory::Upload, bytes);
+  if (bytes <= staging.size()) {  // one piece: control words, a batch's wall rows, most rows
+    copy_bytes(staging.mapped(), data, bytes);
     ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-      VkBufferCopy region{0, offset + done, piece};
+      VkBufferCopy region{0, offset, bytes};
+      vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
+    });
+    return;
+  }
+  const StagingSlots slots(staging.size());
+  InFlight copying{*ctx_};
+  for (size_t done = 0, k = 0; done < bytes; ++k) {
+    const size_t s = k % slots.count, at = s * slots.size, piece = std::min(bytes - done, slots.size);
+    ctx_->finish(copying.slot[s]);  // the device has read this slot's last piece
+    copy_bytes(static_cast<char*>(staging.mapped()) + at, static_cast<const char*>(data) + done, piece);
+    copying.slot[s] = ctx_->submit([&](VkCommandBuffer cb) {
+      VkBufferCopy region{at, offset + done, piece};
       vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
     });
     done += piece;
   }
+  for (auto& c : copying.slot) ctx_->finish(c);  // here, so that an error is reported
 }
 
 void Buffer::download(void* data, size_t bytes, size_t offset) const {
@@ -108,16 +141,34 @@ void Buffer::download(void* data, size_t bytes, size_t offset) const {
     return;
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());
-  for (size_t done = 0; done < bytes;) {
-    Buffer& staging = ctx_->staging(Memory::Download, bytes - done);
-    size_t piece = std::min(bytes - done, staging.size());
+  Buffer& staging = ctx_->staging(Memory::Download, bytes);
+  if (bytes <= staging.size()) {  // one piece
     ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-      VkBufferCopy region{offset + done, 0, piece};
+      VkBufferCopy region{offset, 0, bytes};
       vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
     });
-    copy_bytes(static_cast<char*>(data) + done, staging.mapped(), piece);
-    done += piece;
+    copy_bytes(data, staging.mapped(), bytes);
+    return;
   }
+  const StagingSlots slots(staging.size());
+  const size_t pieces = (bytes + slots.size - 1) / slots.size;
+  InFlight copying{*ctx_};
+  auto fetch = [&](size_t k) {  // piece k into its slot
+    copying.slot[k % slots.count] = ctx_->submit([&](VkCommandBuffer cb) {
+      VkBufferCopy region{offset + k * slots.size, (k % slots.count) * slots.size, std::min(bytes - k * slots.size, slots.size)};
+      vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
+    });
+  };
+  fetch(0);
+  for (size_t k = 0; k < pieces; ++k) {  // the next piece comes into the other slot while this one is copied out
+    if (slots.count == 2 && k + 1 < pieces) fetch(k + 1);
+    ctx_->finish(copying.slot[k % slots.count]);
+    copy_bytes(static_cast<char*>(data) + k * slots.size,
+               static_cast<const char*>(staging.mapped()) + (k % slots.count) * slots.size,
+               std::min(bytes - k * slots.size, slots.size));
+    if (slots.count == 1 && k + 1 < pieces) fetch(k + 1);
+  }
+  for (auto& c : copying.slot) ctx_->finish(c);  // here, so that an error is reported
 }
 
 }  // namespace repose::vk

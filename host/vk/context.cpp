@@ -337,6 +337,26 @@ VkCommandBuffer Context::begin_commands() {
   return cb;
 }
 
+Context::Submission Context::submit_commands(VkCommandBuffer cb) {
+  VK_CHECK(vkEndCommandBuffer(cb));
+  Submission s{cb, VK_NULL_HANDLE};
+  VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+  VK_CHECK(vkCreateFence(device_, &fi, nullptr, &s.fence));
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cb;
+  VK_CHECK(vkQueueSubmit(queue_, 1, &si, s.fence));
+  return s;
+}
+
+void Context::finish(Submission& s) {
+  if (s.fence == VK_NULL_HANDLE) return;
+  VK_CHECK(vkWaitForFences(device_, 1, &s.fence, VK_TRUE, UINT64_MAX));
+  vkDestroyFence(device_, s.fence, nullptr);
+  vkFreeCommandBuffers(device_, pool_, 1, &s.commands);
+  s = Submission{};
+}
+
 void Context::end_and_submit(VkCommandBuffer cb) {
   VK_CHECK(vkEndCommandBuffer(cb));
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};

@@ -96,6 +96,19 @@ class Context {
   }
   VkCommandBuffer begin_commands();
   void end_and_submit(VkCommandBuffer cb);
+  // A submission the host goes on beside (a staging copy while the next piece is copied on the
+  // host): submit() records and submits, finish() waits for it and frees it. Hold mutex() between.
+  struct Submission {
+    VkCommandBuffer commands = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+  };
+  template <class F>
+  Submission submit(F&& record) {
+    VkCommandBuffer cb = begin_commands();
+    record(cb);
+    return submit_commands(cb);
+  }
+  void finish(Submission& s);
   // A host buffer for transfers one way (Memory::Upload or Memory::Download) of min(`bytes`,
   // staging_bytes()) or more, kept and grown up to staging_bytes(): a transfer allocates nothing.
   Buffer& staging(Memory direction, size_t bytes);
@@ -104,6 +117,7 @@ class Context {
 
  private:
   void release();
+  Submission submit_commands(VkCommandBuffer cb);
   VkInstance instance_ = VK_NULL_HANDLE;  // the process's, not owned
   VkPhysicalDevice physical_ = VK_NULL_HANDLE;
   VkDevice device_ = VK_NULL_HANDLE;

@@ -5,7 +5,8 @@
 // puts lavapipe's results up to 2 ULP off so that the correction runs here. A large case's scans
 // take their block passes over the whole device; REPOSE_SCAN_BLOCKS_FROM=1 makes small ones do so.
 // A discrete GPU's memory is reached through staging buffers of at most 64 MiB, in pieces;
-// REPOSE_STAGING=N sends lavapipe's transfers that way, in pieces of N bytes. Either way a settling box and a clump settle give the cpu backend's state bytes.
+// REPOSE_STAGING=N sends lavapipe's transfers that way, in pieces of N bytes (N/2 in turn through
+// two halves when a transfer is larger). Either way a settling box and a clump settle give the cpu backend's state bytes.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -106,5 +107,8 @@ TEST_CASE("transfers through small staging buffers, in pieces, give the same byt
   // several pieces, cut inside its elements; the uploads of a reorder and the state read back for
   // the state file go the same way.
   check_cpu_bytes_on_lavapipe_with("REPOSE_STAGING=4099 ", dir);
+  // A staging buffer of one byte has no halves to take turns: a piece waits for the one before.
+  CHECK(state_after("drop_sphere.toml", "vulkan", 50, 0, dir, "REPOSE_STAGING=1 ") ==
+        state_after("drop_sphere.toml", "cpu", 50, 0, dir));
   for (const char* bad : {"0", "4k", "67108865"}) check_refused("REPOSE_STAGING", bad, "vulkan");
 }
