@@ -74,8 +74,6 @@ size_t restart_count(const BufferSpec& b, uint32_t n, uint32_t c, uint32_t bodie
   return b.count == BufferCount::Control ? kRestartControlWords : file_count(b, n, c, bodies, r);
 }
 
-// Versions 5 on (restartable) hold a case hash after the header and end with a checksum.
-bool restartable(int version) { return version >= kRestartableStateVersion; }
 constexpr uint64_t kChecksumBytes = 8;
 
 int version_of(const char magic[8]) {
@@ -95,7 +93,7 @@ struct Header {
 // Bytes of a file of this header, without the transposed list (whose length is in the file) and
 // the checksum.
 uint64_t fixed_bytes(const Header& h) {
-  uint64_t bytes = 8 + 4 * (h.version >= 3 ? 4 : 3) + 16 + (restartable(h.version) ? kStateCaseHashBytes : 0);
+  uint64_t bytes = 8 + 4 * (h.version >= 3 ? 4 : 3) + 16 + (restartable_state_version(h.version) ? kStateCaseHashBytes : 0);
   HostState none;
   for_each_file_array(none, [&](const BufferSpec& spec, const auto&) {
     size_t element = h.version == 2 && spec.binding == gpu::kBindBodies ? kV2Body : spec.element_bytes;
@@ -159,7 +157,7 @@ Header read_header(StateReader& in, StateFileInfo& info) {
   in.raw(magic, 8);
   h.version = version_of(magic);
   if (!h.version) in.fail("not a Repose state file (bad magic)");
-  if (restartable(h.version)) in.start_checksum(h.version, magic, sizeof magic);
+  if (restartable_state_version(h.version)) in.start_checksum(h.version, magic, sizeof magic);
   in.value(h.n);
   in.value(h.c);
   in.value(h.b);
@@ -167,7 +165,7 @@ Header read_header(StateReader& in, StateFileInfo& info) {
   in.value(info.step);
   in.value(info.time);
   info.version = h.version;
-  if (restartable(h.version)) {
+  if (restartable_state_version(h.version)) {
     char hash[kStateCaseHashBytes];
     in.raw(hash, sizeof hash);
     info.case_hash = hash[0] ? std::string(hash, sizeof hash) : "";
@@ -180,7 +178,7 @@ Header read_header(StateReader& in, StateFileInfo& info) {
 
 // The file's length must be what its header announces: nothing missing, nothing appended.
 void check_length(StateReader& in, const Header& h, uint64_t file_bytes) {
-  uint64_t fixed = fixed_bytes(h), tail = restartable(h.version) ? kChecksumBytes : 0;
+  uint64_t fixed = fixed_bytes(h), tail = restartable_state_version(h.version) ? kChecksumBytes : 0;
   bool fits = h.version >= 4 ? file_bytes >= fixed + tail && (file_bytes - fixed - tail) % 4 == 0 &&
                                    (file_bytes - fixed - tail) / 4 <= h.c
                              : file_bytes == fixed;
@@ -207,7 +205,7 @@ void read_arrays(StateReader& in, const Header& h, uint64_t file_bytes, HostStat
       v.assign(gpu::kControlWords, {});
       in.raw(v.data(), kRestartControlWords * sizeof(v[0]));
     } else if (spec.count == BufferCount::Transposed) {
-      uint64_t tail = restartable(h.version) ? kChecksumBytes : 0, transposed = (in.left() - tail) / sizeof(v[0]);
+      uint64_t tail = restartable_state_version(h.version) ? kChecksumBytes : 0, transposed = (in.left() - tail) / sizeof(v[0]);
       if (s.trans_start[h.n] != transposed)
         in.fail("is " + std::to_string(file_bytes) + " bytes, but its header and trans_start[N] = " +
                 std::to_string(s.trans_start[h.n]) + " need " +
@@ -267,7 +265,7 @@ HostState read_state_file(const std::string& path, StateFileInfo& info) {
   check_length(in, h, file_bytes);
   HostState s;
   read_arrays(in, h, file_bytes, s);
-  if (restartable(h.version)) {
+  if (restartable_state_version(h.version)) {
     uint64_t computed = in.hash(), stored = 0;
     in.value(stored);
     if (stored != computed)

@@ -25,6 +25,8 @@ constexpr char kStateMagicV2[8] = {'R', 'E', 'P', 'O', 'S', 'E', 'S', '2'};
 constexpr int kStateVersion = 6;
 // The first version with a checksum and a case hash: the first a run can restart from.
 constexpr int kRestartableStateVersion = 5;
+// Versions from kRestartableStateVersion on hold a case hash after the header and end with a checksum.
+constexpr bool restartable_state_version(int version) { return version >= kRestartableStateVersion; }
 // Control words 0 .. kRestartControlWords-1 (need-rebuild flag to old-contact count) are stored;
 // the dispatch sizes after them depend on the kernel variant and are recomputed on restart.
 constexpr uint32_t kRestartControlWords = 8;
@@ -36,7 +38,7 @@ struct StateFileInfo {
   double time = 0;
   int version = 0;
   std::string case_hash;  // of the case that wrote it (version 5 on), "" when not recorded
-  bool restartable() const { return version >= kRestartableStateVersion; }
+  bool restartable() const { return restartable_state_version(version); }
 };
 
 // The checksum that ends a file of a restartable version (docs/state-format.md) over `bytes`:

@@ -19,12 +19,14 @@ void copy_bytes(void* to, const void* from, size_t bytes) {
   parallel_copy(to, from, bytes, std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// A transfer larger than its staging buffer goes in pieces through the buffer's two halves in
-// turn: the host fills (or empties) one while the device copies the other, where one buffer used
-// whole made each wait for the other (a million grains' state crosses the bus in ~16 pieces).
+// A transfer that fits its staging buffer goes whole, in one piece (control words, a batch's wall
+// rows, most rows). A larger one goes in pieces through the buffer's two halves in turn: the host
+// fills (or empties) one while the device copies the other, where one buffer used whole made each
+// wait for the other (a million grains' state crosses the bus in ~16 pieces).
 struct StagingSlots {
-  size_t count, size;  // two halves; one slot where the buffer is a single byte (REPOSE_STAGING=1)
-  explicit StagingSlots(size_t staging) : count(staging >= 2 ? 2 : 1), size(staging / count) {}
+  size_t count, size;  // one slot where the buffer is a single byte (REPOSE_STAGING=1)
+  StagingSlots(size_t staging, size_t transfer)
+      : count(transfer > staging && staging >= 2 ? 2 : 1), size(staging / count) {}
 };
 
 // The copies a transfer has in flight, one per slot, waited for however the transfer ends (an
@@ -111,15 +113,7 @@ void Buffer::upload(const void* data, size_t bytes, size_t offset) {
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());  // the staging buffer is shared
   Buffer& staging = ctx_->staging(Memory::Upload, bytes);
-  if (bytes <= staging.size()) {  // one piece: control words, a batch's wall rows, most rows
-    copy_bytes(staging.mapped(), data, bytes);
-    ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-      VkBufferCopy region{0, offset, bytes};
-      vkCmdCopyBuffer(cb, staging.handle(), buffer_, 1, &region);
-    });
-    return;
-  }
-  const StagingSlots slots(staging.size());
+  const StagingSlots slots(staging.size(), bytes);
   InFlight copying{*ctx_};
   for (size_t done = 0, k = 0; done < bytes; ++k) {
     const size_t s = k % slots.count, at = s * slots.size, piece = std::min(bytes - done, slots.size);
@@ -142,15 +136,7 @@ void Buffer::download(void* data, size_t bytes, size_t offset) const {
   }
   std::lock_guard<std::recursive_mutex> hold(ctx_->mutex());
   Buffer& staging = ctx_->staging(Memory::Download, bytes);
-  if (bytes <= staging.size()) {  // one piece
-    ctx_->submit_and_wait([&](VkCommandBuffer cb) {
-      VkBufferCopy region{offset, 0, bytes};
-      vkCmdCopyBuffer(cb, buffer_, staging.handle(), 1, &region);
-    });
-    copy_bytes(data, staging.mapped(), bytes);
-    return;
-  }
-  const StagingSlots slots(staging.size());
+  const StagingSlots slots(staging.size(), bytes);
   const size_t pieces = (bytes + slots.size - 1) / slots.size;
   InFlight copying{*ctx_};
   auto fetch = [&](size_t k) {  // piece k into its slot
