@@ -91,6 +91,27 @@ HWY_INLINE V4 owner_rows(const vec4* base, const uint* i, bool block, VI offset)
   return {hn::TableLookupLanes(r.x, at), hn::TableLookupLanes(r.y, at), hn::TableLookupLanes(r.z, at),
           hn::TableLookupLanes(r.w, at)};
 }
+// The same in block order (lane λ the owner of entry block_order(λ)): the block's rows loaded in
+// block order, each lane then taking its owner's from lane `lane` of them.
+HWY_INLINE V4 owner_rows_block_order(const vec4* base, const uint* i, bool block, VI lane) {
+  if (block) {
+    const V4 r = load4_block_order(&base[i[0]]);
+    const auto at = hn::IndicesFromVec(D(), lane);
+    return {hn::TableLookupLanes(r.x, at), hn::TableLookupLanes(r.y, at), hn::TableLookupLanes(r.z, at),
+            hn::TableLookupLanes(r.w, at)};
+  }
+  uint at[HWY_LANES(float)];
+  for (size_t l = 0; l < hn::Lanes(D()); ++l) at[l] = i[block_order(l)];
+  return rows(base, at);
+}
+// The lanes' indices i_at (owners, partners) in the batch's order.
+template <bool kBlockOrder>
+HWY_INLINE VI lane_indices(const uint* at) {
+  const DI di;
+  const VI v = hn::LoadU(di, reinterpret_cast<const int32_t*>(at));
+  if constexpr (!kBlockOrder) return v;
+  return hn::TableLookupLanes(v, hn::IndicesFromVec(di, block_order(di)));
+}
 
 // contacts.h sphere_state for the lanes' owners and partners, the rows loaded as the pairs need
 // them (positions, velocities, spins of both): the partners' rows miss the cache, and their loads
@@ -145,12 +166,14 @@ HWY_INLINE EntryRows apart_rows() {
   const V4 row{zero, zero, zero, zero};
   return {row, row, row, row};
 }
-// A batch's entries from c (a lean entry has no T_j).
+// A batch's entries from c (a lean entry has no T_j), its lanes in natural or block order.
+template <bool kBlockOrder = false>
 HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint flags) {
-  store4(&k.B_history[c], e.history);
-  store4(&k.B_contact_force[c], e.force);
-  store4(&k.B_torque_i[c], e.third);
-  if ((flags & kFlagLeanContacts) == 0u) store4(&k.B_torque_j[c], e.torque_j);
+  auto put = [](vec4* at, const V4& r) { kBlockOrder ? store4_block_order(at, r) : store4(at, r); };
+  put(&k.B_history[c], e.history);
+  put(&k.B_contact_force[c], e.force);
+  put(&k.B_torque_i[c], e.third);
+  if ((flags & kFlagLeanContacts) == 0u) put(&k.B_torque_j[c], e.torque_j);
 }
 
 // The walls of a batch measured in its lanes (planes, rectangles whose face the owner lies over,
@@ -193,7 +216,10 @@ HWY_INLINE void measure_walls(LaneLaw& law, const LaneWalls& q, const LaneLaw::S
 }
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
-// With `walls`, its lanes are contacts with those walls (p_at holds their owners there).
+// With `walls`, its lanes are contacts with those walls (p_at holds their owners there). In block
+// order (a bed's batch of particle pairs: no walls, no bodies) lane λ is contact c +
+// block_order(λ), its rows loaded and stored with fewer shuffles (lane_dialect.h).
+template <bool kBlockOrder = false>
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at,
                                 const LaneWalls* walls = nullptr) {
   const DI di;
@@ -204,9 +230,16 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   // stay in cache, where joining them in registers is faster (the stalk bucket at rest, 2.07-2.09
   // against 1.86-1.97 CPU-s per 400 steps); a bed's partners miss it (lane_dialect.h), while its
   // owners, a few consecutive slots, stay in cache and load as a block (docs/engineering.md).
-  if ((flags & kFlagBodies) != 0u) {
+  if (!kBlockOrder && (flags & kFlagBodies) != 0u) {
     sphere_states(k, [&](const vec4* base) { return rows(base, i_at); }, [&](const vec4* base) { return rows(base, p_at); },
                   si, sj);
+  } else if constexpr (kBlockOrder) {
+    VI offset = hn::Zero(di);
+    const bool block = owner_block(i_at, k.PC.n_particles, offset);
+    // Lane λ's owner is row offset[block_order(λ)] of the block, in lane block_order_lane() of it.
+    const VI lane = block_order_lane(di, hn::TableLookupLanes(offset, hn::IndicesFromVec(di, block_order(di))));
+    sphere_states(k, [&](const vec4* base) { return owner_rows_block_order(base, i_at, block, lane); },
+                  [&](const vec4* base) { return rows_via_buffer_block_order(base, p_at); }, si, sj);
   } else {
     VI offset;
     const bool block = owner_block(i_at, k.PC.n_particles, offset);
@@ -217,21 +250,24 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
   if (walls != nullptr) measure_walls(law, *walls, si, flags, g, v_rel, t);
-  if (hn::AllFalse(D(), t.m)) return store_entries(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
+  if (hn::AllFalse(D(), t.m)) return store_entries<kBlockOrder>(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
     g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
     g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);  // a wall's lane: unread (its arm_j is -1)
   }
   V4 hist;
-  hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
+  if constexpr (kBlockOrder)
+    hist = load4_block_order(&k.B_history[c]);
+  else
+    hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
   // Every particle of one material (the walls' may differ): no gathers, which are slow on this AMD
   // EPYC (7 % of the lanes' samples on a bed in cache, more in a clump heap).
   const int32_t one = one_material(k);
   VI mi = hn::Set(di, one), mj = mi;
   if (one < 0) {
-    mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(i_at)));
-    mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), hn::LoadU(di, reinterpret_cast<const int32_t*>(p_at)));
+    mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices<kBlockOrder>(i_at));
+    mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices<kBlockOrder>(p_at));
   }
   if (walls != nullptr) mj = hn::IfThenElse(hn::RebindMask(di, walls->at), walls->material, mj);
   real3 shear = hist.xyz();
@@ -239,7 +275,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   const cond wall = walls != nullptr ? cond{walls->at} : no_lanes();
   const real3 w_j = walls != nullptr ? zero_unless(!wall, sj.w) : sj.w;
   LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, w_j, wall, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-  store_entries(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
+  store_entries<kBlockOrder>(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
 }
 
 // Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (the
@@ -411,6 +447,7 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   const size_t L = hn::Lanes(di);
   const VI particles = hn::Set(di, int32_t(k.PC.n_particles));
   WallBatch walls;
+  const bool bed = (k.PC.flags & kFlagBodies) == 0u;  // its batches of particle pairs in block order
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
@@ -419,10 +456,12 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
     if (c + 9 * L <= end)
       for (size_t e = 0; e < L; e += 4) __builtin_prefetch(&k.B_history[c + 8 * L + e]);
     const auto walls_at = hn::Not(hn::Lt(p, particles));
-    if (hn::AllFalse(di, walls_at))
-      particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
-    else
+    if (!hn::AllFalse(di, walls_at))
       mixed_lanes(k, c, p, hn::RebindMask(D(), walls_at), walls);
+    else if (bed)
+      particle_lanes<true>(k, c, k.B_owner + c, k.B_partner + c);
+    else
+      particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
   }
   run_wall_batch(k, walls);
   for (; c < end; ++c) k.process_contact(k.B_owner[c], uint(c));

@@ -123,6 +123,77 @@ inline V4 rows(const vec4* base, const uint* index) {
   return r;
 }
 
+// ---- Block order: a batch's lanes in the order a transpose within 128-bit blocks leaves them. ----
+// Four vectors of consecutive vec4 rows (B = Lanes / 4 rows each, row B j + k in block k of vector
+// j) transposed within their blocks (eight interleaves) put row B j + k in lane 4 k + j. hwy's
+// LoadInterleaved4 and StoreInterleaved4 add eight shuffles across blocks to keep lane l row l; a
+// batch whose lanes are all loaded and stored as consecutive rows can skip them, its lane λ then
+// being row block_order(λ) throughout (the law works lane by lane, so the bytes are the same).
+#if HWY_TARGET != HWY_SCALAR
+HWY_INLINE V4 transpose_in_blocks(V a, V b, V c, V e) {
+  const D d;
+  const V v10_even = hn::InterleaveLower(d, a, c), v10_odd = hn::InterleaveLower(d, b, e);
+  const V v32_even = hn::InterleaveUpper(d, a, c), v32_odd = hn::InterleaveUpper(d, b, e);
+  return {hn::InterleaveLower(d, v10_even, v10_odd), hn::InterleaveUpper(d, v10_even, v10_odd),
+          hn::InterleaveLower(d, v32_even, v32_odd), hn::InterleaveUpper(d, v32_even, v32_odd)};
+}
+#endif
+// The row of a batch in lane λ, and the lane of row r, each for one lane or as a vector of all.
+HWY_INLINE size_t block_order(size_t lane) {
+  const size_t B = hn::Lanes(D()) / 4;
+  return B <= 1 ? lane : B * (lane % 4) + lane / 4;
+}
+HWY_INLINE int rows_per_vector_log2() {
+  const size_t B = hn::Lanes(D()) / 4;
+  return B >= 4 ? 2 : B == 2 ? 1 : 0;  // no target has more than 16 float lanes
+}
+HWY_INLINE VI block_order(DI di) {
+  const VI lane = hn::Iota(di, 0);
+  if (hn::Lanes(di) <= 4) return lane;
+  return hn::Add(hn::ShiftLeftSame(hn::And(lane, hn::Set(di, 3)), rows_per_vector_log2()), hn::ShiftRight<2>(lane));
+}
+HWY_INLINE VI block_order_lane(DI di, VI row) {
+  if (hn::Lanes(di) <= 4) return row;
+  const int b = rows_per_vector_log2();
+  return hn::Add(hn::ShiftLeft<2>(hn::And(row, hn::Set(di, (1 << b) - 1))), hn::ShiftRightSame(row, b));
+}
+// The rows at..at + Lanes - 1, row block_order(λ) in lane λ.
+HWY_INLINE V4 load4_block_order(const vec4* at) {
+  V4 r;
+#if HWY_TARGET == HWY_SCALAR
+  hn::LoadInterleaved4(D(), &at->x, r.x, r.y, r.z, r.w);
+#else
+  const D d;
+  const size_t L = hn::Lanes(d);
+  const float* f = &at->x;
+  r = transpose_in_blocks(hn::LoadU(d, f), hn::LoadU(d, f + L), hn::LoadU(d, f + 2 * L), hn::LoadU(d, f + 3 * L));
+#endif
+  return r;
+}
+// Lane λ of r into row at + block_order(λ): load4_block_order's inverse.
+HWY_INLINE void store4_block_order(vec4* at, const V4& r) {
+#if HWY_TARGET == HWY_SCALAR
+  hn::StoreInterleaved4(r.x, r.y, r.z, r.w, D(), &at->x);
+#else
+  const D d;
+  const size_t L = hn::Lanes(d);
+  float* f = &at->x;
+  const V4 t = transpose_in_blocks(r.x, r.y, r.z, r.w);  // a transpose within blocks is its own inverse
+  hn::StoreU(t.x, d, f);
+  hn::StoreU(t.y, d, f + L);
+  hn::StoreU(t.z, d, f + 2 * L);
+  hn::StoreU(t.w, d, f + 3 * L);
+#endif
+}
+// Rows base[index[block_order(λ)]] in lane λ, through a buffer (rows_via_buffer without its
+// shuffles across blocks).
+HWY_INLINE V4 rows_via_buffer_block_order(const vec4* base, const uint* index) {
+  alignas(64) vec4 buf[HWY_LANES(float)];
+  const size_t L = hn::Lanes(D());
+  for (size_t l = 0; l < L; ++l) std::memcpy(&buf[l], base + index[l], sizeof(vec4));
+  return load4_block_order(buf);
+}
+
 // The same through a buffer, one 16-byte copy per lane, for rows that miss the cache (a
 // contact's partners over a bed, contact_lanes.cpp): there the copies' loads overlap better than
 // the joins' (the settled 50k bed, 1.59-1.73 against 1.82-1.83 CPU-s per 300 steps).
