@@ -25,13 +25,10 @@ struct LaneKick {
 #include "kernels/kick.h"
 };
 
-HWY_INLINE V4 load_rows(const vec4* at) {
-  V4 r;
-  hn::LoadInterleaved4(D(), &at->x, r.x, r.y, r.z, r.w);
-  return r;
-}
-
-HWY_INLINE void store_rows(vec4* at, real3 xyz, V w) { hn::StoreInterleaved4(xyz.x.v, xyz.y.v, xyz.z.v, w, D(), &at->x); }
+// A run's rows in block order (lane_dialect.h): each lane's particle is the same slot in every row
+// it loads and stores, and the kick works lane by lane.
+HWY_INLINE V4 load_rows(const vec4* at) { return load4_block_order(at); }
+HWY_INLINE void store_rows(vec4* at, real3 xyz, V w) { store4_block_order(at, {xyz.x.v, xyz.y.v, xyz.z.v, w}); }
 
 // k_kick_drift for the Lanes(D()) slots from i (the kick of k_gather_kick alike: both read the
 // sums stored in force and torque); true when one of them moved past half the skin.
