@@ -217,8 +217,8 @@ HWY_INLINE void measure_walls(LaneLaw& law, const LaneWalls& q, const LaneLaw::S
 
 // process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
 // With `walls`, its lanes are contacts with those walls (p_at holds their owners there). In block
-// order (a bed's batch of particle pairs: no walls, no bodies) lane λ is contact c +
-// block_order(λ), its rows loaded and stored with fewer shuffles (lane_dialect.h).
+// order (free spheres: no bodies) lane λ is contact c + block_order(λ), its rows loaded and stored
+// with fewer shuffles (lane_dialect.h); `walls` then in that order too.
 template <bool kBlockOrder = false>
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at,
                                 const LaneWalls* walls = nullptr) {
@@ -354,13 +354,18 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
 // The rows of the batch's lane walls (`row`, each lane's; `lanes`, their bits; `cylinders`, the
 // cylinders' among them). Mostly one wall (an owner by the floor): its rows are broadcast;
 // otherwise each lane's joined, a lane without one taking the first one's, which its pick ignores.
+// In block order (`lanes` and `row` as ever by entry) lane λ takes entry block_order(λ)'s.
+template <bool kBlockOrder = false>
 LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t cylinders) {
   constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
   static_assert(sizeof(WallState) % sizeof(vec4) == 0, "a WallState is whole vec4 rows");
   auto mask = [](uint64_t b) {
     uint8_t bits[8] = {};
     std::memcpy(bits, &b, sizeof(bits));
-    return hn::LoadMaskBits(D(), bits);
+    const M m = hn::LoadMaskBits(D(), bits);
+    if constexpr (!kBlockOrder) return m;
+    const D d;
+    return hn::MaskFromVec(hn::TableLookupLanes(hn::VecFromMask(d, m), hn::IndicesFromVec(d, block_order(DI()))));
   };
   const uint first = row[__builtin_ctzll(lanes)];
   bool one = true;
@@ -369,7 +374,8 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
   uint index[HWY_LANES(float)];
   alignas(64) int32_t material[HWY_LANES(float)];
   for (size_t l = 0; l < L && !one; ++l) {
-    const uint r = (lanes >> l) & 1u ? row[l] : first;
+    const size_t e = kBlockOrder ? block_order(l) : l;
+    const uint r = (lanes >> e) & 1u ? row[e] : first;
     index[l] = r * kRow;
     material[l] = int32_t(k.B_walls[r].info.y);
   }
@@ -395,6 +401,7 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
 // rectangle's edge, a mesh triangle) keeps its history aside, and
 // after the lanes each such contact is measured, stored as apart or added to the wall batch. A
 // bed's mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few.
+template <bool kBlockOrder>
 void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& walls) {
   const DI di;
   const size_t L = hn::Lanes(di);
@@ -418,10 +425,10 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
     history[l] = k.B_history[c + l];
   }
   if (in_lanes != 0) {
-    const LaneWalls rows = wall_rows(k, row, in_lanes, cylinders);
-    particle_lanes(k, c, k.B_owner + c, partner, &rows);
+    const LaneWalls rows = wall_rows<kBlockOrder>(k, row, in_lanes, cylinders);
+    particle_lanes<kBlockOrder>(k, c, k.B_owner + c, partner, &rows);
   } else {
-    particle_lanes(k, c, k.B_owner + c, partner);
+    particle_lanes<kBlockOrder>(k, c, k.B_owner + c, partner);
   }
   const int32_t one = one_material(k);
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
@@ -447,7 +454,7 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   const size_t L = hn::Lanes(di);
   const VI particles = hn::Set(di, int32_t(k.PC.n_particles));
   WallBatch walls;
-  const bool bed = (k.PC.flags & kFlagBodies) == 0u;  // its batches of particle pairs in block order
+  const bool spheres = (k.PC.flags & kFlagBodies) == 0u;  // free spheres: batches in block order
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
@@ -456,9 +463,12 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
     if (c + 9 * L <= end)
       for (size_t e = 0; e < L; e += 4) __builtin_prefetch(&k.B_history[c + 8 * L + e]);
     const auto walls_at = hn::Not(hn::Lt(p, particles));
-    if (!hn::AllFalse(di, walls_at))
-      mixed_lanes(k, c, p, hn::RebindMask(D(), walls_at), walls);
-    else if (bed)
+    const bool mixed = !hn::AllFalse(di, walls_at);
+    if (mixed && spheres)
+      mixed_lanes<true>(k, c, p, hn::RebindMask(D(), walls_at), walls);
+    else if (mixed)
+      mixed_lanes<false>(k, c, p, hn::RebindMask(D(), walls_at), walls);
+    else if (spheres)
       particle_lanes<true>(k, c, k.B_owner + c, k.B_partner + c);
     else
       particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
