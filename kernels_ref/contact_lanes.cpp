@@ -56,7 +56,7 @@ real rolling_lever(Kernels& k, LaneLaw& law, const uint* spheres, real3 cp, real
   uint body[HWY_LANES(float)];
   bool one_body = true;
   for (size_t l = 0; l < hn::Lanes(D()); ++l) {
-    body[l] = k.B_subs[spheres[l]].info.x;
+    body[l] = k.B_subs[spheres[block_order(l)]].info.x;  // lane l is entry block_order(l)
     one_body = one_body && body[l] == body[0];
   }
   if (one_body) {  // the usual case
@@ -72,8 +72,9 @@ real rolling_lever(Kernels& k, LaneLaw& law, const uint* spheres, real3 cp, real
 
 // The owners' rows of a batch of a bed: the list is in rows by owner slot, so a batch's owners are
 // a few consecutive slots. When every owner lies within the lanes' count of the first one, the
-// rows from the first are loaded as a block and each lane takes its owner's by a permutation;
-// otherwise (or past the buffer's end) rows() joins them one by one.
+// rows from the first are loaded as a block (in block order) and each lane takes its owner's by a
+// permutation (`lane`: where that row lies in the block's lanes); otherwise (or past the buffer's
+// end) rows() joins them one by one.
 HWY_INLINE bool owner_block(const uint* i, uint n, VI& offset) {
   const DI di;
   const size_t L = hn::Lanes(di);
@@ -83,33 +84,17 @@ HWY_INLINE bool owner_block(const uint* i, uint n, VI& offset) {
   const hn::RebindToUnsigned<DI> du;  // an owner below the first wraps to a large offset
   return hn::AllTrue(du, hn::Lt(hn::BitCast(du, offset), hn::Set(du, uint32_t(L))));
 }
-HWY_INLINE V4 owner_rows(const vec4* base, const uint* i, bool block, VI offset) {
-  if (!block) return rows(base, i);
-  V4 r;
-  hn::LoadInterleaved4(D(), &base[i[0]].x, r.x, r.y, r.z, r.w);
-  const auto at = hn::IndicesFromVec(D(), offset);
+HWY_INLINE V4 owner_rows(const vec4* base, const uint* i, bool block, VI lane) {
+  if (!block) return rows<true>(base, i);
+  const V4 r = load4_block_order(&base[i[0]]);
+  const auto at = hn::IndicesFromVec(D(), lane);
   return {hn::TableLookupLanes(r.x, at), hn::TableLookupLanes(r.y, at), hn::TableLookupLanes(r.z, at),
           hn::TableLookupLanes(r.w, at)};
 }
-// The same in block order (lane λ the owner of entry block_order(λ)): the block's rows loaded in
-// block order, each lane then taking its owner's from lane `lane` of them.
-HWY_INLINE V4 owner_rows_block_order(const vec4* base, const uint* i, bool block, VI lane) {
-  if (block) {
-    const V4 r = load4_block_order(&base[i[0]]);
-    const auto at = hn::IndicesFromVec(D(), lane);
-    return {hn::TableLookupLanes(r.x, at), hn::TableLookupLanes(r.y, at), hn::TableLookupLanes(r.z, at),
-            hn::TableLookupLanes(r.w, at)};
-  }
-  uint at[HWY_LANES(float)];
-  for (size_t l = 0; l < hn::Lanes(D()); ++l) at[l] = i[block_order(l)];
-  return rows(base, at);
-}
-// The lanes' indices i_at (owners, partners) in the batch's order.
-template <bool kBlockOrder>
+// The entries' indices `at` (owners, partners) in the batch's lanes.
 HWY_INLINE VI lane_indices(const uint* at) {
   const DI di;
   const VI v = hn::LoadU(di, reinterpret_cast<const int32_t*>(at));
-  if constexpr (!kBlockOrder) return v;
   return hn::TableLookupLanes(v, hn::IndicesFromVec(di, block_order(di)));
 }
 
@@ -166,14 +151,12 @@ HWY_INLINE EntryRows apart_rows() {
   const V4 row{zero, zero, zero, zero};
   return {row, row, row, row};
 }
-// A batch's entries from c (a lean entry has no T_j), its lanes in natural or block order.
-template <bool kBlockOrder = false>
+// A batch's entries from c (a lean entry has no T_j).
 HWY_INLINE void store_entries(Kernels& k, uint64_t c, const EntryRows& e, uint flags) {
-  auto put = [](vec4* at, const V4& r) { kBlockOrder ? store4_block_order(at, r) : store4(at, r); };
-  put(&k.B_history[c], e.history);
-  put(&k.B_contact_force[c], e.force);
-  put(&k.B_torque_i[c], e.third);
-  if ((flags & kFlagLeanContacts) == 0u) put(&k.B_torque_j[c], e.torque_j);
+  store4_block_order(&k.B_history[c], e.history);
+  store4_block_order(&k.B_contact_force[c], e.force);
+  store4_block_order(&k.B_torque_i[c], e.third);
+  if ((flags & kFlagLeanContacts) == 0u) store4_block_order(&k.B_torque_j[c], e.torque_j);
 }
 
 // The walls of a batch measured in its lanes (planes, rectangles whose face the owner lies over,
@@ -215,11 +198,10 @@ HWY_INLINE void measure_walls(LaneLaw& law, const LaneWalls& q, const LaneLaw::S
   t = cond{hn::Or(hn::And(q.at, touches.m), hn::AndNot(q.at, t.m))};
 }
 
-// process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p.
-// With `walls`, its lanes are contacts with those walls (p_at holds their owners there). In block
-// order (free spheres: no bodies) lane λ is contact c + block_order(λ), its rows loaded and stored
-// with fewer shuffles (lane_dialect.h); `walls` then in that order too.
-template <bool kBlockOrder = false>
+// process_contact (contacts.h) for the Lanes(D()) contacts from c between particles i and p, in
+// block order (lane λ contact c + block_order(λ): its rows load and store with fewer shuffles,
+// lane_dialect.h). With `walls` (in that order too), its lanes are contacts with those walls
+// (p_at holds their owners there).
 HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const uint* p_at,
                                 const LaneWalls* walls = nullptr) {
   const DI di;
@@ -230,44 +212,35 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   // stay in cache, where joining them in registers is faster (the stalk bucket at rest, 2.07-2.09
   // against 1.86-1.97 CPU-s per 400 steps); a bed's partners miss it (lane_dialect.h), while its
   // owners, a few consecutive slots, stay in cache and load as a block (docs/engineering.md).
-  if (!kBlockOrder && (flags & kFlagBodies) != 0u) {
-    sphere_states(k, [&](const vec4* base) { return rows(base, i_at); }, [&](const vec4* base) { return rows(base, p_at); },
-                  si, sj);
-  } else if constexpr (kBlockOrder) {
+  if ((flags & kFlagBodies) != 0u) {
+    sphere_states(k, [&](const vec4* base) { return rows<true>(base, i_at); },
+                  [&](const vec4* base) { return rows<true>(base, p_at); }, si, sj);
+  } else {
     VI offset = hn::Zero(di);
     const bool block = owner_block(i_at, k.PC.n_particles, offset);
     // Lane λ's owner is row offset[block_order(λ)] of the block, in lane block_order_lane() of it.
     const VI lane = block_order_lane(di, hn::TableLookupLanes(offset, hn::IndicesFromVec(di, block_order(di))));
-    sphere_states(k, [&](const vec4* base) { return owner_rows_block_order(base, i_at, block, lane); },
+    sphere_states(k, [&](const vec4* base) { return owner_rows(base, i_at, block, lane); },
                   [&](const vec4* base) { return rows_via_buffer_block_order(base, p_at); }, si, sj);
-  } else {
-    VI offset;
-    const bool block = owner_block(i_at, k.PC.n_particles, offset);
-    sphere_states(k, [&](const vec4* base) { return owner_rows(base, i_at, block, offset); },
-                  [&](const vec4* base) { return rows_via_buffer(base, p_at); }, si, sj);
   }
   LaneLaw::ContactGeometry g;
   real3 v_rel;
   cond t = law.touching_spheres(si, sj, flags, g, v_rel);
   if (walls != nullptr) measure_walls(law, *walls, si, flags, g, v_rel, t);
-  if (hn::AllFalse(D(), t.m)) return store_entries<kBlockOrder>(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
+  if (hn::AllFalse(D(), t.m)) return store_entries(k, c, apart_rows(), flags);  // a clump heap's list is mostly such
   if (law.centre_lever(flags) && (flags & kFlagLeanContacts) == 0u) {  // set_rolling_levers
     real3 cp = law.contact_point(si.x, g.n, g.ri);
     g.lever_i = rolling_lever(k, law, i_at, cp, g.ri);
     g.lever_j = rolling_lever(k, law, p_at, cp, g.rj);  // a wall's lane: unread (its arm_j is -1)
   }
-  V4 hist;
-  if constexpr (kBlockOrder)
-    hist = load4_block_order(&k.B_history[c]);
-  else
-    hn::LoadInterleaved4(D(), &k.B_history[c].x, hist.x, hist.y, hist.z, hist.w);
+  const V4 hist = load4_block_order(&k.B_history[c]);
   // Every particle of one material (the walls' may differ): no gathers, which are slow on this AMD
   // EPYC (7 % of the lanes' samples on a bed in cache, more in a clump heap).
   const int32_t one = one_material(k);
   VI mi = hn::Set(di, one), mj = mi;
   if (one < 0) {
-    mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices<kBlockOrder>(i_at));
-    mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices<kBlockOrder>(p_at));
+    mi = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices(i_at));
+    mj = hn::GatherIndex(di, reinterpret_cast<const int32_t*>(k.B_material), lane_indices(p_at));
   }
   if (walls != nullptr) mj = hn::IfThenElse(hn::RebindMask(di, walls->at), walls->material, mj);
   real3 shear = hist.xyz();
@@ -275,7 +248,7 @@ HWY_FLATTEN void particle_lanes(Kernels& k, uint64_t c, const uint* i_at, const 
   const cond wall = walls != nullptr ? cond{walls->at} : no_lanes();
   const real3 w_j = walls != nullptr ? zero_unless(!wall, sj.w) : sj.w;
   LaneLaw::ContactOut o = law.hertz_mindlin(g, v_rel, si.w, w_j, wall, gather_params(k, mi, mj), k.PC.dt, flags, shear);
-  store_entries<kBlockOrder>(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
+  store_entries(k, c, entry_rows(t, flags, hist, shear, o, g), flags);
 }
 
 // Wall contacts waiting for a batch of lanes. The scalar kernel's touch_wall measures each (the
@@ -354,8 +327,7 @@ HWY_FLATTEN void run_wall_batch(Kernels& k, WallBatch& q) {
 // The rows of the batch's lane walls (`row`, each lane's; `lanes`, their bits; `cylinders`, the
 // cylinders' among them). Mostly one wall (an owner by the floor): its rows are broadcast;
 // otherwise each lane's joined, a lane without one taking the first one's, which its pick ignores.
-// In block order (`lanes` and `row` as ever by entry) lane λ takes entry block_order(λ)'s.
-template <bool kBlockOrder = false>
+// `lanes` and `row` are by entry; lane λ takes entry block_order(λ)'s.
 LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t cylinders) {
   constexpr uint kRow = sizeof(WallState) / sizeof(vec4);
   static_assert(sizeof(WallState) % sizeof(vec4) == 0, "a WallState is whole vec4 rows");
@@ -363,7 +335,6 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
     uint8_t bits[8] = {};
     std::memcpy(bits, &b, sizeof(bits));
     const M m = hn::LoadMaskBits(D(), bits);
-    if constexpr (!kBlockOrder) return m;
     const D d;
     return hn::MaskFromVec(hn::TableLookupLanes(hn::VecFromMask(d, m), hn::IndicesFromVec(d, block_order(DI()))));
   };
@@ -374,7 +345,7 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
   uint index[HWY_LANES(float)];
   alignas(64) int32_t material[HWY_LANES(float)];
   for (size_t l = 0; l < L && !one; ++l) {
-    const size_t e = kBlockOrder ? block_order(l) : l;
+    const size_t e = block_order(l);
     const uint r = (lanes >> e) & 1u ? row[e] : first;
     index[l] = r * kRow;
     material[l] = int32_t(k.B_walls[r].info.y);
@@ -401,7 +372,6 @@ LaneWalls wall_rows(const Kernels& k, const uint* row, uint64_t lanes, uint64_t 
 // rectangle's edge, a mesh triangle) keeps its history aside, and
 // after the lanes each such contact is measured, stored as apart or added to the wall batch. A
 // bed's mixed batches are many (an owner by a wall in ~4 of every 10 batches), its wall lanes few.
-template <bool kBlockOrder>
 void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& walls) {
   const DI di;
   const size_t L = hn::Lanes(di);
@@ -425,10 +395,10 @@ void mixed_lanes(Kernels& k, uint64_t c, VI partners, M walls_at, WallBatch& wal
     history[l] = k.B_history[c + l];
   }
   if (in_lanes != 0) {
-    const LaneWalls rows = wall_rows<kBlockOrder>(k, row, in_lanes, cylinders);
-    particle_lanes<kBlockOrder>(k, c, k.B_owner + c, partner, &rows);
+    const LaneWalls rows = wall_rows(k, row, in_lanes, cylinders);
+    particle_lanes(k, c, k.B_owner + c, partner, &rows);
   } else {
-    particle_lanes<kBlockOrder>(k, c, k.B_owner + c, partner);
+    particle_lanes(k, c, k.B_owner + c, partner);
   }
   const int32_t one = one_material(k);
   for (uint64_t b = lanes; b != 0; b &= b - 1) {
@@ -454,7 +424,6 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
   const size_t L = hn::Lanes(di);
   const VI particles = hn::Set(di, int32_t(k.PC.n_particles));
   WallBatch walls;
-  const bool spheres = (k.PC.flags & kFlagBodies) == 0u;  // free spheres: batches in block order
   uint64_t c = begin;
   for (; c + L <= end; c += L) {
     VI p = hn::LoadU(di, reinterpret_cast<const int32_t*>(k.B_partner + c));
@@ -463,15 +432,10 @@ void ContactLanes(Kernels& k, uint64_t begin, uint64_t end) {
     if (c + 9 * L <= end)
       for (size_t e = 0; e < L; e += 4) __builtin_prefetch(&k.B_history[c + 8 * L + e]);
     const auto walls_at = hn::Not(hn::Lt(p, particles));
-    const bool mixed = !hn::AllFalse(di, walls_at);
-    if (mixed && spheres)
-      mixed_lanes<true>(k, c, p, hn::RebindMask(D(), walls_at), walls);
-    else if (mixed)
-      mixed_lanes<false>(k, c, p, hn::RebindMask(D(), walls_at), walls);
-    else if (spheres)
-      particle_lanes<true>(k, c, k.B_owner + c, k.B_partner + c);
-    else
+    if (hn::AllFalse(di, walls_at))
       particle_lanes(k, c, k.B_owner + c, k.B_partner + c);
+    else
+      mixed_lanes(k, c, p, hn::RebindMask(D(), walls_at), walls);
   }
   run_wall_batch(k, walls);
   for (; c < end; ++c) k.process_contact(k.B_owner[c], uint(c));

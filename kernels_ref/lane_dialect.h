@@ -86,49 +86,12 @@ struct V4 {
   real3 xyz() const { return {x, y, z}; }
 };
 
-#if HWY_TARGET != HWY_SCALAR
-// Rows index[4 k + j] of base as the blocks k (four floats each) of one vector: 128-bit loads
-// joined in registers, as hwy's LoadInterleaved4 arranges contiguous rows before transposing them.
-template <class DB>
-HWY_INLINE hn::Vec<DB> row_blocks(DB d, const vec4* base, const uint* index, size_t j, size_t k0) {
-  if constexpr (hn::MaxLanes(DB()) <= 4) {
-    return hn::LoadU(d, &base[index[4 * k0 + j]].x);
-  } else {
-    const hn::Half<DB> dh;
-    constexpr size_t half_blocks = hn::MaxLanes(DB()) / 8;
-    return hn::Combine(d, row_blocks(dh, base, index, j, k0 + half_blocks), row_blocks(dh, base, index, j, k0));
-  }
-}
-#endif
-
-// One 128-bit load per lane and a transpose in registers (hwy's for four floats per block), for
-// rows that mostly sit in cache (a body's sub-spheres, body_lanes.cpp): copying them through a
-// buffer stalls the wide loads that read it back (store forwarding fails), 2.18-2.39 against
-// 1.88-1.95 CPU-s per 400 steps of the stalk bucket at rest.
-inline V4 rows(const vec4* base, const uint* index) {
-  V4 r;
-#if HWY_TARGET == HWY_SCALAR
-  hn::LoadInterleaved4(D(), &base[index[0]].x, r.x, r.y, r.z, r.w);
-#else
-  const D d;
-  const V a = row_blocks(d, base, index, 0, 0), b = row_blocks(d, base, index, 1, 0);
-  const V c = row_blocks(d, base, index, 2, 0), e = row_blocks(d, base, index, 3, 0);
-  const V v10_even = hn::InterleaveLower(d, a, c), v10_odd = hn::InterleaveLower(d, b, e);
-  const V v32_even = hn::InterleaveUpper(d, a, c), v32_odd = hn::InterleaveUpper(d, b, e);
-  r.x = hn::InterleaveLower(d, v10_even, v10_odd);
-  r.y = hn::InterleaveUpper(d, v10_even, v10_odd);
-  r.z = hn::InterleaveLower(d, v32_even, v32_odd);
-  r.w = hn::InterleaveUpper(d, v32_even, v32_odd);
-#endif
-  return r;
-}
-
 // ---- Block order: a batch's lanes in the order a transpose within 128-bit blocks leaves them. ----
 // Four vectors of consecutive vec4 rows (B = Lanes / 4 rows each, row B j + k in block k of vector
 // j) transposed within their blocks (eight interleaves) put row B j + k in lane 4 k + j. hwy's
 // LoadInterleaved4 and StoreInterleaved4 add eight shuffles across blocks to keep lane l row l; a
-// batch whose lanes are all loaded and stored as consecutive rows can skip them, its lane λ then
-// being row block_order(λ) throughout (the law works lane by lane, so the bytes are the same).
+// batch whose lanes load and store consecutive rows in block order skips them, its lane λ being
+// row block_order(λ) throughout (the kernels' text works lane by lane: the same bytes).
 #if HWY_TARGET != HWY_SCALAR
 HWY_INLINE V4 transpose_in_blocks(V a, V b, V c, V e) {
   const D d;
@@ -185,25 +148,51 @@ HWY_INLINE void store4_block_order(vec4* at, const V4& r) {
   hn::StoreU(t.w, d, f + 3 * L);
 #endif
 }
-// Rows base[index[block_order(λ)]] in lane λ, through a buffer (rows_via_buffer without its
-// shuffles across blocks).
+
+#if HWY_TARGET != HWY_SCALAR
+// Rows index[4 k + j] of base (index[block_order(4 k + j)] in block order) as the blocks k (four
+// floats each) of one vector: 128-bit loads joined in registers.
+template <bool kBlockOrder, class DB>
+HWY_INLINE hn::Vec<DB> row_blocks(DB d, const vec4* base, const uint* index, size_t j, size_t k0) {
+  if constexpr (hn::MaxLanes(DB()) <= 4) {
+    const size_t lane = 4 * k0 + j;
+    return hn::LoadU(d, &base[index[kBlockOrder ? block_order(lane) : lane]].x);
+  } else {
+    const hn::Half<DB> dh;
+    constexpr size_t half_blocks = hn::MaxLanes(DB()) / 8;
+    return hn::Combine(d, row_blocks<kBlockOrder>(dh, base, index, j, k0 + half_blocks),
+                       row_blocks<kBlockOrder>(dh, base, index, j, k0));
+  }
+}
+#endif
+
+// Rows base[index[l]] in lane l (base[index[block_order(λ)]] in lane λ in block order): one 128-bit
+// load per lane and a transpose in registers, for rows that mostly sit in cache (a body's
+// sub-spheres, body_lanes.cpp): copying them through a buffer stalls the wide loads that read it
+// back (store forwarding fails), 2.18-2.39 against 1.88-1.95 CPU-s per 400 steps of the stalk
+// bucket at rest.
+template <bool kBlockOrder = false>
+HWY_INLINE V4 rows(const vec4* base, const uint* index) {
+#if HWY_TARGET == HWY_SCALAR
+  V4 r;
+  hn::LoadInterleaved4(D(), &base[index[0]].x, r.x, r.y, r.z, r.w);
+  return r;
+#else
+  const D d;
+  return transpose_in_blocks(row_blocks<kBlockOrder>(d, base, index, 0, 0), row_blocks<kBlockOrder>(d, base, index, 1, 0),
+                             row_blocks<kBlockOrder>(d, base, index, 2, 0), row_blocks<kBlockOrder>(d, base, index, 3, 0));
+#endif
+}
+
+// Rows base[index[block_order(λ)]] in lane λ through a buffer, one 16-byte copy per lane, for rows
+// that miss the cache (a contact's partners over a bed, contact_lanes.cpp): there the copies'
+// loads overlap better than the joins' (the settled 50k bed, 1.59-1.73 against 1.82-1.83 CPU-s per
+// 300 steps).
 HWY_INLINE V4 rows_via_buffer_block_order(const vec4* base, const uint* index) {
   alignas(64) vec4 buf[HWY_LANES(float)];
   const size_t L = hn::Lanes(D());
   for (size_t l = 0; l < L; ++l) std::memcpy(&buf[l], base + index[l], sizeof(vec4));
   return load4_block_order(buf);
-}
-
-// The same through a buffer, one 16-byte copy per lane, for rows that miss the cache (a
-// contact's partners over a bed, contact_lanes.cpp): there the copies' loads overlap better than
-// the joins' (the settled 50k bed, 1.59-1.73 against 1.82-1.83 CPU-s per 300 steps).
-inline V4 rows_via_buffer(const vec4* base, const uint* index) {
-  alignas(64) float buf[4 * HWY_LANES(float)];
-  const size_t L = hn::Lanes(D());
-  for (size_t l = 0; l < L; ++l) std::memcpy(buf + 4 * l, base + index[l], sizeof(vec4));
-  V4 r;
-  hn::LoadInterleaved4(D(), buf, r.x, r.y, r.z, r.w);
-  return r;
 }
 
 // Field `field` (its vec4 row in gpu::Body) of each lane's body b[l], joined in registers.
