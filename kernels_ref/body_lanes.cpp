@@ -29,15 +29,17 @@ struct LaneBody {
 constexpr uint kSubRow = sizeof(SubSphere) / sizeof(vec4);   // vec4 rows per SubSphere
 constexpr uint kMaxLanes = HWY_LANES(float);
 
-// k_body_place for the Lanes(D()) slots from i; true when one of them moved past half the skin.
+// k_body_place for the Lanes(D()) slots from i, in block order (lane l slot i + block_order(l),
+// lane_dialect.h); true when one of them moved past half the skin.
 bool place_lanes(Kernels& k, uint64_t i) {
   const size_t L = hn::Lanes(D());
   LaneBody law;
   uint body[kMaxLanes], at[kMaxLanes];
   bool one_body = true;
   for (size_t l = 0; l < L; ++l) {
-    body[l] = k.B_subs[i + l].info.x;
-    at[l] = uint((i + l) * kSubRow);
+    const uint64_t slot = i + block_order(l);
+    body[l] = k.B_subs[slot].info.x;
+    at[l] = uint(slot * kSubRow);
     one_body = one_body && body[l] == body[0];
   }
   V4 local = rows(reinterpret_cast<const vec4*>(k.B_subs), at);
@@ -53,13 +55,12 @@ bool place_lanes(Kernels& k, uint64_t i) {
   }
   real3 r, x, v;
   law.place_sub(p4.xyz(), vel.xyz(), omega.xyz(), quat.xyz(), quat.w, local.xyz(), r, x, v);
-  store4(&k.B_pos[i], x.x, x.y, x.z, local.w);
-  store4(&k.B_vel[i], v.x, v.y, v.z, p4.w);
-  store4(&k.B_omega[i], omega.x, omega.y, omega.z, 0.0f);
+  store4_block_order(&k.B_pos[i], {x.x.v, x.y.v, x.z.v, local.w});
+  store4_block_order(&k.B_vel[i], {v.x.v, v.y.v, v.z.v, p4.w});
+  store4_block_order(&k.B_omega[i], {omega.x, omega.y, omega.z, hn::Zero(D())});
   if ((k.PC.flags & kFlagDrift) == 0u) return false;
-  V bx, by, bz, bw;
-  hn::LoadInterleaved4(D(), &k.B_pos_at_build[i].x, bx, by, bz, bw);
-  real3 moved = x - real3(bx, by, bz);
+  const V4 built = load4_block_order(&k.B_pos_at_build[i]);
+  real3 moved = x - built.xyz();
   return !hn::AllFalse(D(), hn::Gt(law.dot3(moved, moved).v, hn::Set(D(), k.PC.half_skin_sq)));
 }
 

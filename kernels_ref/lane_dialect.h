@@ -218,7 +218,6 @@ HWY_INLINE uint64_t lane_bits(DM d, hn::Mask<DM> m) {
 inline V4 same_row(const vec4& r) { return {hn::Set(D(), r.x), hn::Set(D(), r.y), hn::Set(D(), r.z), hn::Set(D(), r.w)}; }
 
 inline void store4(vec4* at, real x, real y, real z, real w) { hn::StoreInterleaved4(x.v, y.v, z.v, w.v, D(), &at->x); }
-inline void store4(vec4* at, const V4& r) { hn::StoreInterleaved4(r.x, r.y, r.z, r.w, D(), &at->x); }
 inline real zero_unless(cond c, real a) { return hn::IfThenElseZero(c.m, a.v); }
 inline real3 zero_unless(cond c, real3 a) { return {zero_unless(c, a.x), zero_unless(c, a.y), zero_unless(c, a.z)}; }
 
