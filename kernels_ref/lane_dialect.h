@@ -101,22 +101,20 @@ HWY_INLINE V4 transpose_in_blocks(V a, V b, V c, V e) {
           hn::InterleaveLower(d, v32_even, v32_odd), hn::InterleaveUpper(d, v32_even, v32_odd)};
 }
 #endif
-// The row of a batch in lane λ, and the lane of row r, each for one lane or as a vector of all.
-HWY_INLINE size_t block_order(size_t lane) {
-  const size_t B = hn::Lanes(D()) / 4;
-  return B <= 1 ? lane : B * (lane % 4) + lane / 4;
-}
+// log2 of B, the vec4 rows one vector holds: 2, 1 or 0 (AVX-512, AVX2, 128-bit or scalar lanes).
 HWY_INLINE int rows_per_vector_log2() {
-  const size_t B = hn::Lanes(D()) / 4;
-  return B >= 4 ? 2 : B == 2 ? 1 : 0;  // no target has more than 16 float lanes
+  static_assert(HWY_LANES(float) <= 16, "block order is written for up to 16 float lanes");
+  const size_t L = hn::Lanes(D());
+  return L >= 16 ? 2 : L == 8 ? 1 : 0;
 }
+// The row of a batch in lane λ = 4 k + j (B j + k), for one lane or as a vector of all; and the lane
+// of row r (r = B j + k: 4 k + j). With one row per vector (B = 1) both are the identity.
+HWY_INLINE size_t block_order(size_t lane) { return ((lane & 3) << rows_per_vector_log2()) + (lane >> 2); }
 HWY_INLINE VI block_order(DI di) {
   const VI lane = hn::Iota(di, 0);
-  if (hn::Lanes(di) <= 4) return lane;
   return hn::Add(hn::ShiftLeftSame(hn::And(lane, hn::Set(di, 3)), rows_per_vector_log2()), hn::ShiftRight<2>(lane));
 }
 HWY_INLINE VI block_order_lane(DI di, VI row) {
-  if (hn::Lanes(di) <= 4) return row;
   const int b = rows_per_vector_log2();
   return hn::Add(hn::ShiftLeft<2>(hn::And(row, hn::Set(di, (1 << b) - 1))), hn::ShiftRightSame(row, b));
 }
